@@ -1,0 +1,64 @@
+// The Embree wrapper: one device, one scene built from the scene model, and
+// ray queries. All ray intersection in drt goes through here.
+//
+// Shapes: spheres, planes, cylinders, cones, discs and tori are analytic Embree
+// user geometry (intersected in object space in double precision, so any
+// affine transform works); boxes, triangles and meshes are Embree triangles.
+// Objects with Motion become instances of their own sub-scene with two
+// transform time steps; static objects carry no time steps.
+#pragma once
+
+#include "core/vec.h"
+#include "scene/scene.h"
+
+#include <cstdint>
+#include <memory>
+
+namespace drt {
+
+struct Ray {
+    Vec3 origin;
+    Vec3 direction; // need not be unit length; t is in units of |direction|
+    double tMin = 0;
+    double tMax = 1e30;
+    double time = 0; // in [0, 1]: the Motion parameter
+};
+
+struct Hit {
+    double t = 0;
+    Vec3 point;            // world space
+    Vec3 geometricNormal;  // world space, unit, facing out of the shape (not flipped to the ray)
+    Vec3 shadingNormal;    // world space, unit, same side as geometricNormal (interpolated for meshes)
+    const Object* object = nullptr;
+    uint32_t primitive = 0; // triangle index within a mesh, else 0
+};
+
+class Accelerator {
+public:
+    // Throws RenderError (render/render.h) on Embree errors or invalid geometry.
+    explicit Accelerator(const Scene& scene);
+    ~Accelerator();
+    Accelerator(const Accelerator&) = delete;
+    Accelerator& operator=(const Accelerator&) = delete;
+
+    // Nearest hit with tMin < t < tMax. Thread-safe.
+    bool intersect(const Ray& ray, Hit& hit) const;
+    // Any hit with tMin < t < tMax by an object that casts shadows. Thread-safe.
+    bool occluded(const Ray& ray) const;
+
+    // A ray origin just off the surface at `hit`, on the side `direction` points
+    // to, robust at every scale (integer-ULP offset along the geometric normal,
+    // Waechter and Binder, Ray Tracing Gems ch. 6).
+    static Vec3 offsetOrigin(const Hit& hit, const Vec3& direction);
+
+    // True if some object has Motion (the scene was built with time steps).
+    bool hasMotion() const;
+    // Bounding box of everything finite in the scene (planes excluded).
+    void bounds(Vec3& lower, Vec3& upper) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace drt

@@ -1,0 +1,92 @@
+#include "core/diagnostics.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+namespace drt {
+
+int SourceFiles::add(std::string path, std::string text) {
+    files_.push_back({std::move(path), std::move(text)});
+    return static_cast<int>(files_.size()) - 1;
+}
+
+std::string SourceFiles::line(int id, int line) const {
+    const std::string& t = text(id);
+    size_t start = 0;
+    for (int l = 1; l < line; ++l) {
+        start = t.find('\n', start);
+        if (start == std::string::npos) return {};
+        ++start;
+    }
+    size_t end = t.find('\n', start);
+    std::string s = t.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    if (!s.empty() && s.back() == '\r') s.pop_back();
+    return s;
+}
+
+void Diagnostics::report(Severity s, SourceLoc loc, std::string message, std::vector<SourceLoc> includedFrom) {
+    if (s == Severity::Warning && warningsAsErrors_) s = Severity::Error;
+    if (s == Severity::Error) ++errorCount_;
+    if (s == Severity::Warning) ++warningCount_;
+    diagnostics_.push_back({s, loc, std::move(message), std::move(includedFrom)});
+}
+
+static const char* severityName(Severity s) {
+    switch (s) {
+    case Severity::Note: return "note";
+    case Severity::Warning: return "warning";
+    case Severity::Error: return "error";
+    }
+    return "error";
+}
+
+std::string Diagnostics::format(const Diagnostic& d) const {
+    std::string out;
+    for (auto it = d.includedFrom.rbegin(); it != d.includedFrom.rend(); ++it)
+        if (it->valid()) out += fmt::format("In file included from {}:{}:\n", files_->path(it->file), it->line);
+    if (!d.loc.valid()) return out + fmt::format("drt: {}: {}\n", severityName(d.severity), d.message);
+    out += fmt::format("{}:{}:{}: {}: {}\n", files_->path(d.loc.file), d.loc.line, d.loc.column,
+                       severityName(d.severity), d.message);
+    std::string src = files_->line(d.loc.file, d.loc.line);
+    // Tabs keep their width in the caret line so the caret sits under the spot.
+    std::string caret;
+    for (int i = 0; i + 1 < d.loc.column && i < static_cast<int>(src.size()); ++i)
+        caret += (src[i] == '\t') ? '\t' : ' ';
+    out += fmt::format("  {}\n  {}^\n", src, caret);
+    return out;
+}
+
+std::string Diagnostics::formatAll() const {
+    std::string out;
+    for (const auto& d : diagnostics_) out += format(d);
+    return out;
+}
+
+static size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        cur[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+            cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+        }
+        std::swap(prev, cur);
+    }
+    return prev[b.size()];
+}
+
+std::string nearestWord(const std::string& word, const std::vector<std::string>& known) {
+    std::string best;
+    size_t bestDistance = std::max<size_t>(1, word.size() / 3) + 1;
+    for (const auto& k : known) {
+        const size_t d = editDistance(word, k);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = k;
+        }
+    }
+    return best;
+}
+
+} // namespace drt

@@ -1,0 +1,39 @@
+// An in-memory float image (linear values, interleaved channels) and the one
+// image I/O path, through OpenImageIO.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace drt {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    int channels = 3;
+    std::vector<float> pixels; // row-major, top row first, interleaved
+
+    Image() = default;
+    Image(int w, int h, int c = 3) : width(w), height(h), channels(c), pixels(size_t(w) * h * c, 0.0f) {}
+    float& at(int x, int y, int c) { return pixels[(size_t(y) * width + x) * channels + c]; }
+    float at(int x, int y, int c) const { return pixels[(size_t(y) * width + x) * channels + c]; }
+};
+
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
+// Fails early (before rendering) if `path` cannot be written: missing folder,
+// no permission, or an extension no OpenImageIO writer handles. Returns "" if fine.
+std::string checkWritable(const std::string& path);
+
+// Writes the image to a temporary file beside `path` and renames it over
+// `path` only when complete. 8-bit and 16-bit integer formats are sRGB-encoded
+// (clamped to [0, 1]); float formats (EXR, HDR) keep linear values. Returns "" on
+// success, else the reason.
+std::string writeImage(const std::string& path, const Image& image, const Metadata& metadata = {});
+
+// Reads any format OpenImageIO reads, as linear floats (8-bit sRGB decoded).
+// Returns "" on success, else the reason.
+std::string readImage(const std::string& path, Image& image, Metadata* metadata = nullptr);
+
+} // namespace drt

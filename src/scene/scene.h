@@ -1,0 +1,246 @@
+// The scene model: what every front end (.drt, .pov) builds and what the
+// renderer consumes. It knows nothing of text or of Embree. Defaults follow
+// POV-Ray 3.7 (../shared/POVRAY-NOTES.md) unless stated.
+#pragma once
+
+#include "core/color.h"
+#include "core/diagnostics.h"
+#include "core/transform.h"
+#include "core/vec.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace drt {
+
+// ---------------------------------------------------------------- textures
+
+enum class PatternKind {
+    Solid,    // `color ...`
+    Checker,  // two sub-pigments in unit cubes
+    Hexagon,  // three sub-pigments
+    Brick,    // two sub-pigments (mortar, brick)
+    Gradient, // colour map along `gradientAxis`
+    Radial,   // colour map around y
+    Onion,    // colour map by distance from the origin
+};
+
+struct ColorMapEntry {
+    double value = 0;
+    ColorFT color;
+};
+
+struct Pigment {
+    PatternKind pattern = PatternKind::Solid;
+    ColorFT color;                        // Solid (POV-Ray default: black)
+    std::vector<Pigment> children;        // Checker, Hexagon, Brick sub-pigments
+    std::vector<ColorMapEntry> colorMap;  // Gradient, Radial, Onion
+    Vec3 gradientAxis{0, 1, 0};
+    Vec3 brickSize{8, 3, 4.5};
+    double mortar = 0.5;
+    // Pattern space -> world space, including the transforms of the object the
+    // pigment belongs to that came after it. Evaluate at toWorld.inversePoint(p).
+    Transform toWorld;
+};
+
+struct Finish {
+    Color ambient{0.1};
+    Color emission{0};
+    double diffuse = 0.6;
+    double brilliance = 1;
+    double phong = 0;
+    double phongSize = 40;
+    double specular = 0;
+    double roughness = 0.05;
+    double metallic = 0;
+    // reflection: `reflection r` sets both min and max to r.
+    Color reflectionMin{0};
+    Color reflectionMax{0};
+    bool reflectionFresnel = false;
+    double reflectionFalloff = 1;
+    bool conserveEnergy = false;
+    // Distribution ray tracing (drt extension, issue 3). 0 is a perfect mirror /
+    // perfect refraction; larger values widen the lobe around the ideal direction.
+    double reflectionBlur = 0;
+    double refractionBlur = 0;
+};
+
+struct Texture {
+    Pigment pigment;
+    Finish finish;
+};
+
+struct Interior {
+    double ior = 1;
+    double fadeDistance = 0; // 0: no attenuation inside
+    double fadePower = 0;
+    Color fadeColor{0};
+};
+
+// ---------------------------------------------------------------- shapes
+// Every shape is given in object space; Object::transform maps it to world space.
+
+struct Sphere {
+    Vec3 center;
+    double radius = 1;
+};
+struct Plane { // points p with dot(normal, p) = distance; inside is dot < distance
+    Vec3 normal{0, 1, 0};
+    double distance = 0;
+};
+struct Box {
+    Vec3 corner1{-1, -1, -1};
+    Vec3 corner2{1, 1, 1};
+};
+struct Cylinder {
+    Vec3 base;
+    Vec3 cap{0, 1, 0};
+    double radius = 1;
+    bool open = false;
+};
+struct Cone {
+    Vec3 base;
+    double baseRadius = 1;
+    Vec3 cap{0, 1, 0};
+    double capRadius = 0;
+    bool open = false;
+};
+struct Disc {
+    Vec3 center;
+    Vec3 normal{0, 1, 0};
+    double radius = 1;
+    double holeRadius = 0;
+};
+struct Torus { // around the y axis
+    double majorRadius = 1;
+    double minorRadius = 0.25;
+};
+struct Mesh {
+    std::vector<Vec3> vertices;
+    std::vector<std::array<int, 3>> triangles;
+    // Optional per-vertex normals (smooth_triangle, mesh2 normal_vectors);
+    // when present, normalIndices has one entry per triangle.
+    std::vector<Vec3> normals;
+    std::vector<std::array<int, 3>> normalIndices;
+};
+
+struct Object;
+struct Csg {
+    enum class Op { Union, Merge, Difference, Intersection };
+    Op op = Op::Union;
+    std::vector<Object> children;
+};
+
+using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg>;
+
+// Motion over the shutter (issue 3): the extra transform reached at time 1,
+// applied after Object::transform. At time t the object is scaled by
+// lerp(1, scale, t), rotated by slerp(identity, rotate, t) and moved by
+// t * translate.
+struct Motion {
+    Vec3 translate{0, 0, 0};
+    Vec3 rotate{0, 0, 0}; // degrees, as POV-Ray's rotate
+    Vec3 scale{1, 1, 1};
+};
+
+struct Object {
+    Shape shape;
+    Transform transform; // object -> world
+    std::optional<Motion> motion;
+    Texture texture;
+    Interior interior;
+    bool noShadow = false;
+    bool hollow = false;
+    bool inverse = false;
+    SourceLoc loc;
+};
+
+// ---------------------------------------------------------------- lights
+
+struct AreaLight {
+    Vec3 axis1{1, 0, 0};
+    Vec3 axis2{0, 0, 1};
+    int size1 = 1;
+    int size2 = 1;
+    bool jitter = false;
+    int adaptive = -1; // POV-Ray `adaptive`; -1: not given (full grid)
+    bool circular = false;
+    bool orient = false;
+};
+
+struct Light {
+    Vec3 position;
+    Color color{1};
+    bool shadowless = false;
+    // Spotlight (POV-Ray defaults).
+    bool spotlight = false;
+    Vec3 pointAt{0, 0, 1};
+    double radius = 30;  // degrees
+    double falloff = 45; // degrees
+    double tightness = 0;
+    // fade_distance 0: no distance falloff.
+    double fadeDistance = 0;
+    double fadePower = 0;
+    std::optional<AreaLight> area;
+    // POV-Ray's default averages only the shadow over an area light; with
+    // area_illumination each sample point shades as a point light.
+    bool areaIllumination = false;
+    SourceLoc loc;
+};
+
+// ---------------------------------------------------------------- camera
+
+// The camera as written; resolveCamera() (render/camera.h) turns it into
+// vectors once the image size is known.
+struct CameraSpec {
+    Vec3 location{0, 0, 0};
+    Vec3 direction{0, 0, 1};
+    Vec3 up{0, 1, 0};
+    std::optional<Vec3> right; // drt: defaults to x * width/height; POV front end sets <1.33,0,0>
+    Vec3 sky{0, 1, 0};
+    std::optional<Vec3> lookAt;
+    std::optional<double> angle; // horizontal field of view, degrees
+    // Thin lens (issue 3). aperture is the lens *diameter* in scene units; 0 is a pinhole.
+    double aperture = 0;
+    std::optional<Vec3> focalPoint;
+    std::optional<double> focalDistance;
+    // Shutter interval in scene time; objects' Motion spans time 0..1.
+    double shutterOpen = 0;
+    double shutterClose = 0;
+    SourceLoc loc;
+};
+
+// ---------------------------------------------------------------- settings
+
+struct GlobalSettings {
+    int maxTraceLevel = 5;
+    Color ambientLight{1};
+    double assumedGamma = 1.0;
+    double adcBailout = 1.0 / 255.0;
+};
+
+// Image size and sampling set from the scene; the command line overrides them.
+struct RenderSettings {
+    std::optional<int> width;
+    std::optional<int> height;
+    std::optional<int> samplesPerPixel;
+    std::optional<uint64_t> seed;
+    std::optional<std::string> sampler;
+    std::optional<std::string> filter;
+};
+
+struct Scene {
+    CameraSpec camera;
+    std::vector<Light> lights;
+    std::vector<Object> objects;
+    Color background{0};
+    GlobalSettings global;
+    RenderSettings render;
+};
+
+} // namespace drt

@@ -1,0 +1,54 @@
+#include "test_support.h"
+
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace drt::test {
+
+std::string sourcePath(const std::string& relative) { return (fs::path(DRT_SOURCE_DIR) / relative).string(); }
+
+std::string tempDir() {
+    static std::atomic<int> counter{0};
+    fs::path dir = fs::temp_directory_path() /
+                   ("drt-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir.string();
+}
+
+std::string writeFile(const std::string& path, const std::string& text) {
+    fs::path p(path);
+    if (p.has_parent_path()) fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << text;
+    return path;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+CommandResult runDrt(const std::string& arguments) {
+    const std::string dir = tempDir();
+    const std::string outPath = dir + "/stdout.txt", errPath = dir + "/stderr.txt";
+    const std::string command =
+        std::string("'") + DRT_EXECUTABLE + "' " + arguments + " >'" + outPath + "' 2>'" + errPath + "' </dev/null";
+    const int status = std::system(command.c_str());
+    CommandResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = readFile(outPath);
+    r.err = readFile(errPath);
+    fs::remove_all(dir);
+    return r;
+}
+
+} // namespace drt::test
