@@ -6,6 +6,24 @@
 // affine transform works); boxes, triangles and meshes are Embree triangles.
 // Objects with Motion become instances of their own sub-scene with two
 // transform time steps; static objects carry no time steps.
+//
+// Motion pivot (decided here): the motion's scale and rotation pivot on the
+// *world origin*, like every POV-Ray transform, i.e. the motion is appended
+// after Object::transform:
+//   world(t) = translate(t T) * slerp(I, R, t) * scale(lerp(1, S, t)) * transform.
+// To spin an object about its own centre, model it at the origin and put the
+// placement in the motion's translate (or in an enclosing object). R is turned
+// into one axis and an angle in [0, 360) degrees, so rotate 270*y turns 270
+// degrees (Embree instance time steps are added so each step turns < 180).
+// Motion is supported on top-level objects and on whole unions/CSGs, not on
+// children inside them (RenderError "not supported yet").
+//
+// CSG: union children become separate geometry (Hit::object is the child
+// inside Csg::children). Merge, difference and intersection are evaluated
+// exactly along the ray (inside/outside classification of every analytic
+// leaf, `inverse` honoured); meshes inside them are not supported yet.
+//
+// Planes get finite bounds of +-1e18 (Embree drops bounds beyond ~1.8e18).
 #pragma once
 
 #include "core/vec.h"

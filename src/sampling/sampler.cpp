@@ -1,20 +1,24 @@
 #include "sampling/sampler.h"
 
 #include "core/hash.h"
+#include "sampling/sobol.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace drt {
 
-// Default: k independent jittered points over `count` cells of a near-square grid.
+// Default: the k-th of `count` jittered points, one per cell of a near-square
+// nx x ny grid; the cells are visited in a random order per (pixel sample,
+// dimension), so the first `count` cells are a random subset when count < nx ny.
 Vec2 Sampler::get2DStratified(int dimension, int k, int count) {
     const int nx = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(count))));
     const int ny = (count + nx - 1) / nx;
-    const uint64_t h = hashValues({seed_, uint64_t(x_), uint64_t(y_), uint64_t(index_), uint64_t(dimension),
-                                   uint64_t(k), 0x57a7ULL});
+    const uint64_t key = hashValues({seed_, uint64_t(x_), uint64_t(y_), uint64_t(index_), uint64_t(dimension), 0x57a7ULL});
     const uint32_t cell = permuteIndex(static_cast<uint32_t>(k), static_cast<uint32_t>(nx * ny),
-                                       static_cast<uint32_t>(h >> 32));
+                                       static_cast<uint32_t>(key >> 32));
+    const uint64_t h = hashValues({key, uint64_t(k)});
     const Vec2 j{unitFromHash(mix64(h)), unitFromHash(mix64(h ^ 0xabcdefULL))};
     return {(cell % nx + j.x) / nx, (cell / nx + j.y) / ny};
 }
@@ -24,7 +28,7 @@ namespace {
 // Independent uniform random values: the N^-1/2 baseline.
 class IndependentSampler final : public Sampler {
 public:
-    using Sampler::Sampler;
+    IndependentSampler(int spp, uint64_t seed) : Sampler(spp, seed) {}
     std::unique_ptr<Sampler> clone() const override { return std::make_unique<IndependentSampler>(*this); }
     void startPixelSample(int x, int y, int index) override {
         x_ = x;
@@ -83,17 +87,21 @@ private:
 } // namespace
 
 const std::vector<std::string>& samplerNames() {
-    static const std::vector<std::string> names{"independent", "stratified"};
+    static const std::vector<std::string> names{"sobol", "independent", "stratified"};
     return names;
 }
 
-std::string defaultSamplerName() { return "stratified"; }
+// Owen-scrambled Sobol: stratified jointly over pixel, time and lens (sobol_sampler.cpp).
+std::string defaultSamplerName() { return "sobol"; }
 
 std::unique_ptr<Sampler> makeSampler(const std::string& name, int spp, uint64_t seed) {
     if (spp < 1) throw std::invalid_argument("samples per pixel must be at least 1");
     if (name == "independent") return std::make_unique<IndependentSampler>(spp, seed);
     if (name == "stratified") return std::make_unique<StratifiedSampler>(spp, seed);
-    throw std::invalid_argument("unknown sampler '" + name + "'");
+    if (name == "sobol") return makeSobolSampler(spp, seed);
+    std::string accepted;
+    for (const auto& n : samplerNames()) accepted += (accepted.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown sampler '" + name + "' (expected one of: " + accepted + ")");
 }
 
 } // namespace drt

@@ -63,6 +63,8 @@ struct Finish {
     Color reflectionMax{0};
     bool reflectionFresnel = false;
     double reflectionFalloff = 1;
+    // `reflection { ... metallic m }`: tints reflected light by the pigment, by m.
+    double reflectionMetallic = 0;
     bool conserveEnergy = false;
     // Distribution ray tracing (drt extension, issue 3). 0 is a perfect mirror /
     // perfect refraction; larger values widen the lobe around the ideal direction.

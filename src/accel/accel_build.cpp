@@ -1,0 +1,270 @@
+// Scene model -> Embree scenes. Analytic shapes become user-geometry
+// primitives, boxes and meshes triangle geometry in level space, unions are
+// flattened, other CSG operations become one primitive each, and every
+// object with Motion gets its own sub-scene under a motion-blurred instance.
+#include "accel/accel_impl.h"
+#include "render/render.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace drt::accel {
+
+namespace {
+
+// Planes have no bounds; Embree gets this large finite box instead. Embree
+// drops primitives whose bounds exceed its FLT_LARGE (1.844e18) as invalid:
+// with +-1e20 a plane silently vanished (measured), so stay below it.
+constexpr double kUnbounded = 1e18;
+
+std::string where(const Object& object) {
+    if (!object.loc.valid()) return "";
+    return "object at line " + std::to_string(object.loc.line) + ", column " + std::to_string(object.loc.column) +
+           ": ";
+}
+
+[[noreturn]] void fail(const Object& object, const std::string& message) {
+    throw RenderError(where(object) + message);
+}
+
+double determinant3(const Mat4& m) {
+    const auto& a = m.m;
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+}
+
+AnalyticShape prepare(const Object& object) {
+    try {
+        return *prepareShape(object.shape);
+    } catch (const std::invalid_argument& e) {
+        fail(object, e.what());
+    }
+}
+
+bool isAnalytic(const Shape& shape) {
+    return !std::holds_alternative<Mesh>(shape) && !std::holds_alternative<Csg>(shape) &&
+           !std::holds_alternative<Box>(shape);
+}
+
+struct Builder {
+    AcceleratorState& impl;
+
+    void extendWorldBounds(const Vec3& lo, const Vec3& hi) {
+        impl.lower = impl.bounded ? min(impl.lower, lo) : lo;
+        impl.upper = impl.bounded ? max(impl.upper, hi) : hi;
+        impl.bounded = true;
+    }
+
+    // Bounds of a level in level space, for the world bounds.
+    struct LevelBounds {
+        bool any = false;
+        Vec3 lower, upper;
+        void add(const Vec3& lo, const Vec3& hi) {
+            lower = any ? min(lower, lo) : lo;
+            upper = any ? max(upper, hi) : hi;
+            any = true;
+        }
+    };
+
+    CsgNode csgNode(const Object& object, const Transform& parentToLevel) {
+        if (object.motion) fail(object, "motion on an object inside a CSG is not supported yet");
+        CsgNode node;
+        node.inverse = object.inverse;
+        const Transform toLevel = object.transform.then(parentToLevel);
+        if (const auto* csg = std::get_if<Csg>(&object.shape)) {
+            if (csg->children.empty()) fail(object, "CSG with no children");
+            node.leaf = false;
+            node.op = csg->op;
+            for (const Object& child : csg->children) node.children.push_back(csgNode(child, toLevel));
+        } else if (std::holds_alternative<Mesh>(object.shape)) {
+            fail(object, "meshes and triangles inside merge, difference or intersection are not supported yet");
+        } else {
+            node.shape = prepare(object);
+            node.toLevel = toLevel;
+            node.object = &object;
+        }
+        return node;
+    }
+
+    void addPrimitive(Level& level, LevelBounds& bounds, Primitive p) {
+        if (p.bounded) {
+            bounds.add(p.lower, p.upper);
+        } else {
+            p.lower = Vec3(-kUnbounded);
+            p.upper = Vec3(kUnbounded);
+        }
+        level.primitives.push_back(std::move(p));
+    }
+
+    void addMesh(Level& level, LevelBounds& bounds, const Object& object, const Transform& toLevel, bool inverse,
+                 bool noShadow) {
+        MeshRecord record;
+        record.object = &object;
+        record.inverse = inverse;
+        const bool mirrored = determinant3(toLevel.matrix()) < 0;
+        if (const auto* box = std::get_if<Box>(&object.shape)) {
+            const Vec3 lo = min(box->corner1, box->corner2), hi = max(box->corner1, box->corner2);
+            if (!isFinite(lo) || !isFinite(hi)) fail(object, "box corners must be finite");
+            for (int c = 0; c < 8; ++c)
+                record.vertices.push_back(toLevel.point({(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y,
+                                                         (c & 4) ? hi.z : lo.z}));
+            // Corner c has bit 0 for x, bit 1 for y, bit 2 for z. Each face is two
+            // triangles wound counter-clockwise seen from outside.
+            static const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                            {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+            for (const auto& f : faces) {
+                record.triangles.push_back({f[0], f[1], f[2]});
+                record.triangles.push_back({f[0], f[2], f[3]});
+            }
+        } else {
+            const Mesh& mesh = std::get<Mesh>(object.shape);
+            const int vertexCount = static_cast<int>(mesh.vertices.size());
+            for (const Vec3& v : mesh.vertices) {
+                if (!isFinite(v)) fail(object, "mesh vertex is not finite");
+                record.vertices.push_back(toLevel.point(v));
+            }
+            for (const auto& tri : mesh.triangles) {
+                for (int i : tri)
+                    if (i < 0 || i >= vertexCount) fail(object, "mesh triangle index out of range");
+                record.triangles.push_back(tri);
+            }
+            if (!mesh.normals.empty()) {
+                if (mesh.normalIndices.size() != mesh.triangles.size())
+                    fail(object, "mesh needs one normal index triple per triangle");
+                const int normalCount = static_cast<int>(mesh.normals.size());
+                for (const auto& tri : mesh.normalIndices)
+                    for (int i : tri)
+                        if (i < 0 || i >= normalCount) fail(object, "mesh normal index out of range");
+                for (const Vec3& n : mesh.normals) {
+                    const Vec3 world = toLevel.normal(n);
+                    const double len = length(world);
+                    record.normals.push_back(len > 0 && std::isfinite(len) ? world / len : Vec3{});
+                }
+                record.normalIndices = mesh.normalIndices;
+            }
+        }
+        if (record.triangles.empty()) return;
+        // A mirroring transform reverses the winding; swap to keep the winding
+        // normal on the transformed object-space side.
+        if (mirrored) {
+            for (auto& tri : record.triangles) std::swap(tri[1], tri[2]);
+            for (auto& tri : record.normalIndices) std::swap(tri[1], tri[2]);
+        }
+        Vec3 lo(INFINITY), hi(-INFINITY);
+        for (const Vec3& v : record.vertices) {
+            lo = min(lo, v);
+            hi = max(hi, v);
+        }
+        bounds.add(lo, hi);
+        attachMesh(impl.device.get(), level, std::move(record), noShadow);
+        impl.device.throwIfFailed("adding a mesh");
+    }
+
+    void addObject(Level& level, LevelBounds& bounds, const Object& object, const Transform& parentToLevel,
+                   bool parentInverse, bool parentNoShadow) {
+        const Transform toLevel = object.transform.then(parentToLevel);
+        const bool inverse = object.inverse != parentInverse;
+        const bool noShadow = object.noShadow || parentNoShadow;
+        if (const auto* csg = std::get_if<Csg>(&object.shape)) {
+            if (csg->op == Csg::Op::Union) {
+                for (const Object& child : csg->children) {
+                    if (child.motion) fail(child, "motion on an object inside a union is not supported yet");
+                    addObject(level, bounds, child, toLevel, inverse, noShadow);
+                }
+                return;
+            }
+            Primitive p;
+            p.object = &object;
+            p.noShadow = noShadow;
+            // The tree's root carries the inherited inversion; leaves keep their own.
+            p.csg = std::make_unique<CsgNode>(csgNode(object, parentToLevel));
+            p.csg->inverse = inverse;
+            p.bounded = csgBounds(*p.csg, p.lower, p.upper);
+            addPrimitive(level, bounds, std::move(p));
+            return;
+        }
+        if (!isAnalytic(object.shape)) {
+            addMesh(level, bounds, object, toLevel, inverse, noShadow);
+            return;
+        }
+        Primitive p;
+        p.shape = prepare(object);
+        p.toLevel = toLevel;
+        p.object = &object;
+        p.inverse = inverse;
+        p.noShadow = noShadow;
+        p.bounded = shapeBounds(p.shape, p.lower, p.upper);
+        if (p.bounded) transformBounds(toLevel, p.lower, p.upper);
+        addPrimitive(level, bounds, std::move(p));
+    }
+
+    RTCScene newScene() {
+        RTCScene scene = rtcNewScene(impl.device.get());
+        impl.device.throwIfFailed("creating a scene");
+        return scene;
+    }
+
+    void finishLevel(Level& level) {
+        attachPrimitives(impl.device.get(), level);
+        impl.device.throwIfFailed("adding analytic shapes");
+        rtcCommitScene(level.scene);
+        impl.device.throwIfFailed("building the scene");
+    }
+
+    void addMovingObject(const Object& object) {
+        MotionPath motion = [&] {
+            try {
+                return MotionPath(*object.motion);
+            } catch (const std::invalid_argument& e) {
+                fail(object, e.what());
+            }
+        }();
+        auto level = std::make_unique<Level>();
+        level->scene = newScene();
+        LevelBounds bounds;
+        addObject(*level, bounds, object, Transform(), false, false);
+        finishLevel(*level);
+        RTCGeometry instance = rtcNewGeometry(impl.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+        impl.device.throwIfFailed("creating an instance");
+        rtcSetGeometryInstancedScene(instance, level->scene);
+        const int steps = motion.timeStepCount();
+        rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(steps));
+        for (int i = 0; i < steps; ++i) {
+            const RTCQuaternionDecomposition step = motion.timeStep(i);
+            rtcSetGeometryTransformQuaternion(instance, static_cast<unsigned>(i), &step);
+        }
+        // Shadow rays skip a no_shadow object at the instance.
+        rtcSetGeometryMask(instance, object.noShadow ? kCameraMask : (kCameraMask | kShadowMask));
+        rtcCommitGeometry(instance);
+        const unsigned id = rtcAttachGeometry(impl.top.scene, instance);
+        rtcReleaseGeometry(instance);
+        impl.device.throwIfFailed("adding a moving object");
+        if (bounds.any) {
+            // The swept bounds, sampled at nine times over the shutter.
+            for (int k = 0; k <= 8; ++k) {
+                Vec3 lo = bounds.lower, hi = bounds.upper;
+                transformBounds(motion.at(k / 8.0), lo, hi);
+                extendWorldBounds(lo, hi);
+            }
+        }
+        if (impl.top.geometries.size() <= id) impl.top.geometries.resize(id + 1);
+        impl.top.geometries[id] = {GeometryKind::Instance, impl.instances.size()};
+        impl.instances.push_back({std::move(level), std::move(motion)});
+    }
+};
+
+} // namespace
+
+void buildScene(const Scene& scene, AcceleratorState& impl) {
+    Builder builder{impl};
+    impl.top.scene = builder.newScene();
+    Builder::LevelBounds bounds;
+    for (const Object& object : scene.objects) {
+        if (object.motion) builder.addMovingObject(object);
+        else builder.addObject(impl.top, bounds, object, Transform(), false, false);
+    }
+    if (bounds.any) builder.extendWorldBounds(bounds.lower, bounds.upper);
+    builder.finishLevel(impl.top);
+}
+
+} // namespace drt::accel

@@ -1,0 +1,139 @@
+// Private to src/accel: what the Accelerator builds from the scene model and
+// keeps beside Embree's scenes to turn an Embree hit into a drt Hit.
+//
+// Spaces: "level space" is the space an Embree scene's geometry lives in. For
+// the top-level scene it is world space; for a moving object it is world space
+// at time 0 (Object::transform applied), and the instance's motion transform
+// maps it to world space at the ray's time.
+#pragma once
+
+#include "accel/motion.h"
+#include "accel/shapes.h"
+#include "core/transform.h"
+#include "scene/scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace drt::accel {
+
+// One RTCDevice whose error callback records the first Embree error, so that
+// it can be rethrown as RenderError from C++ (throwing through Embree's C
+// frames is not allowed).
+class EmbreeDevice {
+public:
+    EmbreeDevice(); // throws RenderError if Embree cannot start
+    ~EmbreeDevice();
+    EmbreeDevice(const EmbreeDevice&) = delete;
+    EmbreeDevice& operator=(const EmbreeDevice&) = delete;
+
+    RTCDevice get() const { return device_; }
+    bool failed() const { return failed_.load(std::memory_order_relaxed); }
+    // Throws RenderError("Embree error (<code>): <message> while <what>") if an
+    // error was reported since construction.
+    void throwIfFailed(const char* what) const;
+
+private:
+    static void onError(void* self, RTCError code, const char* message);
+    RTCDevice device_ = nullptr;
+    std::atomic<bool> failed_{false};
+    mutable std::mutex mutex_;
+    std::string message_;
+};
+
+// A surface crossing in level space, with the object whose surface it is.
+struct SurfaceCrossing {
+    double t = 0;
+    Vec3 normal; // level space, unit, facing out of the (possibly inverted) shape
+    const Object* object = nullptr;
+};
+
+// A CSG tree node: a leaf shape or an operation over children.
+struct CsgNode {
+    bool leaf = true;
+    Csg::Op op = Csg::Op::Union;
+    bool inverse = false;
+    // Leaf:
+    AnalyticShape shape;
+    Transform toLevel; // leaf object space -> level space
+    const Object* object = nullptr;
+    // Operation:
+    std::vector<CsgNode> children;
+};
+
+// One analytic Embree user-geometry primitive: a single shape or a CSG tree.
+struct Primitive {
+    AnalyticShape shape;
+    Transform toLevel; // object space -> level space
+    const Object* object = nullptr;
+    bool inverse = false;  // normals flipped
+    bool noShadow = false;
+    std::unique_ptr<CsgNode> csg; // set for Merge, Difference, Intersection
+    Vec3 lower, upper;            // level-space bounds (huge for planes)
+    bool bounded = true;
+};
+
+// A triangle geometry (Box or Mesh), vertices already in level space.
+struct MeshRecord {
+    const Object* object = nullptr;
+    std::vector<Vec3> vertices;
+    std::vector<std::array<int, 3>> triangles; // wound so that the winding normal faces out
+    std::vector<Vec3> normals;                 // level space, may be empty
+    std::vector<std::array<int, 3>> normalIndices;
+    bool inverse = false;
+};
+
+enum class GeometryKind { Analytic, Mesh, Instance };
+struct GeometryRef {
+    GeometryKind kind = GeometryKind::Analytic;
+    size_t index = 0; // into Level::meshes or BuiltScene::instances
+};
+
+// One Embree scene and the records behind its geometry ids.
+struct Level {
+    RTCScene scene = nullptr;
+    std::vector<Primitive> primitives; // all in one user geometry
+    std::vector<MeshRecord> meshes;
+    std::vector<GeometryRef> geometries; // by Embree geometry id
+    ~Level();
+};
+
+struct Instance {
+    std::unique_ptr<Level> level;
+    MotionPath motion;
+};
+
+// Nearest crossing of a primitive with t in (tMin, tMax); the ray is in
+// level space. Used by the Embree callbacks (float ray) and to refine hits in
+// double precision.
+bool nearestCrossing(const Primitive& primitive, const Vec3& o, const Vec3& d, double tMin, double tMax,
+                     SurfaceCrossing& out);
+// The crossing of a primitive whose t is closest to `tGuess` (hit refinement).
+bool closestCrossingTo(const Primitive& primitive, const Vec3& o, const Vec3& d, double tGuess,
+                       SurfaceCrossing& out);
+
+// Every surface crossing of a CSG tree along the whole line, sorted (csg.cpp).
+void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out);
+// Level-space bounds of a CSG tree; false if unbounded.
+bool csgBounds(const CsgNode& node, Vec3& lower, Vec3& upper);
+
+// Level-space bounds of an object-space box under an affine transform.
+void transformBounds(const Transform& transform, Vec3& lower, Vec3& upper);
+
+// Adds the level's analytic primitives as one user geometry (embree_geometry.cpp).
+void attachPrimitives(RTCDevice device, Level& level);
+// Adds one triangle geometry; returns its geometry id.
+void attachMesh(RTCDevice device, Level& level, MeshRecord mesh, bool noShadow);
+
+// Geometry masks: every ray for intersect() carries all bits; occlusion rays
+// carry only kShadowMask, which geometry with no_shadow lacks.
+inline constexpr unsigned kCameraMask = 1u;
+inline constexpr unsigned kShadowMask = 2u;
+
+} // namespace drt::accel

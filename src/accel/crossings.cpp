@@ -1,0 +1,200 @@
+// Ray crossings of analytic primitives in level space: single shapes and CSG
+// trees (Roth 1982: classify the ray's spans against each leaf, combine the
+// leaves' inside/outside states with the tree's operations, and report the
+// points where the combined state changes).
+#include "accel/built_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drt::accel {
+
+namespace {
+
+Vec3 unitOrZero(const Vec3& v) {
+    const double len = length(v);
+    return len > 0 && std::isfinite(len) ? v / len : Vec3{};
+}
+
+SurfaceCrossing toLevel(const Primitive& p, const Crossing& c) {
+    Vec3 n = unitOrZero(p.toLevel.normal(c.normal));
+    if (p.inverse) n = -n;
+    return {c.t, n, p.object};
+}
+
+struct LeafEvent {
+    double t;
+    int leaf;
+    bool entering;
+    Vec3 normal; // object space
+};
+
+void collectLeaves(const CsgNode& node, std::vector<const CsgNode*>& leaves) {
+    if (node.leaf) leaves.push_back(&node);
+    else
+        for (const CsgNode& child : node.children) collectLeaves(child, leaves);
+}
+
+// Evaluates the tree on the leaves' current states (leaves in DFS order).
+bool evaluate(const CsgNode& node, const std::vector<char>& state, int& nextLeaf) {
+    bool inside = false;
+    if (node.leaf) {
+        inside = state[nextLeaf++] != 0;
+    } else {
+        bool first = true;
+        for (const CsgNode& child : node.children) {
+            const bool c = evaluate(child, state, nextLeaf);
+            switch (node.op) {
+            case Csg::Op::Union:
+            case Csg::Op::Merge: inside = first ? c : (inside || c); break;
+            case Csg::Op::Intersection: inside = first ? c : (inside && c); break;
+            case Csg::Op::Difference: inside = first ? c : (inside && !c); break;
+            }
+            first = false;
+        }
+    }
+    return inside != node.inverse;
+}
+
+bool isSolid(const AnalyticShape& s) {
+    return !(s.kind == ShapeKind::Disc || (s.kind == ShapeKind::Cone && s.open));
+}
+
+} // namespace
+
+void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out) {
+    out.clear();
+    std::vector<const CsgNode*> leaves;
+    collectLeaves(root, leaves);
+    std::vector<LeafEvent> events;
+    std::vector<char> state(leaves.size(), 0);
+    for (size_t i = 0; i < leaves.size(); ++i) {
+        const CsgNode& leaf = *leaves[i];
+        const Vec3 lo = leaf.toLevel.inversePoint(o), ld = leaf.toLevel.inverseVector(d);
+        Crossing c[kMaxCrossings];
+        const int n = intersectShape(leaf.shape, lo, ld, c);
+        const bool solid = isSolid(leaf.shape);
+        for (int k = 0; solid && k < n; ++k)
+            events.push_back({c[k].t, static_cast<int>(i), dot(c[k].normal, ld) < 0, c[k].normal});
+        // State before the first crossing along the whole line.
+        bool inside = false;
+        if (solid) inside = n > 0 ? dot(c[0].normal, ld) > 0 : insideShape(leaf.shape, lo);
+        state[i] = inside != leaf.inverse;
+    }
+    std::stable_sort(events.begin(), events.end(), [](const LeafEvent& a, const LeafEvent& b) { return a.t < b.t; });
+    int cursor = 0;
+    bool inside = evaluate(root, state, cursor);
+    for (const LeafEvent& e : events) {
+        const CsgNode& leaf = *leaves[e.leaf];
+        state[e.leaf] = e.entering != leaf.inverse;
+        cursor = 0;
+        const bool now = evaluate(root, state, cursor);
+        if (now == inside) continue;
+        inside = now;
+        Vec3 n = unitOrZero(leaf.toLevel.normal(e.normal));
+        // Outward from the combined solid: against the ray when entering it.
+        if ((dot(n, d) < 0) != now) n = -n;
+        out.push_back({e.t, n, leaf.object});
+    }
+}
+
+bool csgBounds(const CsgNode& node, Vec3& lower, Vec3& upper) {
+    if (node.inverse) return false;
+    if (node.leaf) {
+        if (!shapeBounds(node.shape, lower, upper)) return false;
+        transformBounds(node.toLevel, lower, upper);
+        return true;
+    }
+    bool any = false;
+    for (size_t i = 0; i < node.children.size(); ++i) {
+        Vec3 lo, hi;
+        const bool bounded = csgBounds(node.children[i], lo, hi);
+        switch (node.op) {
+        case Csg::Op::Union:
+        case Csg::Op::Merge:
+            if (!bounded) return false;
+            lower = any ? min(lower, lo) : lo;
+            upper = any ? max(upper, hi) : hi;
+            any = true;
+            break;
+        case Csg::Op::Intersection:
+            if (!bounded) break;
+            lower = any ? max(lower, lo) : lo;
+            upper = any ? min(upper, hi) : hi;
+            any = true;
+            break;
+        case Csg::Op::Difference:
+            if (i == 0) {
+                if (!bounded) return false;
+                lower = lo;
+                upper = hi;
+                any = true;
+            }
+            break;
+        }
+    }
+    if (any) upper = max(upper, lower); // an empty intersection: a point-sized box
+    return any;
+}
+
+void transformBounds(const Transform& transform, Vec3& lower, Vec3& upper) {
+    Vec3 lo(INFINITY), hi(-INFINITY);
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p{(corner & 1) ? upper.x : lower.x, (corner & 2) ? upper.y : lower.y,
+                     (corner & 4) ? upper.z : lower.z};
+        const Vec3 q = transform.point(p);
+        lo = min(lo, q);
+        hi = max(hi, q);
+    }
+    lower = lo;
+    upper = hi;
+}
+
+bool nearestCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tMin, double tMax,
+                     SurfaceCrossing& out) {
+    if (p.csg) {
+        thread_local std::vector<SurfaceCrossing> all;
+        csgCrossings(*p.csg, o, d, all);
+        for (const SurfaceCrossing& c : all)
+            if (c.t > tMin && c.t < tMax) {
+                out = c;
+                return true;
+            }
+        return false;
+    }
+    Crossing c[kMaxCrossings];
+    const int n = intersectShape(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), c);
+    for (int i = 0; i < n; ++i)
+        if (c[i].t > tMin && c[i].t < tMax) {
+            out = toLevel(p, c[i]);
+            return true;
+        }
+    return false;
+}
+
+bool closestCrossingTo(const Primitive& p, const Vec3& o, const Vec3& d, double tGuess, SurfaceCrossing& out) {
+    bool found = false;
+    double best = INFINITY;
+    if (p.csg) {
+        thread_local std::vector<SurfaceCrossing> all;
+        csgCrossings(*p.csg, o, d, all);
+        for (const SurfaceCrossing& c : all)
+            if (std::fabs(c.t - tGuess) < best) {
+                best = std::fabs(c.t - tGuess);
+                out = c;
+                found = true;
+            }
+        return found;
+    }
+    Crossing c[kMaxCrossings];
+    const int n = intersectShape(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), c);
+    for (int i = 0; i < n; ++i)
+        if (std::fabs(c[i].t - tGuess) < best) {
+            best = std::fabs(c[i].t - tGuess);
+            out = toLevel(p, c[i]);
+            found = true;
+        }
+    return found;
+}
+
+} // namespace drt::accel

@@ -1,0 +1,160 @@
+// The Embree side of the build: the device with its error callback, the user
+// geometry callbacks for analytic primitives, and triangle geometry.
+#include "accel/built_scene.h"
+#include "render/render.h"
+
+#include <cmath>
+#include <string>
+
+namespace drt::accel {
+
+// ---------------------------------------------------------------- device
+
+EmbreeDevice::EmbreeDevice() {
+    device_ = rtcNewDevice(nullptr);
+    if (!device_)
+        throw RenderError("Embree error: cannot create a device (error code " +
+                          std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+    rtcSetDeviceErrorFunction(device_, &EmbreeDevice::onError, this);
+}
+
+EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
+
+static const char* errorName(RTCError code) {
+    switch (code) {
+    case RTC_ERROR_NONE: return "none";
+    case RTC_ERROR_UNKNOWN: return "unknown";
+    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+    }
+    return "unrecognised";
+}
+
+void EmbreeDevice::onError(void* self, RTCError code, const char* message) {
+    auto* device = static_cast<EmbreeDevice*>(self);
+    std::lock_guard lock(device->mutex_);
+    if (device->failed_.load()) return; // keep the first error: later ones tend to be consequences
+    device->message_ = std::string(errorName(code)) + ": " + (message ? message : "(no message)");
+    device->failed_.store(true);
+}
+
+void EmbreeDevice::throwIfFailed(const char* what) const {
+    if (!failed()) return;
+    std::lock_guard lock(mutex_);
+    throw RenderError("Embree error (" + message_ + ") while " + what);
+}
+
+Level::~Level() {
+    if (scene) rtcReleaseScene(scene);
+}
+
+// ---------------------------------------------------------------- user geometry
+// Embree hands the callbacks the ray in the space of the scene the geometry is
+// in: for a moving object's sub-scene, the ray already transformed by the
+// inverse instance transform at the ray's time. Only rtcIntersect1 and
+// rtcOccluded1 are used, so N is always 1.
+
+// Bounds must stay conservative after rounding to float.
+static float roundDown(double v) {
+    const float f = float(v);
+    return double(f) > v ? std::nextafter(f, -INFINITY) : f;
+}
+static float roundUp(double v) {
+    const float f = float(v);
+    return double(f) < v ? std::nextafter(f, INFINITY) : f;
+}
+
+static void boundsCallback(const RTCBoundsFunctionArguments* args) {
+    const auto* level = static_cast<const Level*>(args->geometryUserPtr);
+    const Primitive& p = level->primitives[args->primID];
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = roundDown(p.lower.x);
+    b->lower_y = roundDown(p.lower.y);
+    b->lower_z = roundDown(p.lower.z);
+    b->upper_x = roundUp(p.upper.x);
+    b->upper_y = roundUp(p.upper.y);
+    b->upper_z = roundUp(p.upper.z);
+}
+
+static void intersectCallback(const RTCIntersectFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    const auto* level = static_cast<const Level*>(args->geometryUserPtr);
+    const Primitive& p = level->primitives[args->primID];
+    auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+    RTCRay& ray = rayhit->ray;
+    SurfaceCrossing c;
+    if (!nearestCrossing(p, {ray.org_x, ray.org_y, ray.org_z}, {ray.dir_x, ray.dir_y, ray.dir_z}, ray.tnear,
+                         ray.tfar, c))
+        return;
+    ray.tfar = float(c.t);
+    RTCHit& hit = rayhit->hit;
+    hit.Ng_x = float(c.normal.x);
+    hit.Ng_y = float(c.normal.y);
+    hit.Ng_z = float(c.normal.z);
+    hit.u = hit.v = 0;
+    hit.primID = args->primID;
+    hit.geomID = args->geomID;
+    hit.instID[0] = args->context->instID[0];
+}
+
+static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    const auto* level = static_cast<const Level*>(args->geometryUserPtr);
+    const Primitive& p = level->primitives[args->primID];
+    if (p.noShadow) return;
+    auto* ray = reinterpret_cast<RTCRay*>(args->ray);
+    SurfaceCrossing c;
+    if (nearestCrossing(p, {ray->org_x, ray->org_y, ray->org_z}, {ray->dir_x, ray->dir_y, ray->dir_z}, ray->tnear,
+                        ray->tfar, c) &&
+        !c.object->noShadow)
+        ray->tfar = -INFINITY;
+}
+
+void attachPrimitives(RTCDevice device, Level& level) {
+    if (level.primitives.empty()) return;
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    if (!geometry) return; // the device error is rethrown by the caller
+    rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(level.primitives.size()));
+    rtcSetGeometryUserData(geometry, &level);
+    rtcSetGeometryBoundsFunction(geometry, boundsCallback, nullptr);
+    rtcSetGeometryIntersectFunction(geometry, intersectCallback);
+    rtcSetGeometryOccludedFunction(geometry, occludedCallback);
+    rtcCommitGeometry(geometry);
+    const unsigned id = rtcAttachGeometry(level.scene, geometry);
+    rtcReleaseGeometry(geometry);
+    if (level.geometries.size() <= id) level.geometries.resize(id + 1);
+    level.geometries[id] = {GeometryKind::Analytic, 0};
+}
+
+// ---------------------------------------------------------------- triangles
+
+void attachMesh(RTCDevice device, Level& level, MeshRecord mesh, bool noShadow) {
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (!geometry) return;
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                 RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                                 mesh.vertices.size()));
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
+                                                                   RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                                   mesh.triangles.size()));
+    if (!vertices || !indices) {
+        rtcReleaseGeometry(geometry);
+        return;
+    }
+    for (size_t i = 0; i < mesh.vertices.size(); ++i)
+        for (int k = 0; k < 3; ++k) vertices[3 * i + k] = float(mesh.vertices[i][k]);
+    for (size_t i = 0; i < mesh.triangles.size(); ++i)
+        for (int k = 0; k < 3; ++k) indices[3 * i + k] = static_cast<unsigned>(mesh.triangles[i][k]);
+    rtcSetGeometryMask(geometry, noShadow ? kCameraMask : (kCameraMask | kShadowMask));
+    rtcCommitGeometry(geometry);
+    const unsigned id = rtcAttachGeometry(level.scene, geometry);
+    rtcReleaseGeometry(geometry);
+    if (level.geometries.size() <= id) level.geometries.resize(id + 1);
+    level.geometries[id] = {GeometryKind::Mesh, level.meshes.size()};
+    level.meshes.push_back(std::move(mesh));
+}
+
+} // namespace drt::accel

@@ -1,0 +1,86 @@
+#include "accel/polynomial.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drt::accel {
+
+int solveQuadratic(double a, double b, double c, double roots[2]) {
+    if (a == 0) {
+        if (b == 0) return 0;
+        roots[0] = roots[1] = -c / b;
+        return 2;
+    }
+    const double discriminant = b * b - 4 * a * c;
+    if (discriminant < 0) return 0;
+    const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
+    double t0 = q / a;
+    double t1 = q != 0 ? c / q : t0; // q == 0 only when b == 0 and c == 0: double root at 0
+    if (t0 > t1) std::swap(t0, t1);
+    roots[0] = t0;
+    roots[1] = t1;
+    return 2;
+}
+
+static double evaluate(const double* c, int degree, double t) {
+    double v = c[degree];
+    for (int i = degree - 1; i >= 0; --i) v = v * t + c[i];
+    return v;
+}
+
+// The root of a polynomial that is monotonic on [lo, hi] with f(lo), f(hi) of
+// opposite signs: Newton steps, falling back to bisection whenever a step leaves
+// the bracket, which shrinks every iteration.
+static double refineBracketedRoot(const double* c, const double* derivative, int degree, double lo, double hi,
+                                  double fLo) {
+    double t = 0.5 * (lo + hi);
+    for (int iteration = 0; iteration < 100; ++iteration) {
+        const double f = evaluate(c, degree, t);
+        if (f == 0) return t;
+        if ((f < 0) == (fLo < 0)) lo = t;
+        else hi = t;
+        const double slope = evaluate(derivative, degree - 1, t);
+        double next = slope != 0 ? t - f / slope : 0.5 * (lo + hi);
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        if (std::fabs(next - t) <= 1e-15 * std::fmax(1.0, std::fabs(t)) || hi - lo <= 1e-15 * std::fmax(1.0, std::fabs(t)))
+            return next;
+        t = next;
+    }
+    return t;
+}
+
+int polynomialRootsInInterval(const double* c, int degree, double lo, double hi, double* roots) {
+    while (degree > 0 && c[degree] == 0) --degree;
+    if (degree <= 0) return 0;
+    if (degree == 1) {
+        const double t = -c[0] / c[1];
+        if (t >= lo && t <= hi) {
+            roots[0] = t;
+            return 1;
+        }
+        return 0;
+    }
+    double derivative[4];
+    for (int i = 1; i <= degree; ++i) derivative[i - 1] = i * c[i];
+    // Critical points split [lo, hi] into monotonic pieces.
+    double edges[6];
+    edges[0] = lo;
+    const int criticalCount = polynomialRootsInInterval(derivative, degree - 1, lo, hi, edges + 1);
+    edges[criticalCount + 1] = hi;
+    int count = 0;
+    double fLo = evaluate(c, degree, edges[0]);
+    for (int piece = 0; piece <= criticalCount; ++piece) {
+        const double a = edges[piece], b = edges[piece + 1];
+        const double fHi = evaluate(c, degree, b);
+        if (fLo == 0) {
+            if (count == 0 || roots[count - 1] != a) roots[count++] = a;
+        } else if (fHi != 0 && (fLo < 0) != (fHi < 0)) {
+            roots[count++] = refineBracketedRoot(c, derivative, degree, a, b, fLo);
+        }
+        fLo = fHi;
+    }
+    if (fLo == 0 && (count == 0 || roots[count - 1] != hi)) roots[count++] = hi;
+    return count;
+}
+
+} // namespace drt::accel

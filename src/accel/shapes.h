@@ -1,0 +1,58 @@
+// Analytic shapes prepared for ray intersection in object space, in double
+// precision. Each shape reports every crossing of the whole line o + t d (not
+// only t > 0), sorted by t, with the outward object-space normal; CSG walks
+// these crossings to classify inside and outside, and single shapes keep the
+// first one inside the ray's interval.
+#pragma once
+
+#include "core/vec.h"
+#include "scene/scene.h"
+
+#include <optional>
+#include <string>
+
+namespace drt::accel {
+
+struct Crossing {
+    double t = 0;
+    Vec3 normal; // object space, outward, not normalised
+};
+
+inline constexpr int kMaxCrossings = 4;
+
+enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box };
+
+// A shape in the form its intersection routine wants. Cylinders are cones
+// with equal radii; cones and cylinders are stored in a local frame whose z
+// axis runs from base (z = 0) to cap (z = height).
+struct AnalyticShape {
+    ShapeKind kind = ShapeKind::Sphere;
+    Vec3 center;           // Sphere, Disc; Cone: base point
+    Vec3 normal{0, 1, 0};  // Plane, Disc: unit normal
+    double radius = 1;     // Sphere, Disc; Torus: major radius
+    double innerRadius = 0; // Disc: hole radius; Torus: minor radius
+    double distance = 0;   // Plane
+    Vec3 axisU, axisV, axisW; // Cone: orthonormal frame, W along the axis
+    double height = 1;     // Cone
+    double baseRadius = 1, capRadius = 1; // Cone
+    bool open = false;     // Cone: no end caps
+    Vec3 lower, upper;     // Box
+};
+
+// Builds the analytic form of an analytic scene shape. Returns nothing for
+// Mesh and Csg; throws std::invalid_argument with a message for degenerate
+// input (zero radius, base == cap, zero normal, non-finite values).
+std::optional<AnalyticShape> prepareShape(const Shape& shape);
+
+// Every crossing of the line o + t d with the surface, sorted by t; returns
+// the count (at most kMaxCrossings). d need not be unit length.
+int intersectShape(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Crossing out[kMaxCrossings]);
+
+// Whether the object-space point p is strictly inside the shape (planes: the
+// half-space below; discs and open cones have no inside).
+bool insideShape(const AnalyticShape& shape, const Vec3& p);
+
+// Object-space bounds; false when the shape is unbounded (planes).
+bool shapeBounds(const AnalyticShape& shape, Vec3& lower, Vec3& upper);
+
+} // namespace drt::accel

@@ -1,0 +1,150 @@
+// CLI11 set-up of drt's subcommands. Parsing problems are usage errors (exit 2);
+// the work itself is in cli/commands.h.
+#include "cli/app.h"
+
+#include "cli/commands.h"
+#include "sampling/sampler.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <iostream>
+#include <unistd.h>
+
+namespace drt::cli {
+
+namespace {
+
+struct RenderArguments {
+    RenderCommand command;
+    int width = 0, height = 0, spp = 0, threads = 0, tileSize = 0;
+    uint64_t seed = 0;
+    std::string sampler;
+};
+
+CLI::App* addRender(CLI::App& app, RenderArguments& a) {
+    CLI::App* render = app.add_subcommand("render", "Render a scene to an image file");
+    render->add_option("scene", a.command.scene, "Scene file (.drt)")->required();
+    render
+        ->add_option("-o,--output", a.command.output,
+                     "Output image; the extension picks the format (.png .jpg .tif: sRGB, .exr .hdr: linear)")
+        ->required();
+    render->add_option("--width", a.width, "Image width in pixels (overrides the scene)")
+        ->check(CLI::PositiveNumber);
+    render->add_option("--height", a.height, "Image height in pixels (overrides the scene)")
+        ->check(CLI::PositiveNumber);
+    render->add_option("--spp", a.spp, "Samples per pixel (overrides the scene)")->check(CLI::PositiveNumber);
+    render->add_option("--threads", a.threads, "Worker threads (0: all cores)")
+        ->check(CLI::NonNegativeNumber);
+    render->add_option("--seed", a.seed, "Random seed (overrides the scene)");
+    render->add_option("--sampler", a.sampler, "Sampler (overrides the scene)")
+        ->check(CLI::IsMember(samplerNames()));
+    render->add_option("--tile-size", a.tileSize, "Tile edge in pixels (the image does not depend on it)")
+        ->check(CLI::PositiveNumber);
+    render->add_option("--variance", a.command.varianceOutput,
+                       "Also write the per-pixel variance of the mean to this .exr file");
+    render->add_flag("-q,--quiet", a.command.quiet, "No progress line and no summary");
+    return render;
+}
+
+// Copies the options the user gave into the overrides (an option not given
+// leaves the scene's value).
+void fillOverrides(CLI::App& render, RenderArguments& a) {
+    RenderOverrides& o = a.command.overrides;
+    if (render.count("--width"))
+        o.width = a.width;
+    if (render.count("--height"))
+        o.height = a.height;
+    if (render.count("--spp"))
+        o.samplesPerPixel = a.spp;
+    if (render.count("--threads"))
+        o.threads = a.threads;
+    if (render.count("--seed"))
+        o.seed = a.seed;
+    if (render.count("--sampler"))
+        o.sampler = a.sampler;
+    if (render.count("--tile-size"))
+        a.command.tileSize = a.tileSize;
+    a.command.progress = ::isatty(STDERR_FILENO) != 0;
+}
+
+CLI::App* addCompare(CLI::App& app, CompareCommand& c) {
+    CLI::App* compare = app.add_subcommand(
+        "compare", "Compare a candidate image with a reference (exit 0 pass, 1 warning, 2 failure, 3 size "
+                   "mismatch, 4 file error)");
+    compare->add_option("candidate", c.candidate, "Image under test")->required();
+    compare->add_option("reference", c.reference, "Reference (golden) image")->required();
+    compare
+        ->add_option("--fail", c.options.failThreshold,
+                     "A pixel fails if a channel differs by more than this")
+        ->check(CLI::NonNegativeNumber);
+    compare
+        ->add_option("--fail-percent", c.options.failPercent,
+                     "The image fails if more than this percentage of pixels fail")
+        ->check(CLI::Range(0.0, 100.0));
+    compare
+        ->add_option("--warn", c.options.warnThreshold,
+                     "A pixel warns if a channel differs by more than this")
+        ->check(CLI::NonNegativeNumber);
+    compare
+        ->add_option("--warn-percent", c.options.warnPercent,
+                     "The image warns if more than this percentage of pixels warn")
+        ->check(CLI::Range(0.0, 100.0));
+    compare->add_option("--variance", c.referenceVariance,
+                        "Per-pixel variance of the mean of the reference: statistical mode");
+    compare->add_option("--candidate-variance", c.candidateVariance,
+                        "Per-pixel variance of the mean of the candidate: statistical mode");
+    compare->add_option("--alpha", c.options.alpha, "False-alarm rate of the statistical tests")
+        ->check(CLI::Range(1e-12, 0.5));
+    compare->add_option("--diff", c.diffOutput, "Write a false-colour error heatmap");
+    compare
+        ->add_option("--diff-scale", c.diffScale,
+                     "Error shown as white in the heatmap (default: the largest)")
+        ->check(CLI::NonNegativeNumber);
+    compare->add_option("--zmap", c.zmapOutput, "Write a signed z-score map (statistical mode)");
+    compare->add_flag("--json", c.json, "Print the figures as JSON");
+    return compare;
+}
+
+} // namespace
+
+int runCommandLine(int argc, char** argv) {
+    CLI::App app{"drt: a distribution ray tracer with a POV-Ray-like scene language", "drt"};
+    app.set_version_flag("--version", fmt::format("drt {}", DRT_VERSION));
+    app.require_subcommand(1);
+
+    RenderArguments renderArguments;
+    CLI::App* render = addRender(app, renderArguments);
+    std::string checkScene;
+    CLI::App* check = app.add_subcommand("check", "Parse and validate a scene; print every diagnostic");
+    check->add_option("scene", checkScene, "Scene file (.drt)")->required();
+    CompareCommand compareCommand;
+    CLI::App* compare = addCompare(app, compareCommand);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int status = app.exit(e, std::cout, std::cerr);
+        return status == 0 ? kSuccess : kUsageError;
+    }
+
+    if (render->parsed()) {
+        fillOverrides(*render, renderArguments);
+        return runRender(renderArguments.command, std::cout, std::cerr);
+    }
+    if (check->parsed())
+        return runCheck(checkScene, std::cout, std::cerr);
+    if (compare->parsed()) {
+        if (!compareCommand.zmapOutput.empty() && compareCommand.referenceVariance.empty() &&
+            compareCommand.candidateVariance.empty()) {
+            std::cerr << "drt compare: --zmap needs --variance or --candidate-variance\n";
+            return kUsageError;
+        }
+        compareCommand.options.thresholdsWithVariance =
+            compare->count("--fail") || compare->count("--warn") || compare->count("--fail-percent") ||
+            compare->count("--warn-percent");
+        return runCompare(compareCommand, std::cout, std::cerr);
+    }
+    return kUsageError;
+}
+
+} // namespace drt::cli

@@ -1,0 +1,188 @@
+// `drt render` and `drt check`: scene file -> diagnostics -> (render -> image file).
+#include "cli/commands.h"
+
+#include "cli/progress.h"
+#include "lang/load.h"
+#include "sampling/sampler.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <ostream>
+
+namespace fs = std::filesystem;
+
+namespace drt::cli {
+
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// A NUL byte in the first 4 KiB: an image or other binary file given by
+// mistake, which would otherwise produce thousands of lexer errors.
+bool looksBinary(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char buffer[4096];
+    in.read(buffer, sizeof buffer);
+    return std::find(buffer, buffer + in.gcount(), '\0') != buffer + in.gcount();
+}
+
+// Loads a scene, printing every diagnostic to `err`. Returns kSuccess and sets
+// `scene`, or the exit status to stop with.
+int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec) || !std::ifstream(path)) {
+        err << fmt::format("drt: cannot read scene '{}': {}\n", path,
+                           fs::exists(path, ec) ? "not a readable file" : "no such file");
+        return kIoError;
+    }
+    if (looksBinary(path)) {
+        err << fmt::format("drt: {}: not a scene file (it holds binary data)\n", path);
+        return kSceneError;
+    }
+    if (lowerExtension(path) == ".pov") {
+        err << fmt::format("drt: {}: POV-Ray scenes are not supported yet (use a .drt scene)\n", path);
+        return kSceneError;
+    }
+    Diagnostics diagnostics;
+    scene = loadSceneFile(path, diagnostics);
+    err << diagnostics.formatAll();
+    if (diagnostics.hasErrors() || !scene) {
+        err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),
+                           diagnostics.errorCount() == 1 ? "" : "s");
+        return kSceneError;
+    }
+    return kSuccess;
+}
+
+// No NaN or Inf may reach a file: replace them by 0 and count the pixels.
+uint64_t clearNonFinite(Image& image) {
+    uint64_t pixels = 0;
+    for (size_t p = 0; p < image.pixels.size(); p += size_t(image.channels)) {
+        bool bad = false;
+        for (int c = 0; c < image.channels; ++c) {
+            float& v = image.pixels[p + size_t(c)];
+            if (!std::isfinite(v))
+                v = 0, bad = true;
+        }
+        pixels += bad;
+    }
+    return pixels;
+}
+
+std::string millions(uint64_t n) {
+    return fmt::format("{:.2f}M", double(n) / 1e6);
+}
+
+} // namespace
+
+Metadata renderMetadata(const std::string& scenePath, const RenderOptions& options, const RenderStats& stats,
+                        uint64_t nonFinitePixels) {
+    return {
+        {"Software", fmt::format("drt {}", DRT_VERSION)},
+        {"drt:version", DRT_VERSION},
+        {"drt:scene", fs::path(scenePath).filename().string()},
+        {"drt:seed", std::to_string(options.seed)},
+        {"drt:spp", std::to_string(options.samplesPerPixel)},
+        {"drt:sampler", options.sampler.empty() ? defaultSamplerName() : options.sampler},
+        {"drt:render_seconds", fmt::format("{:.3f}", stats.renderSeconds)},
+        {"drt:nonfinite_samples", std::to_string(stats.nonFiniteSamples)},
+        {"drt:nonfinite_pixels", std::to_string(nonFinitePixels)},
+    };
+}
+
+int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err) {
+    std::optional<Scene> scene;
+    if (int status = loadScene(scenePath, err, scene); status != kSuccess)
+        return status;
+    out << fmt::format("{}: ok ({} objects, {} lights)\n", scenePath, scene->objects.size(),
+                       scene->lights.size());
+    return kSuccess;
+}
+
+int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
+    (void)out;
+    std::optional<Scene> scene;
+    if (int status = loadScene(command.scene, err, scene); status != kSuccess)
+        return status;
+
+    RenderOptions options = resolveRenderOptions(*scene, command.overrides);
+    if (command.tileSize)
+        options.tileSize = *command.tileSize;
+
+    // Every output is checked before the (possibly long) render starts.
+    if (std::string problem = checkWritable(command.output); !problem.empty()) {
+        err << "drt: " << problem << "\n";
+        return kIoError;
+    }
+    if (!command.varianceOutput.empty()) {
+        if (lowerExtension(command.varianceOutput) != ".exr") {
+            err << fmt::format("drt: the variance image '{}' must be an .exr file (it holds linear floats)\n",
+                               command.varianceOutput);
+            return kUsageError;
+        }
+        if (std::string problem = checkWritable(command.varianceOutput); !problem.empty()) {
+            err << "drt: " << problem << "\n";
+            return kIoError;
+        }
+    }
+
+    std::optional<ProgressLine> progress;
+    if (command.progress && !command.quiet) {
+        progress.emplace(err);
+        options.progress = [&progress](double fraction) { progress->update(fraction); };
+    }
+    const auto start = std::chrono::steady_clock::now();
+    RenderResult result;
+    try {
+        result = render(*scene, options);
+    } catch (const RenderError& e) {
+        if (progress)
+            progress->finish();
+        err << fmt::format("drt: {}: render failed: {}\n", command.scene, e.what());
+        return kSceneError;
+    }
+    if (progress)
+        progress->finish();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    const uint64_t nonFinitePixels = clearNonFinite(result.color);
+    const Metadata metadata = renderMetadata(command.scene, options, result.stats, nonFinitePixels);
+    if (std::string problem = writeImage(command.output, result.color, metadata); !problem.empty()) {
+        err << "drt: " << problem << "\n";
+        return kIoError;
+    }
+    if (!command.varianceOutput.empty()) {
+        clearNonFinite(result.variance);
+        Metadata varianceMetadata = metadata;
+        varianceMetadata.emplace_back("drt:content", "variance of the mean");
+        if (std::string problem = writeImage(command.varianceOutput, result.variance, varianceMetadata);
+            !problem.empty()) {
+            err << "drt: " << problem << "\n";
+            return kIoError;
+        }
+    }
+
+    if (!command.quiet) {
+        const RenderStats& s = result.stats;
+        const double traceSeconds = s.renderSeconds > 0 ? s.renderSeconds : seconds;
+        err << fmt::format(
+            "drt: {} {}x{} at {} spp in {} (build {}, trace {}): {:.2f} Mrays/s "
+            "(camera {}, shadow {}, secondary {}), {} NaN/Inf samples\n",
+            command.output, result.color.width, result.color.height, options.samplesPerPixel,
+            formatDuration(seconds), formatDuration(s.buildSeconds), formatDuration(traceSeconds),
+            traceSeconds > 0 ? double(s.totalRays()) / traceSeconds / 1e6 : 0.0, millions(s.cameraRays),
+            millions(s.shadowRays), millions(s.secondaryRays), s.nonFiniteSamples + nonFinitePixels);
+    }
+    return kSuccess;
+}
+
+} // namespace drt::cli

@@ -1,0 +1,162 @@
+// The .drt parser (private to src/lang): recursive descent, one function per
+// grammar rule of grammar/drt.ebnf, one token of look-ahead. Split by seams:
+//   parser.cpp          token stream, #include, errors, recovery, top level
+//   parser_expr.cpp     expressions, vectors, colours
+//   parser_scene.cpp    camera, light_source, background, global_settings, render
+//   parser_objects.cpp  shapes and object modifiers
+//   parser_textures.cpp texture, pigment, finish, interior
+#pragma once
+
+#include "lang/lexer.h"
+#include "scene/scene.h"
+
+#include <array>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace drt {
+
+// A vector of 2 to 5 components. Colours are 5-vectors <r, g, b, filter, transmit>.
+struct VectorValue {
+    std::array<double, 5> c{};
+    int size = 3;
+};
+
+// An object under construction: `textured` is true once the object itself
+// was given a texture (CSG children without one inherit the parent's).
+// A union's children stay ParsedObjects (in the union's space) until the union
+// reaches the scene, where it is flattened into its leaves.
+struct ParsedObject {
+    Object object;
+    bool textured = false;
+    std::vector<ParsedObject> children;
+};
+
+using Value = std::variant<double, VectorValue, Pigment, Finish, Texture, Interior, ParsedObject>;
+std::string kindName(const Value& v);
+
+// Thrown after a syntax error has been reported: unwinds to the statement
+// loop, which skips to the next statement.
+struct ParseAbort {};
+
+class Parser {
+public:
+    Parser(Diagnostics& diags, Scene& scene) : diags_(diags), scene_(scene) {}
+
+    // Parses the file with id `fileId` in diags.files(); `path` identifies it
+    // for include-cycle detection and `dir` is where its #includes resolve.
+    void parseFile(int fileId, const std::string& path, const std::string& dir);
+
+private:
+    // ------------------------------------------------------------ parser.cpp
+    struct Source {
+        std::unique_ptr<Lexer> lexer;
+        std::string canonicalPath;
+        std::string dir;
+    };
+    void advance();
+    void include(const Token& directive);
+    bool check(TokenKind kind) const { return current_.kind == kind; }
+    bool checkWord(const char* word) const { return current_.kind == TokenKind::Identifier && current_.text == word; }
+    bool match(TokenKind kind);
+    bool matchWord(const char* word);
+    const Token& expect(TokenKind kind, const char* what);
+    std::vector<SourceLoc> includeChain(const SourceLoc& loc) const;
+    // A syntax error: reported, then ParseAbort.
+    [[noreturn]] void fail(const SourceLoc& loc, const std::string& message);
+    [[noreturn]] void failExpected(const char* what);
+    [[noreturn]] void failUnknown(const Token& word, const std::vector<std::string>& known,
+                                  const char* kind = "keyword");
+    // A value error: reported, parsing carries on.
+    void error(const SourceLoc& loc, const std::string& message);
+    void warning(const SourceLoc& loc, const std::string& message);
+    void synchronize();
+    void statement();
+    void declare();
+    bool isTopLevelWord(const std::string& word) const;
+
+    // Guards recursion depth (nested parentheses, blocks).
+    struct DepthGuard {
+        Parser& parser;
+        DepthGuard(Parser& p, const SourceLoc& loc);
+        ~DepthGuard() { --parser.depth_; }
+    };
+
+    // ------------------------------------------------------- parser_expr.cpp
+    Value expression();
+    Value term();
+    Value unary();
+    Value primary();
+    Value call(const Token& name);
+    VectorValue vectorLiteral();
+    VectorValue colorBody(); // after `color`: rgb/rgbf/.../red/green/... items
+    bool atColorWord() const;
+    double floatExpr(const char* what = "a number");
+    Vec3 vectorExpr(const char* what = "a vector");
+    ColorFT colorExpr();
+    Color rgbExpr() { return colorExpr().rgb; }
+    bool booleanOr(bool fallback); // optional `on off true false yes no` or a number
+    bool atBoolean() const;
+    int intExpr(const char* what);
+    const Value* lookup(const std::string& name) const;
+
+    // ------------------------------------------------------ parser_scene.cpp
+    void camera();
+    void lightSource();
+    void areaLight(Light& light);
+    void background();
+    void globalSettings();
+    void renderBlock();
+    void requireNonZero(const Vec3& v, const SourceLoc& loc, const char* what);
+    // translate/rotate/scale/matrix at the current token, or nothing.
+    std::optional<Transform> transformItem();
+
+    // ---------------------------------------------------- parser_objects.cpp
+    bool atObjectWord() const;
+    ParsedObject object();
+    void shapeBody(const Token& keyword, ParsedObject& po);
+    void objectModifiers(ParsedObject& po, const Token& keyword);
+    bool objectModifier(ParsedObject& po);
+    void motion(Object& object);
+    void meshTriangle(Mesh& mesh, bool smooth);
+    void setTexture(ParsedObject& po, const Texture& texture);
+    void addChild(ParsedObject& parent, ParsedObject child);
+    void applyTransform(ParsedObject& po, const Transform& t, const SourceLoc& loc);
+    void addObjectToScene(ParsedObject po);
+    void flatten(ParsedObject& po, const Transform& parent, const std::optional<Motion>& parentMotion,
+                 bool noShadow, bool hollow);
+    double positiveRadius(const char* what);
+
+    // --------------------------------------------------- parser_textures.cpp
+    Texture texture();
+    Pigment pigment();
+    bool pigmentItem(Pigment& p);
+    Pigment pigmentOrColor();
+    void colorMap(Pigment& p);
+    Finish finish();
+    void reflectionBlock(Finish& f);
+    Interior interior();
+
+    Diagnostics& diags_;
+    Scene& scene_;
+    std::vector<Source> sources_;
+    std::map<int, std::vector<SourceLoc>> includeChains_; // file id -> #include locations, innermost first
+    Token current_;
+    Token previous_;
+    int braceDepth_ = 0;
+    long tokensRead_ = 0;
+    int depth_ = 0;
+    std::map<std::string, Value> symbols_;
+};
+
+// The known word a misspelt `word` most likely meant, or "".
+std::string suggestWord(const std::string& word, const std::vector<std::string>& known);
+
+// Applies `t` after a pigment's pattern -> world map, and to its children's.
+void transformPigment(Pigment& p, const Transform& t);
+
+} // namespace drt

@@ -1,0 +1,405 @@
+// Shapes and object modifiers. Texture transforms follow POV-Ray: a texture
+// given to an object moves with every transform of the object that follows it.
+#include "lang/parser.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drt {
+
+static const std::vector<std::string>& objectWords() {
+    static const std::vector<std::string> words{"sphere", "plane",    "box",             "cylinder", "cone",
+                                                "disc",   "torus",    "triangle",        "smooth_triangle",
+                                                "mesh",   "union",    "object"};
+    return words;
+}
+
+static const std::vector<std::string>& modifierWords() {
+    static const std::vector<std::string> words{"translate", "rotate", "scale",  "matrix",    "texture",
+                                                "pigment",   "finish", "interior", "no_shadow", "hollow",
+                                                "inverse",   "motion", "open"};
+    return words;
+}
+
+bool Parser::atObjectWord() const {
+    if (current_.kind != TokenKind::Identifier) return false;
+    const auto& words = objectWords();
+    return std::find(words.begin(), words.end(), current_.text) != words.end();
+}
+
+static bool isCsg(const ParsedObject& po) { return std::holds_alternative<Csg>(po.object.shape); }
+
+double Parser::positiveRadius(const char* what) {
+    const SourceLoc loc = current_.loc;
+    const double r = floatExpr(what);
+    if (r <= 0) {
+        error(loc, std::string(what) + " must be positive");
+        return 1;
+    }
+    return r;
+}
+
+// object = shape-keyword "{" shape-body { object-modifier } "}"
+//        | "object" "{" name { object-modifier } "}"
+ParsedObject Parser::object() {
+    const Token keyword = current_;
+    advance();
+    DepthGuard guard(*this, keyword.loc);
+    expect(TokenKind::LeftBrace, ("'{' after '" + keyword.text + "'").c_str());
+    ParsedObject po;
+    if (keyword.text == "object") {
+        if (atObjectWord()) {
+            po = object(); // POV-Ray allows object { sphere { ... } modifiers }
+        } else {
+            const Token name = expect(TokenKind::Identifier, "the name of a declared object");
+            const Value* v = lookup(name.text);
+            if (!v) {
+                std::vector<std::string> known;
+                for (const auto& [n, value] : symbols_)
+                    if (std::holds_alternative<ParsedObject>(value)) known.push_back(n);
+                failUnknown(name, known, "object");
+            }
+            if (!std::holds_alternative<ParsedObject>(*v))
+                fail(name.loc, "'" + name.text + "' is " + kindName(*v) + ", not an object");
+            po = std::get<ParsedObject>(*v);
+        }
+    } else {
+        po.object.loc = keyword.loc;
+        shapeBody(keyword, po);
+    }
+    objectModifiers(po, keyword);
+    return po;
+}
+
+void Parser::shapeBody(const Token& keyword, ParsedObject& po) {
+    const std::string& w = keyword.text;
+    Shape& shape = po.object.shape;
+    auto comma = [&](const char* after) { expect(TokenKind::Comma, (std::string("',' after the ") + after).c_str()); };
+    if (w == "sphere") {
+        Sphere s;
+        s.center = vectorExpr("the centre <x, y, z>");
+        comma("centre");
+        s.radius = positiveRadius("sphere radius");
+        shape = s;
+    } else if (w == "plane") {
+        Plane p;
+        const SourceLoc loc = current_.loc;
+        Vec3 n = vectorExpr("the normal <x, y, z>");
+        comma("normal");
+        double d = floatExpr("the distance");
+        // POV-Ray normalises the normal and divides the distance by its length,
+        // which keeps the plane dot(n, p) = d where it was.
+        const double len = length(n);
+        if (len == 0) {
+            error(loc, "plane normal must not be a zero-length vector");
+            n = {0, 1, 0};
+        } else {
+            n = n / len;
+            d /= len;
+        }
+        p.normal = n;
+        p.distance = d;
+        shape = p;
+    } else if (w == "box") {
+        Box b;
+        b.corner1 = vectorExpr("a corner <x, y, z>");
+        comma("first corner");
+        b.corner2 = vectorExpr("a corner <x, y, z>");
+        shape = b;
+    } else if (w == "cylinder") {
+        Cylinder c;
+        c.base = vectorExpr("the base point");
+        comma("base point");
+        const SourceLoc capLoc = current_.loc;
+        c.cap = vectorExpr("the cap point");
+        comma("cap point");
+        c.radius = positiveRadius("cylinder radius");
+        if (c.base == c.cap) {
+            error(capLoc, "cylinder base and cap are the same point (zero-length axis)");
+            c.cap = c.base + Vec3(0, 1, 0);
+        }
+        shape = c;
+    } else if (w == "cone") {
+        Cone c;
+        c.base = vectorExpr("the base point");
+        comma("base point");
+        SourceLoc loc = current_.loc;
+        c.baseRadius = floatExpr("the base radius");
+        if (c.baseRadius < 0) error(loc, "cone radius must not be negative");
+        comma("base radius");
+        const SourceLoc capLoc = current_.loc;
+        c.cap = vectorExpr("the cap point");
+        comma("cap point");
+        loc = current_.loc;
+        c.capRadius = floatExpr("the cap radius");
+        if (c.capRadius < 0) error(loc, "cone radius must not be negative");
+        if (c.baseRadius <= 0 && c.capRadius <= 0) error(loc, "cone needs at least one positive radius");
+        if (c.base == c.cap) {
+            error(capLoc, "cone base and cap are the same point (zero-length axis)");
+            c.cap = c.base + Vec3(0, 1, 0);
+        }
+        shape = c;
+    } else if (w == "disc") {
+        Disc d;
+        d.center = vectorExpr("the centre <x, y, z>");
+        comma("centre");
+        const SourceLoc loc = current_.loc;
+        d.normal = vectorExpr("the normal <x, y, z>");
+        if (length(d.normal) == 0) {
+            error(loc, "disc normal must not be a zero-length vector");
+            d.normal = {0, 1, 0};
+        }
+        d.normal = normalize(d.normal);
+        comma("normal");
+        d.radius = positiveRadius("disc radius");
+        if (match(TokenKind::Comma)) {
+            const SourceLoc holeLoc = current_.loc;
+            d.holeRadius = floatExpr("the hole radius");
+            if (d.holeRadius < 0) error(holeLoc, "disc hole radius must not be negative");
+        }
+        shape = d;
+    } else if (w == "torus") {
+        Torus t;
+        t.majorRadius = positiveRadius("torus major radius");
+        comma("major radius");
+        t.minorRadius = positiveRadius("torus minor radius");
+        shape = t;
+    } else if (w == "triangle" || w == "smooth_triangle") {
+        Mesh m;
+        meshTriangle(m, w == "smooth_triangle");
+        shape = m;
+    } else if (w == "mesh") {
+        Mesh m;
+        while (checkWord("triangle") || checkWord("smooth_triangle")) {
+            const bool smooth = current_.text == "smooth_triangle";
+            advance();
+            expect(TokenKind::LeftBrace, smooth ? "'{' after 'smooth_triangle'" : "'{' after 'triangle'");
+            meshTriangle(m, smooth);
+            expect(TokenKind::RightBrace, "'}' to close the triangle");
+        }
+        if (m.triangles.empty()) error(keyword.loc, "mesh has no triangles");
+        shape = m;
+    } else { // union
+        shape = Csg{};
+    }
+}
+
+// triangle-body = vector "," vector "," vector
+// smooth-triangle-body = vector "," vector "," vector "," vector "," vector "," vector  (corner, normal, ...)
+void Parser::meshTriangle(Mesh& mesh, bool smooth) {
+    Vec3 corners[3], normals[3];
+    for (int i = 0; i < 3; ++i) {
+        if (i > 0) expect(TokenKind::Comma, "',' between triangle corners");
+        corners[i] = vectorExpr("a triangle corner <x, y, z>");
+        if (smooth) {
+            expect(TokenKind::Comma, "',' after the corner");
+            const SourceLoc loc = current_.loc;
+            normals[i] = vectorExpr("a corner normal <x, y, z>");
+            if (length(normals[i]) == 0) {
+                error(loc, "smooth_triangle normal must not be a zero-length vector");
+                normals[i] = {0, 1, 0};
+            }
+        }
+    }
+    const int base = static_cast<int>(mesh.vertices.size());
+    for (const Vec3& c : corners) mesh.vertices.push_back(c);
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    // Normals are per triangle once any triangle has them: flat triangles in a
+    // mixed mesh get their face normal at all three corners.
+    const bool hadNormals = !mesh.normalIndices.empty();
+    if (smooth && !hadNormals) {
+        for (size_t t = 0; t + 1 < mesh.triangles.size(); ++t) {
+            const auto& tri = mesh.triangles[t];
+            Vec3 n = cross(mesh.vertices[tri[1]] - mesh.vertices[tri[0]], mesh.vertices[tri[2]] - mesh.vertices[tri[0]]);
+            if (length(n) > 0) n = normalize(n);
+            const int ni = static_cast<int>(mesh.normals.size());
+            mesh.normals.push_back(n);
+            mesh.normalIndices.push_back({ni, ni, ni});
+        }
+    }
+    if (smooth || hadNormals) {
+        const int ni = static_cast<int>(mesh.normals.size());
+        if (smooth) {
+            for (const Vec3& n : normals) mesh.normals.push_back(normalize(n));
+            mesh.normalIndices.push_back({ni, ni + 1, ni + 2});
+        } else {
+            Vec3 n = cross(corners[1] - corners[0], corners[2] - corners[0]);
+            if (length(n) > 0) n = normalize(n);
+            mesh.normals.push_back(n);
+            mesh.normalIndices.push_back({ni, ni, ni});
+        }
+    }
+}
+
+void Parser::objectModifiers(ParsedObject& po, const Token& keyword) {
+    while (!match(TokenKind::RightBrace)) {
+        if (isCsg(po) && atObjectWord()) {
+            addChild(po, object());
+            continue;
+        }
+        if (objectModifier(po)) continue;
+        const bool sceneLevel = checkWord("camera") || checkWord("light_source") || checkWord("background") ||
+                                checkWord("global_settings") || checkWord("render") || check(TokenKind::Directive);
+        if (check(TokenKind::Identifier) && !sceneLevel) {
+            std::vector<std::string> known = modifierWords();
+            if (isCsg(po)) known.insert(known.end(), objectWords().begin(), objectWords().end());
+            failUnknown(current_, known);
+        }
+        failExpected(("an object modifier or '}' to close '" + keyword.text + "'").c_str());
+    }
+    if (isCsg(po) && po.children.empty()) error(keyword.loc, "union has no objects");
+}
+
+bool Parser::objectModifier(ParsedObject& po) {
+    const SourceLoc loc = current_.loc;
+    if (std::optional<Transform> t = transformItem()) {
+        applyTransform(po, *t, loc);
+        return true;
+    }
+    if (!check(TokenKind::Identifier)) return false;
+    const std::string w = current_.text;
+    Object& o = po.object;
+    if (w == "texture") {
+        setTexture(po, texture());
+    } else if (w == "pigment") {
+        Texture t = o.texture;
+        t.pigment = pigment();
+        setTexture(po, t);
+    } else if (w == "finish") {
+        Texture t = o.texture;
+        t.finish = finish();
+        setTexture(po, t);
+    } else if (w == "interior") {
+        o.interior = interior();
+        for (ParsedObject& child : po.children) child.object.interior = o.interior;
+    } else if (w == "no_shadow") {
+        advance();
+        o.noShadow = true;
+    } else if (w == "hollow") {
+        advance();
+        o.hollow = booleanOr(true);
+    } else if (w == "inverse") {
+        advance();
+        o.inverse = !o.inverse;
+    } else if (w == "motion") {
+        motion(o);
+    } else if (w == "open") {
+        advance();
+        if (Cylinder* c = std::get_if<Cylinder>(&o.shape)) c->open = true;
+        else if (Cone* c = std::get_if<Cone>(&o.shape)) c->open = true;
+        else error(loc, "'open' applies only to cylinder and cone");
+    } else {
+        return false;
+    }
+    return true;
+}
+
+// motion = "motion" "{" { ("translate" | "rotate" | "scale") vector } "}"
+void Parser::motion(Object& object) {
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'motion'");
+    Motion m;
+    bool seen[3] = {false, false, false};
+    while (!match(TokenKind::RightBrace)) {
+        if (!check(TokenKind::Identifier)) failExpected("'translate', 'rotate', 'scale' or '}' in motion");
+        const Token word = current_;
+        const int index = word.text == "translate" ? 0 : word.text == "rotate" ? 1 : word.text == "scale" ? 2 : -1;
+        if (index < 0) failUnknown(word, {"translate", "rotate", "scale"});
+        advance();
+        if (seen[index]) error(word.loc, "'" + word.text + "' given twice in motion");
+        seen[index] = true;
+        const SourceLoc loc = current_.loc;
+        const Vec3 v = vectorExpr();
+        if (index == 0) m.translate = v;
+        else if (index == 1) m.rotate = v;
+        else if (v.x == 0 || v.y == 0 || v.z == 0) error(loc, "motion scale has a zero component");
+        else m.scale = v;
+    }
+    object.motion = m;
+}
+
+static bool isPureTranslation(const Motion& m) { return m.rotate == Vec3(0) && m.scale == Vec3(1); }
+
+// A transform after `motion`: world(t) = T * M(t) * O. That is again of the
+// form M'(t) * (T * O) only when M(t) is a translation: then M' translates by
+// T's linear part applied to the motion's translation.
+void Parser::applyTransform(ParsedObject& po, const Transform& t, const SourceLoc& loc) {
+    Object& o = po.object;
+    if (o.motion) {
+        if (!isPureTranslation(*o.motion)) {
+            error(loc, "a transform after 'motion' needs a motion with translation only; put 'motion' last");
+        } else {
+            o.motion->translate = t.vector(o.motion->translate);
+        }
+    }
+    o.transform = o.transform.then(t);
+    transformPigment(o.texture.pigment, t);
+}
+
+static void inheritTexture(ParsedObject& po, const Texture& texture) {
+    if (po.textured) return;
+    po.object.texture = texture;
+    if (po.children.empty()) return;
+    Texture local = texture; // in this CSG's own space
+    transformPigment(local.pigment, po.object.transform.inverted());
+    for (ParsedObject& child : po.children) inheritTexture(child, local);
+}
+
+// A texture on a union goes to its children that have none (POV-Ray).
+void Parser::setTexture(ParsedObject& po, const Texture& texture) {
+    po.textured = false; // a new texture replaces the object's own one
+    inheritTexture(po, texture);
+    po.textured = true;
+}
+
+void Parser::addChild(ParsedObject& parent, ParsedObject child) {
+    if (parent.textured) {
+        Texture local = parent.object.texture;
+        transformPigment(local.pigment, parent.object.transform.inverted());
+        inheritTexture(child, local);
+    }
+    parent.children.push_back(std::move(child));
+}
+
+void Parser::addObjectToScene(ParsedObject po) {
+    flatten(po, Transform{}, std::nullopt, false, false);
+}
+
+// A union reaches the scene as its leaves, each carrying the union's
+// transforms: the same surfaces as the union itself. `worldMotion` is an
+// enclosing union's motion, already expressed in world space.
+//
+// Motion M applies after an object's transform but before the transforms P
+// above it: world(t) = P * M(t) * O = (P M(t) P^-1) * (P O). The conjugate is a
+// Motion again when P is the identity or M is a translation (then by P's
+// linear part applied to M's translation).
+void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optional<Motion>& worldMotion,
+                     bool noShadow, bool hollow) {
+    Object& o = po.object;
+    std::optional<Motion> motion = o.motion;
+    if (motion && !parent.isIdentity()) {
+        if (isPureTranslation(*motion)) motion->translate = parent.vector(motion->translate);
+        else error(o.loc, "'motion' with rotate or scale inside a transformed union is not supported");
+    }
+    if (worldMotion) {
+        // Translations commute with everything that follows them in time.
+        if (!motion) motion = worldMotion;
+        else if (isPureTranslation(*worldMotion)) motion->translate += worldMotion->translate;
+        else error(o.loc, "a moving object inside a union moving with rotate or scale is not supported");
+    }
+    noShadow = noShadow || o.noShadow;
+    hollow = hollow || o.hollow;
+    const Transform toWorld = o.transform.then(parent);
+    if (isCsg(po)) {
+        for (ParsedObject& child : po.children) flatten(child, toWorld, motion, noShadow, hollow);
+        return;
+    }
+    o.transform = toWorld;
+    transformPigment(o.texture.pigment, parent);
+    o.motion = motion;
+    o.noShadow = noShadow;
+    o.hollow = hollow;
+    scene_.objects.push_back(std::move(o));
+}
+
+} // namespace drt

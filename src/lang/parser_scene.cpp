@@ -1,0 +1,265 @@
+// Scene-level blocks: camera, light_source, background, global_settings, render.
+#include "lang/parser.h"
+
+#include "sampling/filter.h"
+#include "sampling/sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drt {
+
+void Parser::requireNonZero(const Vec3& v, const SourceLoc& loc, const char* what) {
+    if (v.x == 0 && v.y == 0 && v.z == 0) error(loc, std::string(what) + " must not be a zero-length vector");
+}
+
+// transform = "translate" vector | "rotate" vector | "scale" vector
+//           | "matrix" "<" float { "," float } ">"   (12 numbers)
+std::optional<Transform> Parser::transformItem() {
+    if (!check(TokenKind::Identifier)) return std::nullopt;
+    const Token word = current_;
+    if (word.text == "translate") {
+        advance();
+        return Transform::translate(vectorExpr());
+    }
+    if (word.text == "rotate") {
+        advance();
+        return Transform::rotate(vectorExpr());
+    }
+    if (word.text == "scale") {
+        advance();
+        const SourceLoc loc = current_.loc;
+        const Vec3 s = vectorExpr();
+        if (s.x == 0 || s.y == 0 || s.z == 0) {
+            error(loc, "scale has a zero component (the object would collapse)");
+            return Transform{};
+        }
+        return Transform::scale(s);
+    }
+    if (word.text == "matrix") {
+        advance();
+        expect(TokenKind::LeftAngle, "'<' after 'matrix'");
+        std::array<double, 12> m{};
+        int count = 0;
+        do {
+            const SourceLoc loc = current_.loc;
+            const double v = floatExpr("a matrix entry");
+            if (count == 12) fail(loc, "'matrix' takes exactly 12 numbers");
+            m[count++] = v;
+        } while (match(TokenKind::Comma));
+        expect(TokenKind::RightAngle, "',' or '>' in the matrix");
+        if (count != 12) fail(word.loc, "'matrix' takes exactly 12 numbers, got " + std::to_string(count));
+        std::optional<Transform> t = Transform::fromPovMatrix(m);
+        if (!t) {
+            error(word.loc, "singular matrix (it has no inverse)");
+            return Transform{};
+        }
+        return t;
+    }
+    return std::nullopt;
+}
+
+// camera = "camera" "{" { camera-item } "}"
+void Parser::camera() {
+    static const std::vector<std::string> known{
+        "perspective", "location",    "look_at",        "up",           "sky",          "right", "direction",
+        "angle",       "aperture",    "focal_point",    "focal_distance", "shutter_open", "shutter_close"};
+    const Token keyword = current_;
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'camera'");
+    CameraSpec cam;
+    cam.loc = keyword.loc;
+    SourceLoc lookAtLoc, focalPointLoc, shutterLoc;
+    while (!match(TokenKind::RightBrace)) {
+        if (!check(TokenKind::Identifier)) failExpected("a camera keyword or '}'");
+        const Token word = current_;
+        const std::string& w = word.text;
+        advance();
+        const SourceLoc loc = current_.loc;
+        if (w == "perspective") continue;
+        if (w == "location") cam.location = vectorExpr();
+        else if (w == "look_at") lookAtLoc = loc, cam.lookAt = vectorExpr();
+        else if (w == "up") requireNonZero(cam.up = vectorExpr(), loc, "'up'");
+        else if (w == "sky") requireNonZero(cam.sky = vectorExpr(), loc, "'sky'");
+        else if (w == "right") requireNonZero(*(cam.right = vectorExpr()), loc, "'right'");
+        else if (w == "direction") requireNonZero(cam.direction = vectorExpr(), loc, "'direction'");
+        else if (w == "angle") {
+            cam.angle = floatExpr();
+            if (!(*cam.angle > 0 && *cam.angle < 180)) error(loc, "'angle' must be between 0 and 180 degrees");
+        } else if (w == "aperture") {
+            cam.aperture = floatExpr();
+            if (cam.aperture < 0) error(loc, "'aperture' must not be negative");
+        } else if (w == "focal_point") focalPointLoc = loc, cam.focalPoint = vectorExpr();
+        else if (w == "focal_distance") {
+            cam.focalDistance = floatExpr();
+            if (*cam.focalDistance <= 0) error(loc, "'focal_distance' must be positive");
+        } else if (w == "shutter_open") shutterLoc = loc, cam.shutterOpen = floatExpr();
+        else if (w == "shutter_close") shutterLoc = loc, cam.shutterClose = floatExpr();
+        else failUnknown(word, known);
+    }
+    if (cam.lookAt && *cam.lookAt == cam.location) error(lookAtLoc, "'look_at' is the same point as 'location'");
+    if (cam.focalPoint && *cam.focalPoint == cam.location)
+        error(focalPointLoc, "'focal_point' is the same point as 'location'");
+    if (cam.shutterClose < cam.shutterOpen) error(shutterLoc, "'shutter_close' is before 'shutter_open'");
+    scene_.camera = cam;
+}
+
+// light_source = "light_source" "{" vector [","] [colour] { light-item } "}"
+void Parser::lightSource() {
+    static const std::vector<std::string> known{
+        "color",   "colour", "rgb",         "spotlight", "point_at", "radius",   "falloff",
+        "tightness", "fade_distance", "fade_power", "shadowless", "area_light", "jitter", "adaptive",
+        "circular", "orient", "area_illumination", "translate", "rotate", "scale", "matrix"};
+    const Token keyword = current_;
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'light_source'");
+    Light light;
+    light.loc = keyword.loc;
+    light.position = vectorExpr("the light position <x, y, z>");
+    match(TokenKind::Comma);
+    AreaLight area;
+    bool hasArea = false;
+    SourceLoc pointAtLoc;
+    while (!match(TokenKind::RightBrace)) {
+        if (std::optional<Transform> t = transformItem()) {
+            light.position = t->point(light.position);
+            light.pointAt = t->point(light.pointAt);
+            area.axis1 = t->vector(area.axis1);
+            area.axis2 = t->vector(area.axis2);
+            continue;
+        }
+        const bool colorStart = checkWord("color") || checkWord("colour") || atColorWord() ||
+                                check(TokenKind::LeftAngle) ||
+                                (check(TokenKind::Identifier) && lookup(current_.text) &&
+                                 (std::holds_alternative<VectorValue>(*lookup(current_.text)) ||
+                                  std::holds_alternative<double>(*lookup(current_.text))));
+        if (colorStart) {
+            light.color = rgbExpr();
+            continue;
+        }
+        if (!check(TokenKind::Identifier)) failExpected("a light_source keyword or '}'");
+        const Token word = current_;
+        const std::string& w = word.text;
+        advance();
+        const SourceLoc loc = current_.loc;
+        if (w == "spotlight") light.spotlight = true;
+        else if (w == "point_at") pointAtLoc = loc, light.pointAt = vectorExpr();
+        else if (w == "radius" || w == "falloff") {
+            const double a = floatExpr();
+            if (a < 0 || a > 90) error(loc, "'" + w + "' must be between 0 and 90 degrees");
+            (w == "radius" ? light.radius : light.falloff) = a;
+        } else if (w == "tightness") {
+            light.tightness = floatExpr();
+            if (light.tightness < 0) error(loc, "'tightness' must not be negative");
+        } else if (w == "fade_distance") {
+            light.fadeDistance = floatExpr();
+            if (light.fadeDistance < 0) error(loc, "'fade_distance' must not be negative");
+        } else if (w == "fade_power") {
+            light.fadePower = floatExpr();
+            if (light.fadePower < 0) error(loc, "'fade_power' must not be negative");
+        } else if (w == "shadowless") light.shadowless = true;
+        else if (w == "area_light") {
+            hasArea = true;
+            area.axis1 = vectorExpr();
+            requireNonZero(area.axis1, loc, "area_light axis");
+            expect(TokenKind::Comma, "',' after the first area_light axis");
+            const SourceLoc axis2Loc = current_.loc;
+            area.axis2 = vectorExpr();
+            requireNonZero(area.axis2, axis2Loc, "area_light axis");
+            expect(TokenKind::Comma, "',' after the second area_light axis");
+            const SourceLoc n1Loc = current_.loc;
+            area.size1 = intExpr("the area_light size");
+            expect(TokenKind::Comma, "',' after the first area_light size");
+            const SourceLoc n2Loc = current_.loc;
+            area.size2 = intExpr("the area_light size");
+            if (area.size1 < 1) error(n1Loc, "area_light sizes must be at least 1");
+            if (area.size2 < 1) error(n2Loc, "area_light sizes must be at least 1");
+        } else if (w == "jitter") area.jitter = booleanOr(true);
+        else if (w == "adaptive") {
+            area.adaptive = intExpr("'adaptive'");
+            if (area.adaptive < 0) error(loc, "'adaptive' must not be negative");
+        } else if (w == "circular") area.circular = booleanOr(true);
+        else if (w == "orient") area.orient = booleanOr(true);
+        else if (w == "area_illumination") light.areaIllumination = booleanOr(true);
+        else failUnknown(word, known);
+    }
+    if (light.spotlight && light.pointAt == light.position)
+        error(pointAtLoc.valid() ? pointAtLoc : keyword.loc, "'point_at' is the same point as the light position");
+    if (hasArea) light.area = area;
+    scene_.lights.push_back(light);
+}
+
+// background = "background" "{" colour "}"
+void Parser::background() {
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'background'");
+    scene_.background = rgbExpr();
+    expect(TokenKind::RightBrace, "'}' after the background colour");
+}
+
+// global-settings = "global_settings" "{" { global-item } "}"
+void Parser::globalSettings() {
+    static const std::vector<std::string> known{"max_trace_level", "ambient_light", "assumed_gamma", "adc_bailout"};
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'global_settings'");
+    while (!match(TokenKind::RightBrace)) {
+        if (!check(TokenKind::Identifier)) failExpected("a global_settings keyword or '}'");
+        const Token word = current_;
+        advance();
+        const SourceLoc loc = current_.loc;
+        if (word.text == "max_trace_level") {
+            scene_.global.maxTraceLevel = intExpr("'max_trace_level'");
+            if (scene_.global.maxTraceLevel < 1 || scene_.global.maxTraceLevel > 256)
+                error(loc, "'max_trace_level' must be between 1 and 256");
+        } else if (word.text == "ambient_light") {
+            scene_.global.ambientLight = rgbExpr();
+        } else if (word.text == "assumed_gamma") {
+            scene_.global.assumedGamma = floatExpr();
+            if (scene_.global.assumedGamma <= 0) error(loc, "'assumed_gamma' must be positive");
+        } else if (word.text == "adc_bailout") {
+            scene_.global.adcBailout = floatExpr();
+            if (scene_.global.adcBailout < 0) error(loc, "'adc_bailout' must not be negative");
+        } else {
+            failUnknown(word, known);
+        }
+    }
+}
+
+// render = "render" "{" { render-item } "}"   (drt: image size and sampling)
+void Parser::renderBlock() {
+    static const std::vector<std::string> known{"width", "height", "samples", "seed", "sampler", "filter"};
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'render'");
+    RenderSettings& r = scene_.render;
+    while (!match(TokenKind::RightBrace)) {
+        if (!check(TokenKind::Identifier)) failExpected("a render keyword or '}'");
+        const Token word = current_;
+        advance();
+        const SourceLoc loc = current_.loc;
+        const std::string& w = word.text;
+        if (w == "width" || w == "height" || w == "samples") {
+            const int n = intExpr(("'" + w + "'").c_str());
+            if (n < 1) error(loc, "'" + w + "' must be at least 1");
+            (w == "width" ? r.width : w == "height" ? r.height : r.samplesPerPixel) = n;
+        } else if (w == "seed") {
+            const double s = floatExpr();
+            if (s < 0 || s != std::floor(s) || s > 1.8e19) error(loc, "'seed' must be a whole number >= 0");
+            else r.seed = static_cast<uint64_t>(s);
+        } else if (w == "sampler" || w == "filter") {
+            const bool sampler = w == "sampler";
+            const Token name = expect(TokenKind::String, sampler ? "a sampler name in quotes" : "a filter name in quotes");
+            const auto& names = sampler ? samplerNames() : filterNames();
+            if (std::find(names.begin(), names.end(), name.text) == names.end()) {
+                std::string message = "unknown " + w + " '" + name.text + "'";
+                const std::string near = suggestWord(name.text, names);
+                if (!near.empty()) message += "; did you mean '" + near + "'?";
+                error(name.loc, message);
+            }
+            (sampler ? r.sampler : r.filter) = name.text;
+        } else {
+            failUnknown(word, known);
+        }
+    }
+}
+
+} // namespace drt

@@ -1,0 +1,53 @@
+// The POV-Ray perspective camera with Cook's thin lens and shutter.
+//
+// Parameters (scene.h CameraSpec) and their meaning here:
+//   location, direction, up, right  POV-Ray's camera vectors (left-handed: x right, y up, z in).
+//                                   right unset -> x * width/height (drt; POV-Ray's own default is 1.33).
+//   sky, look_at                    look_at re-aims direction/right/up about sky, keeping their lengths;
+//                                   the handedness is kept from the sign of (up x direction) . right.
+//   angle                           horizontal field of view: |direction| = 0.5 |right| / tan(angle/2).
+//   aperture                        lens *diameter* in scene units (0: pinhole, draws no lens sample).
+//   focal_distance / focal_point    the focal plane, perpendicular to the view axis at focal_distance, else at
+//                                   |focal_point - location| (Euclidean, as POV-Ray 3.7), else at |direction|.
+//   shutter_open / shutter_close    ray time = lerp(open, close, u), clamped to Motion's [0, 1] (objects hold
+//                                   their end poses outside it); equal values draw no time sample.
+#pragma once
+
+#include "accel/accel.h"
+#include "core/vec.h"
+#include "scene/scene.h"
+
+namespace drt {
+
+struct ResolvedCamera {
+    Vec3 location;
+    Vec3 direction; // centre of the image, unnormalised
+    Vec3 right;     // spans the image width
+    Vec3 up;        // spans the image height
+    int width = 1;
+    int height = 1;
+    // Thin lens: radius = aperture / 2; the lens disc spans lensU, lensV (unit).
+    double lensRadius = 0;
+    double focalDistance = 1; // along the unit view axis
+    Vec3 viewAxis{0, 0, 1};   // unit direction
+    Vec3 lensU{1, 0, 0}, lensV{0, 1, 0};
+    double shutterOpen = 0;
+    double shutterClose = 0;
+
+    bool hasLens() const { return lensRadius > 0; }
+    bool hasShutter() const { return shutterOpen != shutterClose; }
+    // Ray time for a sample u in [0, 1).
+    double timeAt(double u) const { return shutterOpen + (shutterClose - shutterOpen) * u; }
+
+    // The primary ray through image position (px, py) (pixel (x, y) covers
+    // [x, x+1) x [y, y+1), y down), through lens sample `lens` in [0,1)^2 (ignored
+    // without a lens) at `time`: D = direction + x0 right + y0 up with
+    // x0 = px/width - 0.5, y0 = 0.5 - py/height.
+    Ray generateRay(double px, double py, Vec2 lens, double time) const;
+};
+
+// Throws RenderError on input that would produce NaN (zero vectors, sky
+// parallel to the view direction, non-positive image size, bad angle).
+ResolvedCamera resolveCamera(const CameraSpec& spec, int width, int height);
+
+} // namespace drt

@@ -1,0 +1,45 @@
+#include "render/film.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace drt {
+
+bool PixelAccumulator::add(const Color& sample) {
+    if (!isFinite(sample)) {
+        ++nonFinite_;
+        return false;
+    }
+    ++count_;
+    // Welford: mean += (x - mean)/n; M2 += (x - mean_old)(x - mean_new).
+    const Color delta = sample - mean_;
+    mean_ += delta / count_;
+    m2_ += delta * (sample - mean_);
+    return true;
+}
+
+Color PixelAccumulator::varianceOfMean() const {
+    if (count_ < 2) return Color(0);
+    return m2_ / (double(count_ - 1) * count_);
+}
+
+namespace {
+
+// A finite double beyond float range would become infinite in the image.
+float toFiniteFloat(double v) {
+    constexpr double limit = std::numeric_limits<float>::max();
+    return static_cast<float>(std::clamp(v, -limit, limit));
+}
+
+} // namespace
+
+void storePixel(const PixelAccumulator& pixel, int x, int y, Image& color, Image& variance) {
+    const Color mean = pixel.mean();
+    const Color var = pixel.varianceOfMean();
+    for (int c = 0; c < 3; ++c) {
+        color.at(x, y, c) = toFiniteFloat(mean[c]);
+        variance.at(x, y, c) = toFiniteFloat(var[c]);
+    }
+}
+
+} // namespace drt

@@ -1,0 +1,44 @@
+// The film: per-pixel running mean and variance of the mean (Welford's
+// algorithm), with non-finite samples counted and dropped.
+#pragma once
+
+#include "core/color.h"
+#include "core/vec.h"
+#include "image/image.h"
+#include "sampling/filter.h"
+#include "sampling/sampler.h"
+
+#include <cstdint>
+
+namespace drt {
+
+class PixelAccumulator {
+public:
+    // Returns false (and counts it) for a NaN or infinite sample, which is dropped.
+    bool add(const Color& sample);
+    int count() const { return count_; }
+    uint64_t nonFinite() const { return nonFinite_; }
+    Color mean() const { return mean_; }
+    // Unbiased sample variance / n; 0 with fewer than two samples.
+    Color varianceOfMean() const;
+
+private:
+    int count_ = 0;
+    uint64_t nonFinite_ = 0;
+    Color mean_{0};
+    Color m2_{0}; // sum of squared deviations from the mean
+};
+
+// The image position of the current pixel sample of pixel (x, y): the one
+// place the reconstruction filter enters. Filter importance sampling: the
+// offset from the pixel centre has the filter's density and the sample counts
+// with weight 1 in this pixel only (box: uniform over the pixel).
+inline Vec2 pixelSamplePosition(Sampler& sampler, const Filter& filter, int x, int y) {
+    const Vec2 offset = sampleFilter(filter, sampler.get2D(kDimPixel));
+    return {x + 0.5 + offset.x, y + 0.5 + offset.y};
+}
+
+// Writes a pixel's mean and variance of the mean into the two images.
+void storePixel(const PixelAccumulator& pixel, int x, int y, Image& color, Image& variance);
+
+} // namespace drt

@@ -1,0 +1,130 @@
+#include "render/integrator.h"
+
+#include "render/directions.h"
+#include "render/pigment.h"
+#include "render/shading.h"
+#include "sampling/warp.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drt {
+
+Integrator::Integrator(const Scene& scene, const Accelerator& accel)
+    : scene_(scene), accel_(accel),
+      maxTraceLevel_(std::clamp(scene.global.maxTraceLevel, 1, kTraceLevelLimit)),
+      adcBailout_(std::isfinite(scene.global.adcBailout) ? std::max(0.0, scene.global.adcBailout) : 0.0) {}
+
+Color Integrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounts& counts) const {
+    thread_local std::vector<PendingRay> stack;
+    stack.clear();
+    stack.push_back({cameraRay, Color(1), 0});
+    Color result(0);
+    int shaded = 0;
+    while (!stack.empty()) {
+        const PendingRay pending = stack.back();
+        stack.pop_back();
+        if (pending.depth == 0)
+            ++counts.camera;
+        else
+            ++counts.secondary;
+        Hit hit;
+        if (!accel_.intersect(pending.ray, hit)) {
+            result += pending.weight * scene_.background;
+            continue;
+        }
+        if (++shaded > kMaxRaysPerSample) break;
+        shade(pending, hit, sampler, counts, result, stack);
+    }
+    stack.clear();
+    return result;
+}
+
+namespace {
+
+// Perturbs an ideal direction into the lobe of the given blur, or returns it
+// unchanged for blur 0 (drawing no sample).
+Vec3 lobeDirection(const Vec3& ideal, double blur, Sampler& sampler, int dimension) {
+    if (!(blur > 0)) return ideal;
+    return sampleLobeAround(ideal, lobeExponent(blur), sampler.get2D(dimension));
+}
+
+Ray spawn(const Hit& hit, const Vec3& direction, double time) {
+    Ray ray;
+    ray.origin = Accelerator::offsetOrigin(hit, direction);
+    ray.direction = direction;
+    ray.tMin = 0;
+    ray.time = time;
+    return ray;
+}
+
+} // namespace
+
+void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
+                       std::vector<PendingRay>& stack) const {
+    const Object& object = *hit.object;
+    const Finish& finish = object.texture.finish;
+    const Vec3 incoming = normalize(pending.ray.direction);
+    const bool entering = dot(incoming, hit.geometricNormal) < 0;
+    Vec3 normal = entering ? hit.shadingNormal : -hit.shadingNormal;
+    if (dot(normal, incoming) >= 0) normal = entering ? hit.geometricNormal : -hit.geometricNormal;
+
+    Color weight = pending.weight;
+    if (!entering) // the ray crossed the object's interior
+        weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
+
+    ShadingPoint sp;
+    sp.hit = hit;
+    sp.normal = normal;
+    sp.incoming = incoming;
+    sp.pigment = evaluatePigment(object.texture.pigment, hit.point);
+    sp.finish = &finish;
+    sp.time = pending.ray.time;
+    sp.depth = pending.depth;
+
+    const Color local = ambientTerm(finish, sp.pigment, scene_.global.ambientLight) +
+                        directLighting(scene_, accel_, sp, sampler, counts);
+    result += weight * local;
+
+    const int childDepth = pending.depth + 1;
+    if (childDepth >= maxTraceLevel_) return; // deeper rays are black (POV-Ray)
+
+    const double ior = object.interior.ior > 0 && std::isfinite(object.interior.ior) ? object.interior.ior : 1.0;
+    const double eta = entering ? 1.0 / ior : ior; // n_incident / n_transmitted
+    const double cosIncident = std::clamp(-dot(incoming, normal), 0.0, 1.0);
+    const Color reflected =
+        reflectivity(finish, cosIncident, eta) * metallicTint(finish.reflectionMetallic, sp.pigment, cosIncident);
+    Color transmitted = sp.pigment.rgb * sp.pigment.filter + Color(sp.pigment.transmit);
+    if (finish.conserveEnergy) // what is reflected is not transmitted as well
+        transmitted *= Color(std::max(0.0, 1 - reflected.r), std::max(0.0, 1 - reflected.g), std::max(0.0, 1 - reflected.b));
+
+    const auto worthTracing = [&](const Color& w) { return maxComponent(w) > 0 && maxComponent(w) >= adcBailout_; };
+
+    const Vec3 mirror = reflect(incoming, normal);
+    const Color reflectedWeight = weight * reflected;
+    if (worthTracing(reflectedWeight)) {
+        const Vec3 direction = lobeDirection(mirror, finish.reflectionBlur, sampler,
+                                             bounceDimension(pending.depth, kOffsetLobe));
+        if (dot(direction, normal) > 0) // below the surface: weight 0
+            stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth});
+    }
+
+    const Color transmittedWeight = weight * transmitted;
+    if (worthTracing(transmittedWeight)) {
+        Vec3 ideal;
+        bool internalReflection = false;
+        if (eta == 1.0)
+            ideal = incoming; // no bending: exactly straight on
+        else if (!refract(incoming, normal, eta, ideal)) {
+            ideal = mirror; // total internal reflection: the transmitted share follows the mirror ray
+            internalReflection = true;
+        }
+        const Vec3 direction = lobeDirection(ideal, finish.refractionBlur, sampler,
+                                             bounceDimension(pending.depth, kOffsetRefractionLobe));
+        const double side = dot(direction, normal);
+        if (internalReflection ? side > 0 : side < 0)
+            stack.push_back({spawn(hit, direction, pending.ray.time), transmittedWeight, childDepth});
+    }
+}
+
+} // namespace drt

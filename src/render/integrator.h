@@ -1,0 +1,62 @@
+// Whitted's recursion with POV-Ray's classic shading, plus Cook's glossy
+// reflection and translucency, written with an explicit stack so that no
+// max_trace_level can overflow the call stack.
+//
+// Trace depth: camera rays have depth 0; a reflected or refracted ray of depth
+// d is traced only if d < min(max_trace_level, kTraceLevelLimit); deeper rays
+// contribute black (POV-Ray). A ray whose weight (largest channel) falls below
+// adc_bailout is dropped. At most kMaxRaysPerSample surface hits are shaded per
+// camera sample (a guard against 2^depth trees of lossless glass); the rest is dropped.
+//
+// Glossy reflection / translucency: Finish::reflectionBlur / refractionBlur
+// s in (0, 1] replace the ideal direction by one sample of the lobe
+// cos^n around it, n = 2/s^2 - 2 (importance-sampled, so the weight is the
+// reflectivity / transmittance itself); a sample on the wrong side of the
+// surface has weight 0. Each traced ray spawns at most one reflected and one
+// refracted ray, as in Whitted's tree: blur adds no branching. s == 0 draws no
+// sample and is the ideal direction bit for bit.
+// Sampler dimensions: reflection lobe bounceDimension(d, kOffsetLobe), refraction
+// lobe bounceDimension(d, kOffsetRefractionLobe) (sampler.h's spare pair).
+#pragma once
+
+#include "accel/accel.h"
+#include "core/color.h"
+#include "render/lighting.h"
+#include "sampling/sampler.h"
+#include "scene/scene.h"
+
+#include <vector>
+
+namespace drt {
+
+inline constexpr int kTraceLevelLimit = 256;
+inline constexpr int kMaxRaysPerSample = 4096;
+inline constexpr int kOffsetRefractionLobe = 6; // 2D, the spare dimensions of each bounce
+
+class Integrator {
+public:
+    Integrator(const Scene& scene, const Accelerator& accel);
+
+    // Radiance along a camera ray. The sampler must already be at the pixel
+    // sample (startPixelSample). Thread-safe: the only mutable state is the
+    // sampler and `counts`, which each thread owns.
+    Color trace(const Ray& cameraRay, Sampler& sampler, RayCounts& counts) const;
+
+    int maxTraceLevel() const { return maxTraceLevel_; }
+
+private:
+    struct PendingRay {
+        Ray ray;
+        Color weight;
+        int depth = 0;
+    };
+    void shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
+               std::vector<PendingRay>& stack) const;
+
+    const Scene& scene_;
+    const Accelerator& accel_;
+    int maxTraceLevel_;
+    double adcBailout_;
+};
+
+} // namespace drt

@@ -1,0 +1,120 @@
+#include "render/pigment.h"
+
+#include <cmath>
+
+namespace drt {
+
+namespace {
+
+// POV-Ray nudges block patterns by a small tolerance so that surfaces lying
+// exactly on a cell boundary (a plane at y = 0) pick one side consistently.
+constexpr double kBlockTolerance = 1e-3;
+
+// POV-Ray's ramp_wave: the fractional part, in [0, 1).
+double rampWave(double v) {
+    const double f = v - std::floor(v);
+    return f < 1.0 ? f : 0.0;
+}
+
+// Fractional position of v within a period of 1, in [0, 1).
+double cellFraction(double v) { return v - std::floor(v); }
+
+ColorFT child(const Pigment& pigment, size_t index, const Vec3& worldPoint) {
+    if (index >= pigment.children.size()) return ColorFT{};
+    return evaluatePigment(pigment.children[index], worldPoint);
+}
+
+ColorFT mix(const ColorFT& a, const ColorFT& b, double t) {
+    ColorFT c;
+    c.rgb = a.rgb * (1 - t) + b.rgb * t;
+    c.filter = a.filter * (1 - t) + b.filter * t;
+    c.transmit = a.transmit * (1 - t) + b.transmit * t;
+    return c;
+}
+
+} // namespace
+
+int checkerIndex(const Vec3& p) {
+    const long long sum = static_cast<long long>(std::floor(p.x + kBlockTolerance)) +
+                          static_cast<long long>(std::floor(p.y + kBlockTolerance)) +
+                          static_cast<long long>(std::floor(p.z + kBlockTolerance));
+    return static_cast<int>(sum & 1);
+}
+
+int hexagonIndex(const Vec3& p) {
+    // POV-Ray's hexagon: regular hexagons of side 1 in the x-z plane with corners
+    // on the x axis, one centred at the origin. Centres lie at
+    // (1.5 q, sqrt(3) (r + q/2)) for integer axial coordinates (q, r); the three
+    // colours are (r - q) mod 3 (colour 0 at the origin, 1 at (0, sqrt 3), 2 at (1.5, sqrt(3)/2)).
+    const double q = p.x * (2.0 / 3.0);
+    const double r = -p.x / 3.0 + p.z / std::sqrt(3.0);
+    // Round the cube coordinates (q, r, -q-r) to the nearest hexagon centre.
+    const double s = -q - r;
+    double rq = std::round(q), rr = std::round(r), rs = std::round(s);
+    const double dq = std::fabs(rq - q), dr = std::fabs(rr - r), ds = std::fabs(rs - s);
+    if (dq > dr && dq > ds)
+        rq = -rr - rs;
+    else if (dr > ds)
+        rr = -rq - rs;
+    const long long k = (static_cast<long long>(rr) - static_cast<long long>(rq)) % 3;
+    return static_cast<int>(k < 0 ? k + 3 : k);
+}
+
+int brickIndex(const Vec3& p, const Vec3& brickSize, double mortar) {
+    // POV-Ray's brick: courses of height brickSize.y separated by mortar; odd
+    // and even courses are offset by half a brick in x and z.
+    const double shift = kBlockTolerance + mortar;
+    const Vec3 q = p + Vec3(shift);
+    if (cellFraction(q.y / brickSize.y) <= mortar / brickSize.y) return 0;
+    const bool lowerCourse = cellFraction(q.y / brickSize.y * 0.5) <= 0.5;
+    const double mortarX = mortar / brickSize.x, mortarZ = mortar / brickSize.z;
+    const double fx = cellFraction(q.x / brickSize.x + (lowerCourse ? 0.0 : 0.5));
+    if (fx <= mortarX) return 0;
+    const double fz = cellFraction(q.z / brickSize.z + (lowerCourse ? 0.5 : 0.0));
+    if (fz <= mortarZ) return 0;
+    return 1;
+}
+
+double gradientValue(const Vec3& p, const Vec3& axis) {
+    const double len = length(axis);
+    if (!(len > 0) || !std::isfinite(len)) return 0;
+    return rampWave(dot(p, axis / len));
+}
+
+double radialValue(const Vec3& p) {
+    // POV-Ray: 0.25 + (atan2(x, z) + pi) / (2 pi), wrapped; the axis itself gets 0.25.
+    if (std::fabs(p.x) < 1e-3 && std::fabs(p.z) < 1e-3) return 0.25;
+    return rampWave(0.25 + (std::atan2(p.x, p.z) + kPi) / (2 * kPi));
+}
+
+double onionValue(const Vec3& p) { return rampWave(length(p)); }
+
+ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value) {
+    if (map.empty()) return ColorFT{Color(value), 0, 0};
+    if (value <= map.front().value) return map.front().color;
+    for (size_t i = 1; i < map.size(); ++i) {
+        if (value <= map[i].value) {
+            const double span = map[i].value - map[i - 1].value;
+            if (!(span > 0)) return map[i].color;
+            return mix(map[i - 1].color, map[i].color, (value - map[i - 1].value) / span);
+        }
+    }
+    return map.back().color;
+}
+
+ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
+    if (pigment.pattern == PatternKind::Solid) return pigment.color;
+    const Vec3 p = pigment.toWorld.inversePoint(worldPoint);
+    switch (pigment.pattern) {
+    case PatternKind::Solid: return pigment.color;
+    case PatternKind::Checker: return child(pigment, checkerIndex(p), worldPoint);
+    case PatternKind::Hexagon: return child(pigment, hexagonIndex(p), worldPoint);
+    case PatternKind::Brick: return child(pigment, brickIndex(p, pigment.brickSize, pigment.mortar), worldPoint);
+    case PatternKind::Gradient: return lookupColorMap(pigment.colorMap, gradientValue(p, pigment.gradientAxis));
+    case PatternKind::Radial: return lookupColorMap(pigment.colorMap, radialValue(p));
+    case PatternKind::Onion: return lookupColorMap(pigment.colorMap, onionValue(p));
+    }
+    return pigment.color;
+}
+
+} // namespace drt

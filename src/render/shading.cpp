@@ -1,0 +1,101 @@
+#include "render/shading.h"
+
+#include "render/directions.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drt {
+
+namespace {
+
+// POV-Ray's empirical Fresnel term for metallic highlights, with x the angle
+// between N and L over pi/2: F = 0.014567225 / (x - 1.12)^2 - 0.011612903, in [0, 1].
+double metallicFresnel(double cosNL) {
+    const double x = std::fabs(std::acos(std::clamp(cosNL, -1.0, 1.0))) / (kPi / 2);
+    const double f = 0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903;
+    return std::clamp(f, 0.0, 1.0);
+}
+
+} // namespace
+
+Color metallicTint(double metallic, const ColorFT& pigment, double cosAngle) {
+    if (!(metallic > 0)) return Color(1);
+    const double k = metallic * (1.0 - metallicFresnel(cosAngle));
+    return Color(1) + k * (pigment.rgb - Color(1));
+}
+
+Color ambientTerm(const Finish& finish, const ColorFT& pigment, const Color& ambientLight) {
+    return pigment.rgb * (finish.ambient * ambientLight + finish.emission) * pigment.opacity();
+}
+
+Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
+                const Vec3& toLight, const Color& lightIntensity) {
+    const double cosNL = dot(normal, toLight);
+    if (!(cosNL > 0)) return Color(0);
+    Color result(0);
+    if (finish.diffuse != 0) {
+        const double d = finish.diffuse * std::pow(cosNL, finish.brilliance) * pigment.opacity();
+        result += d * pigment.rgb * lightIntensity;
+    }
+    double highlight = 0;
+    if (finish.phong > 0) {
+        const double cosRL = dot(reflect(incoming, normal), toLight);
+        if (cosRL > 0) highlight += finish.phong * std::pow(cosRL, finish.phongSize);
+    }
+    if (finish.specular > 0 && finish.roughness > 0) {
+        const Vec3 h = toLight - incoming;
+        const double len = length(h);
+        if (len > 0) {
+            const double cosNH = dot(normal, h / len);
+            if (cosNH > 0) highlight += finish.specular * std::pow(cosNH, 1.0 / finish.roughness);
+        }
+    }
+    if (highlight > 0) result += highlight * metallicTint(finish.metallic, pigment, cosNL) * lightIntensity;
+    return result;
+}
+
+Color reflectivity(const Finish& finish, double cosIncident, double eta) {
+    // (reflection metallic, which needs the pigment, is applied by the integrator)
+    const Color& lo = finish.reflectionMin;
+    const Color& hi = finish.reflectionMax;
+    if (lo == hi) return lo;
+    double blend;
+    if (finish.reflectionFresnel)
+        blend = fresnelDielectric(cosIncident, eta);
+    else
+        blend = std::pow(std::clamp(1.0 - cosIncident, 0.0, 1.0), finish.reflectionFalloff);
+    return lo + blend * (hi - lo);
+}
+
+double spotlightAttenuation(const Light& light, const Vec3& lightPosition, const Vec3& point) {
+    if (!light.spotlight) return 1;
+    const Vec3 axis = light.pointAt - lightPosition;
+    const Vec3 toPoint = point - lightPosition;
+    const double axisLength = length(axis), pointDistance = length(toPoint);
+    if (!(axisLength > 0) || !(pointDistance > 0)) return 0;
+    const double cosAngle = dot(axis, toPoint) / (axisLength * pointDistance);
+    if (!(cosAngle > 0)) return 0;
+    double attenuation = light.tightness > 0 ? std::pow(cosAngle, light.tightness) : 1.0;
+    const double cosFalloff = std::cos(light.falloff * kPi / 180);
+    const double cosRadius = std::cos(light.radius * kPi / 180);
+    if (cosAngle < cosFalloff) return 0;
+    if (cosAngle < cosRadius && cosRadius > cosFalloff) {
+        const double t = (cosAngle - cosFalloff) / (cosRadius - cosFalloff);
+        attenuation *= t * t * (3 - 2 * t); // smoothstep from the falloff cone to the radius cone
+    }
+    return attenuation;
+}
+
+double fadeAttenuation(const Light& light, double distance) {
+    if (!(light.fadeDistance > 0) || !(light.fadePower > 0)) return 1;
+    return 2.0 / (1.0 + std::pow(distance / light.fadeDistance, light.fadePower));
+}
+
+Color interiorAttenuation(const Interior& interior, double distance) {
+    if (!(interior.fadeDistance > 0) || !(interior.fadePower > 0)) return Color(1);
+    const double a = 1.0 / (1.0 + std::pow(distance / interior.fadeDistance, interior.fadePower));
+    return interior.fadeColor + a * (Color(1) - interior.fadeColor);
+}
+
+} // namespace drt

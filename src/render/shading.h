@@ -1,0 +1,47 @@
+// POV-Ray 3.7's classic finish model and light attenuation, as pure functions
+// (../shared/POVRAY-NOTES.md, "Classic shading"). With P the pigment colour,
+// alpha = 1 - filter - transmit, N the normal facing the viewer, I the unit
+// incoming ray direction, L the unit direction to the light and I_L the light's
+// colour x visibility x attenuation:
+//   ambient + emission  P (ambient ambient_light + emission) alpha
+//   diffuse             diffuse (N.L)^brilliance alpha P I_L
+//   Phong               phong max(R.L, 0)^phong_size I_L, R = I - 2 (I.N) N
+//   Blinn specular      specular max(N.H, 0)^(1/roughness) I_L, H = normalize(L - I)
+//   metallic m          highlights tinted: I_L (1 + m (1 - F) (P - 1)), F POV-Ray's empirical Fresnel
+#pragma once
+
+#include "core/color.h"
+#include "core/vec.h"
+#include "scene/scene.h"
+
+namespace drt {
+
+Color ambientTerm(const Finish& finish, const ColorFT& pigment, const Color& ambientLight);
+
+// Diffuse + Phong + specular from one light, or black when N.L <= 0.
+Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
+                const Vec3& toLight, const Color& lightIntensity);
+
+// How much of a ray is reflected: reflection min..max blended by Fresnel
+// (reflection_fresnel, with eta = n_incident / n_transmitted) or by
+// (1 - cos)^falloff. cosIncident = -I.N.
+Color reflectivity(const Finish& finish, double cosIncident, double eta);
+
+// POV-Ray's metallic tint 1 + m (1 - F) (P - 1), with F its empirical
+// Fresnel term of the angle whose cosine is given (N.L for highlights, the
+// incidence angle for `reflection { metallic m }`).
+Color metallicTint(double metallic, const ColorFT& pigment, double cosAngle);
+
+// Spotlight factor at `point` for a light at `lightPosition`: tightness power
+// of cos, times smoothstep from the falloff cone (0) to the radius cone (1).
+// 1 for non-spotlights.
+double spotlightAttenuation(const Light& light, const Vec3& lightPosition, const Vec3& point);
+
+// POV-Ray's fade: 2 / (1 + (distance/fade_distance)^fade_power); 1 without fade.
+double fadeAttenuation(const Light& light, double distance);
+
+// Interior fade over a path of `distance` inside a medium (POV-Ray):
+// per channel fade_colour + (1 - fade_colour) / (1 + (distance/fade_distance)^fade_power).
+Color interiorAttenuation(const Interior& interior, double distance);
+
+} // namespace drt

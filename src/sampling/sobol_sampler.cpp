@@ -1,0 +1,95 @@
+// The "sobol" sampler: Owen-scrambled Sobol points, the default.
+//
+// Dimensions 0-4 (pixel, time, lens) are the five coordinates of ONE Sobol
+// point per pixel sample, so pixel x time and pixel x lens stay stratified
+// jointly: a motion-blurred or defocused edge converges like a still one
+// (ACCURACY-NOTES.md, "Padding"). Dimensions 5 and up (per bounce) are padded:
+// each 2D request is its own scrambled (0,2)-sequence (Sobol dimensions 0 and 1)
+// and each 1D request its own scrambled van der Corput sequence, with the
+// sample order shuffled independently per dimension so the pairs are
+// decorrelated from each other and from the camera dimensions.
+//
+// Per pixel, the sample index is shuffled by a nested uniform scramble of its
+// bits (Burley 2020, section 4): the first 2^k indices still map to an aligned
+// block of 2^k Sobol points, so every power-of-two prefix stays a net.
+#include "core/hash.h"
+#include "sampling/sobol.h"
+
+#include <algorithm>
+
+namespace drt {
+namespace {
+
+class SobolSampler final : public Sampler {
+public:
+    SobolSampler(int spp, uint64_t seed) : Sampler(spp, seed) {
+        // The shuffle permutes the low `bits` bits: enough for every index < spp.
+        int bits = 0;
+        while (bits < 31 && (1u << bits) < static_cast<uint32_t>(spp)) ++bits;
+        mask_ = (1u << bits) - 1u;
+    }
+    std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(*this); }
+
+    void startPixelSample(int x, int y, int index) override {
+        x_ = x;
+        y_ = y;
+        index_ = index;
+        pixelKey_ = hashValues({seed_, uint64_t(int64_t(x)), uint64_t(int64_t(y)), 0x50b01ULL});
+        jointIndex_ = shuffledIndex(key(kTagJoint, 0));
+    }
+
+    double get1D(int dimension) override {
+        if (dimension < kSobolDimensions) return joint(dimension);
+        const uint32_t i = shuffledIndex(key(kTagPadded1D, dimension));
+        return fractionToUnit(owenScramble(sobolValue(i, 0), seed32(kTagPadded1D, dimension, 0)));
+    }
+
+    Vec2 get2D(int dimension) override {
+        if (dimension + 1 < kSobolDimensions) return {joint(dimension), joint(dimension + 1)};
+        if (dimension < kSobolDimensions) return {joint(dimension), get1D(dimension + 1)};
+        return padded2D(shuffledIndex(key(kTagPadded2D, dimension)), kTagPadded2D, dimension);
+    }
+
+    // The k-th of `count` points: sequence index shuffled(pixel sample) * count + k
+    // of a scrambled (0,2)-sequence, so the count points of one pixel sample
+    // form a (0,m,2)-net when count is a power of two, and all spp * count
+    // points of the pixel do too when spp is a power of two as well.
+    Vec2 get2DStratified(int dimension, int k, int count) override {
+        const uint64_t base = shuffledIndex(key(kTagStratified, dimension));
+        const auto i = static_cast<uint32_t>(base * static_cast<uint64_t>(std::max(count, 1)) + uint64_t(k));
+        return padded2D(i, kTagStratified, dimension);
+    }
+
+    std::string name() const override { return "sobol"; }
+
+private:
+    static constexpr uint64_t kTagJoint = 1, kTagPadded1D = 2, kTagPadded2D = 3, kTagStratified = 4;
+
+    uint64_t key(uint64_t tag, int dimension) const { return hashValues({pixelKey_, tag, uint64_t(dimension)}); }
+    uint32_t seed32(uint64_t tag, int dimension, int component) const {
+        return static_cast<uint32_t>(hashValues({pixelKey_, tag, uint64_t(dimension), uint64_t(component) + 17}) >> 32);
+    }
+    uint32_t shuffledIndex(uint64_t shuffleKey) const {
+        const auto i = static_cast<uint32_t>(index_);
+        return (i & ~mask_) | (owenScramble(i, static_cast<uint32_t>(shuffleKey >> 32)) & mask_);
+    }
+    double joint(int dimension) const {
+        return fractionToUnit(owenScramble(sobolValue(jointIndex_, dimension), seed32(kTagJoint, dimension, 0)));
+    }
+    Vec2 padded2D(uint32_t i, uint64_t tag, int dimension) const {
+        return {fractionToUnit(owenScramble(sobolValue(i, 0), seed32(tag, dimension, 0))),
+                fractionToUnit(owenScramble(sobolValue(i, 1), seed32(tag, dimension, 1)))};
+    }
+
+    uint32_t mask_ = 0;
+    uint64_t pixelKey_ = 0;
+    uint32_t jointIndex_ = 0;
+};
+
+} // namespace
+
+std::unique_ptr<Sampler> makeSobolSampler(int samplesPerPixel, uint64_t seed) {
+    return std::make_unique<SobolSampler>(samplesPerPixel, seed);
+}
+
+} // namespace drt

@@ -1,0 +1,496 @@
+// Tests of the Embree wrapper (src/accel): every shape against hand-computed
+// hits, CSG, shadows, motion, errors and self-intersection at several scales.
+#include "accel/accel.h"
+#include "accel/built_scene.h"
+#include "accel/polynomial.h"
+#include "render/render.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace drt {
+namespace {
+
+Object makeObject(Shape shape, Transform transform = {}) {
+    Object o;
+    o.shape = std::move(shape);
+    o.transform = transform;
+    return o;
+}
+
+Scene sceneOf(std::vector<Object> objects) {
+    Scene s;
+    s.objects = std::move(objects);
+    return s;
+}
+
+std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction, double time = 0) {
+    Ray ray;
+    ray.origin = origin;
+    ray.direction = direction;
+    ray.time = time;
+    Hit hit;
+    if (!accel.intersect(ray, hit)) return std::nullopt;
+    return hit;
+}
+
+void expectNear(const Vec3& a, const Vec3& b, double tolerance = 1e-9) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+void expectHit(const std::optional<Hit>& hit, double t, const Vec3& point, const Vec3& normal,
+               double tolerance = 1e-9) {
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->t, t, tolerance);
+    expectNear(hit->point, point, tolerance);
+    expectNear(hit->geometricNormal, normal, tolerance);
+}
+
+// ---------------------------------------------------------------- polynomials
+
+TEST(Polynomial, QuarticWithFourKnownRoots) {
+    // (t-1)(t-2)(t-3)(t-4) = t^4 - 10t^3 + 35t^2 - 50t + 24
+    const double c[5] = {24, -50, 35, -10, 1};
+    double roots[5];
+    ASSERT_EQ(accel::polynomialRootsInInterval(c, 4, -10, 10, roots), 4);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(roots[i], i + 1, 1e-12);
+    EXPECT_EQ(accel::polynomialRootsInInterval(c, 4, 1.5, 3.5, roots), 2);
+}
+
+TEST(Polynomial, QuarticWithCloseRoots) {
+    // (t-1)(t-1.000001)(t+2)(t-5), expanded numerically
+    const double r[4] = {1, 1.000001, -2, 5};
+    double c[5] = {1, 0, 0, 0, 0}; // builds prod (t - r_i), low degree first
+    int degree = 0;
+    for (double root : r) {
+        for (int i = degree + 1; i > 0; --i) c[i] = c[i - 1] - root * c[i];
+        c[0] = -root * c[0];
+        ++degree;
+    }
+    double roots[5];
+    ASSERT_EQ(accel::polynomialRootsInInterval(c, 4, -10, 10, roots), 4);
+    EXPECT_NEAR(roots[0], -2, 1e-10);
+    EXPECT_NEAR(roots[1], 1, 1e-9);
+    EXPECT_NEAR(roots[2], 1.000001, 1e-9);
+    EXPECT_NEAR(roots[3], 5, 1e-10);
+}
+
+// ---------------------------------------------------------------- shapes
+
+TEST(Accel, SphereHitFromOutsideAndInside) {
+    Accelerator accel(sceneOf({makeObject(Sphere{{0, 0, 0}, 1})}));
+    expectHit(trace(accel, {0, 0, -5}, {0, 0, 1}), 4, {0, 0, -1}, {0, 0, -1});
+    // t is in units of |direction|.
+    expectHit(trace(accel, {0, 0, -5}, {0, 0, 2}), 2, {0, 0, -1}, {0, 0, -1});
+    // From inside: the far side, normal still outward.
+    expectHit(trace(accel, {0, 0, 0}, {1, 0, 0}), 1, {1, 0, 0}, {1, 0, 0});
+    EXPECT_FALSE(trace(accel, {0, 2, -5}, {0, 0, 1}));
+}
+
+TEST(Accel, TransformedSphereIsAnEllipsoid) {
+    // Scale x by 2, then rotate 90 degrees about y (x goes to -z), then move to x = 10:
+    // an ellipsoid with semi-axes 1 (x), 1 (y), 2 (z) around (10, 0, 0).
+    const Transform t = Transform::scale({2, 1, 1}).then(Transform::rotate({0, 90, 0})).then(
+        Transform::translate({10, 0, 0}));
+    Accelerator accel(sceneOf({makeObject(Sphere{{0, 0, 0}, 1}, t)}));
+    expectHit(trace(accel, {10, 0, -10}, {0, 0, 1}), 8, {10, 0, -2}, {0, 0, -1});
+    expectHit(trace(accel, {0, 0, 0}, {1, 0, 0}), 9, {9, 0, 0}, {-1, 0, 0});
+    // At (10, 0.5, z): 0.25 + z^2/4 = 1, z = -sqrt(3); normal along (0, y, z/4).
+    const double z = -std::sqrt(3.0);
+    expectHit(trace(accel, {10, 0.5, -10}, {0, 0, 1}), 10 + z, {10, 0.5, z}, normalize(Vec3{0, 0.5, z / 4}));
+}
+
+TEST(Accel, PlaneIsInfiniteAndRotatable) {
+    Plane plane;
+    plane.normal = {0, 1, 0};
+    plane.distance = -1;
+    Accelerator accel(sceneOf({makeObject(plane)}));
+    expectHit(trace(accel, {0, 5, 0}, {0.3, -1, 0.2}), 6, {1.8, -1, 1.2}, {0, 1, 0});
+    expectHit(trace(accel, {1e6, 5, -3e6}, {0, -1, 0}), 6, {1e6, -1, -3e6}, {0, 1, 0});
+    // From below the normal still faces out of the shape (up).
+    expectHit(trace(accel, {0, -3, 0}, {0, 1, 0}), 2, {0, -1, 0}, {0, 1, 0});
+    EXPECT_FALSE(trace(accel, {0, 5, 0}, {1, 0, 0}));
+
+    // Plane y = 0 rotated 30 degrees about x: normal (0, cos 30, sin 30).
+    Accelerator tilted(sceneOf({makeObject(Plane{}, Transform::rotate({30, 0, 0}))}));
+    const Vec3 n{0, std::cos(kPi / 6), std::sin(kPi / 6)};
+    auto hit = trace(tilted, {0, 2, 0}, {0, -1, 0});
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(dot(hit->point, n), 0, 1e-12);
+    expectNear(hit->geometricNormal, n);
+}
+
+TEST(Accel, CylinderSideCapsAndOpen) {
+    Cylinder closed{{0, 0, 0}, {0, 2, 0}, 1, false};
+    Accelerator accel(sceneOf({makeObject(closed)}));
+    expectHit(trace(accel, {-5, 1, 0}, {1, 0, 0}), 4, {-1, 1, 0}, {-1, 0, 0});
+    expectHit(trace(accel, {0.5, 5, 0}, {0, -1, 0}), 3, {0.5, 2, 0}, {0, 1, 0});
+    expectHit(trace(accel, {0.5, -5, 0}, {0, 1, 0}), 5, {0.5, 0, 0}, {0, -1, 0});
+
+    Cylinder open = closed;
+    open.open = true;
+    Accelerator openAccel(sceneOf({makeObject(open)}));
+    EXPECT_FALSE(trace(openAccel, {0.5, 5, 0}, {0, -1, 0}));
+    // From inside the tube: the inner wall, normal facing away from the axis.
+    expectHit(trace(openAccel, {0, 1, 0}, {1, 0, 0}), 1, {1, 1, 0}, {1, 0, 0});
+}
+
+TEST(Accel, ConeSideCapAndOpen) {
+    Cone cone{{0, 0, 0}, 1, {0, 2, 0}, 0, false}; // apex at y = 2
+    Accelerator accel(sceneOf({makeObject(cone)}));
+    // Radius 0.5 at y = 1; the side normal leans up by atan(1/2).
+    expectHit(trace(accel, {-5, 1, 0}, {1, 0, 0}), 4.5, {-0.5, 1, 0}, normalize(Vec3{-1, 0.5, 0}));
+    expectHit(trace(accel, {0.2, -5, 0}, {0, 1, 0}), 5, {0.2, 0, 0}, {0, -1, 0});
+    cone.open = true;
+    Accelerator openAccel(sceneOf({makeObject(cone)}));
+    // Through the open base to the inner wall, where the radius 1 - y/2 is 0.2.
+    expectHit(trace(openAccel, {0.2, -5, 0}, {0, 1, 0}), 6.6, {0.2, 1.6, 0}, normalize(Vec3{1, 0.5, 0}));
+}
+
+TEST(Accel, DiscWithHole) {
+    Disc disc{{0, 1, 0}, {0, 1, 0}, 2, 1};
+    Accelerator accel(sceneOf({makeObject(disc)}));
+    expectHit(trace(accel, {1.5, 5, 0}, {0, -1, 0}), 4, {1.5, 1, 0}, {0, 1, 0});
+    EXPECT_FALSE(trace(accel, {0.5, 5, 0}, {0, -1, 0})); // in the hole
+    EXPECT_FALSE(trace(accel, {2.5, 5, 0}, {0, -1, 0})); // outside
+}
+
+double torusResidual(const Vec3& p, double R, double r) {
+    const double ring = std::sqrt(p.x * p.x + p.z * p.z) - R;
+    return ring * ring + p.y * p.y - r * r;
+}
+
+TEST(Accel, TorusKnownHits) {
+    Accelerator accel(sceneOf({makeObject(Torus{2, 0.5})}));
+    expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}), 2.5, {-2.5, 0, 0}, {-1, 0, 0});
+    expectHit(trace(accel, {2, 5, 0}, {0, -1, 0}), 4.5, {2, 0.5, 0}, {0, 1, 0});
+    // Through the hole: miss along y at the centre.
+    EXPECT_FALSE(trace(accel, {0, 5, 0}, {0, -1, 0}));
+    // y = 0.3: the tube's half-width there is sqrt(0.25 - 0.09) = 0.4.
+    expectHit(trace(accel, {-5, 0.3, 0}, {1, 0, 0}), 2.6, {-2.4, 0.3, 0}, normalize(Vec3{-0.4, 0.3, 0}));
+    // From inside the hole: the inner equator at x = 1.5.
+    expectHit(trace(accel, {0, 0, 0}, {1, 0, 0}), 1.5, {1.5, 0, 0}, {-1, 0, 0});
+}
+
+TEST(Accel, TorusRandomRaysAgreeWithDenseSampling) {
+    // A non-uniformly scaled, rotated torus; each hit is checked in object space:
+    // on the surface, and no sign change of the implicit function before it.
+    const double R = 1, r = 0.3;
+    const Transform t = Transform::scale({1, 2, 0.5}).then(Transform::rotate({20, 30, 40}));
+    Accelerator accel(sceneOf({makeObject(Torus{R, r}, t)}));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int hits = 0;
+    for (int i = 0; i < 300; ++i) {
+        const Vec3 origin = normalize(Vec3{u(rng), u(rng), u(rng)}) * 4;
+        const Vec3 target{u(rng) * 1.2, u(rng) * 1.2, u(rng) * 1.2};
+        const Vec3 d = normalize(target - origin);
+        const auto hit = trace(accel, origin, d);
+        // Dense march in object space for the first sign change.
+        const Vec3 oo = t.inversePoint(origin), od = t.inverseVector(d);
+        double first = -1;
+        double previous = torusResidual(oo, R, r);
+        for (double s = 1e-3; s < 10; s += 1e-3) {
+            const double f = torusResidual(oo + s * od, R, r);
+            if ((f < 0) != (previous < 0)) {
+                first = s;
+                break;
+            }
+            previous = f;
+        }
+        if (first < 0) {
+            EXPECT_FALSE(hit.has_value()) << "ray " << i;
+            continue;
+        }
+        ASSERT_TRUE(hit.has_value()) << "ray " << i;
+        ++hits;
+        EXPECT_NEAR(hit->t, first, 1.5e-3) << "ray " << i;
+        EXPECT_NEAR(torusResidual(t.inversePoint(hit->point), R, r), 0, 1e-9);
+        EXPECT_LT(dot(hit->geometricNormal, d), 0); // entering from outside
+    }
+    EXPECT_GT(hits, 50);
+}
+
+TEST(Accel, BoxIsOutwardEvenWhenMirrored) {
+    Box box{{-1, -1, -1}, {1, 1, 1}};
+    const Transform t = Transform::scale({-2, 1, 1}).then(Transform::rotate({0, 0, 90}));
+    // x scaled by -2 (a mirror), then rotate 90 about z: x -> y, y -> -x.
+    Accelerator accel(sceneOf({makeObject(box, t)}));
+    expectHit(trace(accel, {0, 5, 0}, {0, -1, 0}), 3, {0, 2, 0}, {0, 1, 0});
+    expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}), 4, {-1, 0, 0}, {-1, 0, 0});
+    expectHit(trace(accel, {0.3, 0.2, 5}, {0, 0, -1}), 4, {0.3, 0.2, 1}, {0, 0, 1}, 1e-6);
+}
+
+TEST(Accel, MeshInterpolatesShadingNormals) {
+    Mesh mesh;
+    mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    mesh.triangles = {{0, 1, 2}, {1, 3, 2}};
+    mesh.normals = {{0, 0, 1}, normalize(Vec3{1, 0, 1}), normalize(Vec3{0, 1, 1}), {0, 0, 1}};
+    mesh.normalIndices = {{0, 1, 2}, {1, 3, 2}};
+    Scene scene = sceneOf({makeObject(mesh)});
+    Accelerator accel(scene);
+    auto hit = trace(accel, {0.25, 0.25, 5}, {0, 0, -1});
+    expectHit(hit, 5, {0.25, 0.25, 0}, {0, 0, 1}, 1e-6);
+    const Vec3 expected = normalize(0.5 * mesh.normals[0] + 0.25 * mesh.normals[1] + 0.25 * mesh.normals[2]);
+    expectNear(hit->shadingNormal, expected, 1e-6);
+    EXPECT_EQ(hit->primitive, 0u);
+    EXPECT_EQ(hit->object, &scene.objects[0]);
+    auto second = trace(accel, {0.8, 0.8, -5}, {0, 0, 1});
+    ASSERT_TRUE(second);
+    EXPECT_EQ(second->primitive, 1u);
+    expectNear(second->geometricNormal, {0, 0, 1}); // facing out of the winding, not the ray
+}
+
+TEST(Accel, DegenerateTrianglesGiveNoNaN) {
+    Mesh mesh;
+    mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 1, 0}};
+    mesh.triangles = {{0, 1, 2}, {3, 3, 3}, {0, 4, 5}, {0, 1, 4}};
+    Accelerator accel(sceneOf({makeObject(mesh)}));
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-0.1, 1.1);
+    int hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 target{u(rng), i % 2 ? 0.0 : u(rng), 0};
+        auto hit = trace(accel, {0.3, 0.3, -2}, target - Vec3{0.3, 0.3, -2});
+        if (!hit) continue;
+        ++hits;
+        ASSERT_TRUE(std::isfinite(hit->t));
+        ASSERT_TRUE(isFinite(hit->point) && isFinite(hit->geometricNormal) && isFinite(hit->shadingNormal));
+        EXPECT_NEAR(length(hit->geometricNormal), 1, 1e-9);
+    }
+    EXPECT_GT(hits, 100);
+}
+
+// ---------------------------------------------------------------- CSG
+
+TEST(Accel, UnionChildrenPointIntoTheScene) {
+    Csg csg;
+    csg.children.push_back(makeObject(Sphere{{-2, 0, 0}, 1}));
+    csg.children.push_back(makeObject(Sphere{{2, 0, 0}, 1}));
+    Scene scene = sceneOf({makeObject(csg, Transform::translate({0, 10, 0}))});
+    Accelerator accel(scene);
+    const auto& children = std::get<Csg>(scene.objects[0].shape).children;
+    auto left = trace(accel, {-2, 10, -5}, {0, 0, 1});
+    expectHit(left, 4, {-2, 10, -1}, {0, 0, -1});
+    EXPECT_EQ(left->object, &children[0]);
+    EXPECT_EQ(trace(accel, {2, 10, -5}, {0, 0, 1})->object, &children[1]);
+}
+
+TEST(Accel, DifferenceIntersectionMergeAndInverse) {
+    auto sphere = makeObject(Sphere{{0, 0, 0}, 1});
+    auto rightHalf = makeObject(Box{{0, -2, -2}, {2, 2, 2}});
+    Csg difference{Csg::Op::Difference, {sphere, rightHalf}};
+    Csg intersection{Csg::Op::Intersection, {sphere, rightHalf}};
+    Csg merge{Csg::Op::Merge, {makeObject(Sphere{{-0.5, 0, 0}, 1}), makeObject(Sphere{{0.5, 0, 0}, 1})}};
+    Scene scene = sceneOf({makeObject(difference), makeObject(intersection, Transform::translate({0, 10, 0})),
+                           makeObject(merge, Transform::translate({0, 20, 0}))});
+    Accelerator accel(scene);
+    // Left hemisphere: from +x the cut face at x = 0, facing +x, belongs to the box.
+    auto cut = trace(accel, {5, 0, 0}, {-1, 0, 0});
+    expectHit(cut, 5, {0, 0, 0}, {1, 0, 0});
+    EXPECT_EQ(cut->object, &std::get<Csg>(scene.objects[0].shape).children[1]);
+    expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}), 4, {-1, 0, 0}, {-1, 0, 0});
+    EXPECT_FALSE(trace(accel, {0.5, 5, 0}, {0, -1, 0}));
+    // Right hemisphere: the flat face from -x, the sphere from above.
+    expectHit(trace(accel, {-5, 10, 0}, {1, 0, 0}), 5, {0, 10, 0}, {-1, 0, 0});
+    expectHit(trace(accel, {0.6, 15, 0}, {0, -1, 0}), 5 - 0.8, {0.6, 10.8, 0}, {0.6, 0.8, 0});
+    // Merge: no inner surfaces; from inside the overlap the ray leaves at x = 1.5.
+    expectHit(trace(accel, {-5, 20, 0}, {1, 0, 0}), 3.5, {-1.5, 20, 0}, {-1, 0, 0});
+    expectHit(trace(accel, {0, 20, 0}, {1, 0, 0}), 1.5, {1.5, 20, 0}, {1, 0, 0});
+
+    // An inverted sphere: the normal faces out of the inverted shape (inward).
+    auto inverted = makeObject(Sphere{{0, 0, 0}, 1});
+    inverted.inverse = true;
+    Accelerator invertedAccel(sceneOf({inverted}));
+    expectHit(trace(invertedAccel, {0, 0, -5}, {0, 0, 1}), 4, {0, 0, -1}, {0, 0, 1});
+}
+
+// ---------------------------------------------------------------- shadows, errors
+
+TEST(Accel, OccludedHonoursNoShadow) {
+    for (int kind = 0; kind < 3; ++kind) { // analytic, triangles, moving
+        Object blocker = kind == 1 ? makeObject(Box{{-1, -1, -1}, {1, 1, 1}}) : makeObject(Sphere{{0, 0, 0}, 1});
+        if (kind == 2) blocker.motion = Motion{{0.1, 0, 0}, {0, 0, 0}, {1, 1, 1}};
+        Ray ray;
+        ray.origin = {0, 0, -5};
+        ray.direction = {0, 0, 1};
+        ray.tMax = 10;
+        EXPECT_TRUE(Accelerator(sceneOf({blocker})).occluded(ray)) << kind;
+        ray.tMax = 3.5; // stops before the object
+        EXPECT_FALSE(Accelerator(sceneOf({blocker})).occluded(ray)) << kind;
+        ray.tMax = 10;
+        blocker.noShadow = true;
+        Accelerator accel(sceneOf({blocker}));
+        EXPECT_FALSE(accel.occluded(ray)) << kind;
+        EXPECT_TRUE(trace(accel, ray.origin, ray.direction)) << kind; // still visible
+    }
+}
+
+TEST(Accel, EmbreeErrorsBecomeRenderErrors) {
+    accel::EmbreeDevice device;
+    EXPECT_NO_THROW(device.throwIfFailed("doing nothing"));
+    // An invalid geometry type makes Embree call the error callback.
+    RTCGeometry g = rtcNewGeometry(device.get(), static_cast<RTCGeometryType>(12345));
+    EXPECT_EQ(g, nullptr);
+    try {
+        device.throwIfFailed("testing");
+        FAIL() << "no exception";
+    } catch (const RenderError& e) {
+        EXPECT_NE(std::string(e.what()).find("Embree error"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("while testing"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Accel, InvalidGeometryIsARenderError) {
+    Mesh mesh;
+    mesh.vertices = {{0, 0, 0}, {1, 0, 0}};
+    mesh.triangles = {{0, 1, 2}};
+    EXPECT_THROW(Accelerator(sceneOf({makeObject(mesh)})), RenderError);
+    EXPECT_THROW(Accelerator(sceneOf({makeObject(Sphere{{0, 0, 0}, -1})})), RenderError);
+    EXPECT_THROW(Accelerator(sceneOf({makeObject(Cylinder{{0, 0, 0}, {0, 0, 0}, 1, false})})), RenderError);
+}
+
+TEST(Accel, BoundsExcludePlanes) {
+    Accelerator accel(sceneOf({makeObject(Plane{}), makeObject(Sphere{{1, 2, 3}, 1}),
+                               makeObject(Box{{-1, -1, -1}, {0, 0, 0}})}));
+    Vec3 lo, hi;
+    accel.bounds(lo, hi);
+    expectNear(lo, {-1, -1, -1});
+    expectNear(hi, {2, 3, 4});
+    EXPECT_FALSE(accel.hasMotion());
+}
+
+// ---------------------------------------------------------------- motion
+
+TEST(Accel, MovingSphereIsHitWhereItIsAtTheRaysTime) {
+    Object sphere = makeObject(Sphere{{0, 0, 0}, 1});
+    sphere.motion = Motion{{2, 0, 0}, {0, 0, 0}, {1, 1, 1}};
+    Scene scene = sceneOf({sphere});
+    Accelerator accel(scene);
+    EXPECT_TRUE(accel.hasMotion());
+    expectHit(trace(accel, {0, 0, -5}, {0, 0, 1}, 0), 4, {0, 0, -1}, {0, 0, -1}, 1e-6);
+    expectHit(trace(accel, {1, 0, -5}, {0, 0, 1}, 0.5), 4, {1, 0, -1}, {0, 0, -1}, 1e-6);
+    EXPECT_FALSE(trace(accel, {0, 0, -5}, {0, 0, 1}, 1));
+    const double z = -std::sqrt(0.75);
+    auto late = trace(accel, {2.5, 0, -5}, {0, 0, 1}, 1);
+    expectHit(late, 5 + z, {2.5, 0, z}, {0.5, 0, z}, 1e-6);
+    EXPECT_EQ(late->object, &scene.objects[0]);
+    Vec3 lo, hi;
+    accel.bounds(lo, hi);
+    expectNear(lo, {-1, -1, -1}, 1e-9);
+    expectNear(hi, {3, 1, 1}, 1e-9);
+}
+
+TEST(Accel, RotatingBoxSlerps) {
+    // A bar along +x from the origin, 2 long; motion rotates it about y.
+    // Slerp keeps its length: at t = 0.5 after 90 degrees it points along
+    // (cos 45, 0, -sin 45) and reaches 2; a linear blend of matrices would
+    // shrink it to 1.41.
+    Object bar = makeObject(Box{{0, -0.1, -0.1}, {2, 0.1, 0.1}});
+    bar.motion = Motion{{0, 0, 0}, {0, 90, 0}, {1, 1, 1}};
+    Accelerator accel(sceneOf({bar}));
+    const double c = std::sqrt(0.5);
+    expectHit(trace(accel, {1.8 * c, 5, -1.8 * c}, {0, -1, 0}, 0.5), 4.9, {1.8 * c, 0.1, -1.8 * c}, {0, 1, 0},
+              1e-5);
+    EXPECT_FALSE(trace(accel, {1.8 * c, 5, -1.8 * c}, {0, -1, 0}, 0));
+    // The side face at t = 0.5 faces (sin 45, 0, cos 45) rotated: (c, 0, c).
+    auto side = trace(accel, Vec3{c, 0, -c} + 5 * Vec3{c, 0, c}, {-c, 0, -c}, 0.5);
+    expectHit(side, 4.9, Vec3{c, 0, -c} + 0.1 * Vec3{c, 0, c}, {c, 0, c}, 1e-5);
+    // At t = 1 the bar points along -z.
+    expectHit(trace(accel, {0, 5, -1.5}, {0, -1, 0}, 1), 4.9, {0, 0.1, -1.5}, {0, 1, 0}, 1e-5);
+
+    // 270 degrees turns the long way: at t = 0.5 it has turned 135 degrees.
+    bar.motion->rotate = {0, 270, 0};
+    Accelerator longWay(sceneOf({bar}));
+    EXPECT_TRUE(trace(longWay, {-1.5 * c, 5, -1.5 * c}, {0, -1, 0}, 0.5));
+    EXPECT_FALSE(trace(longWay, {1.5 * c, 5, 1.5 * c}, {0, -1, 0}, 0.5));
+}
+
+TEST(Accel, MotionScalePivotsOnTheWorldOrigin) {
+    Object sphere = makeObject(Sphere{{0, 0, 0}, 1}, Transform::translate({2, 0, 0}));
+    sphere.motion = Motion{{0, 0, 0}, {0, 0, 0}, {3, 1, 1}};
+    Accelerator accel(sceneOf({sphere}));
+    // At t = 1 the x scale 3 maps the sphere to an ellipsoid around x = 6, x radius 3.
+    expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}, 1), 8, {3, 0, 0}, {-1, 0, 0}, 1e-5);
+    // At t = 0.5 the scale is 2: centre 4, x radius 2.
+    expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}, 0.5), 7, {2, 0, 0}, {-1, 0, 0}, 1e-5);
+}
+
+// ---------------------------------------------------------------- self-intersection
+
+Vec3 randomUnit(std::mt19937& rng) {
+    std::normal_distribution<double> g;
+    return normalize(Vec3{g(rng), g(rng), g(rng)});
+}
+
+// A direction in the hemisphere around n, uniform (cosine-weighted if asked).
+Vec3 randomHemisphere(std::mt19937& rng, const Vec3& n, bool cosine) {
+    if (!cosine) {
+        const Vec3 v = randomUnit(rng);
+        return dot(v, n) < 0 ? -v : v;
+    }
+    return normalize(n + randomUnit(rng));
+}
+
+TEST(Accel, SpawnedRaysDoNotReHitTheirSurface) {
+    // Convex shapes, each alone in its scene, so any hit by a ray leaving on the
+    // outside is a self-hit, and so is a hit by a ray entering a solid that comes
+    // back to the spawn point (same place, same face). Scales 1e-4 .. 1e4,
+    // optionally moved 1e5 from the origin.
+    int rays = 0, selfHits = 0;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Mesh triangle;
+    triangle.vertices = {{-1, 0, -1}, {1.3, 0.2, -0.9}, {0.1, -0.3, 1.2}};
+    triangle.triangles = {{0, 1, 2}};
+    const std::vector<Shape> shapes = {Sphere{{0, 0, 0}, 1}, Plane{normalize(Vec3{0.1, 1, 0.2}), 0},
+                                       Box{{-1, -1, -1}, {1, 1, 1}}, triangle};
+    for (double scale : {1e-4, 1.0, 1e4})
+        for (double offset : {0.0, 1e5})
+            for (size_t shapeIndex = 0; shapeIndex < shapes.size(); ++shapeIndex) {
+                const Transform t = Transform::rotate({10, 20, 30}).then(Transform::scale(Vec3(scale))).then(
+                    Transform::translate(Vec3(offset)));
+                Accelerator accel(sceneOf({makeObject(shapes[shapeIndex], t)}));
+                const bool solid = shapeIndex == 0 || shapeIndex == 2;
+                for (int i = 0; i < 600; ++i) {
+                    const Vec3 target = t.point({u(rng) * 0.9, u(rng) * 0.2, u(rng) * 0.9});
+                    const Vec3 origin = target + randomUnit(rng) * (3 * scale);
+                    auto hit = trace(accel, origin, target - origin);
+                    if (!hit) continue;
+                    const Vec3 outward =
+                        dot(hit->geometricNormal, origin - hit->point) > 0 ? hit->geometricNormal : -hit->geometricNormal;
+                    // Reflection-like (outside) and shadow rays: any hit is a self-hit.
+                    for (int k = 0; k < 2; ++k) {
+                        Ray ray;
+                        ray.direction = randomHemisphere(rng, outward, false);
+                        ray.origin = Accelerator::offsetOrigin(*hit, ray.direction);
+                        Hit again;
+                        const bool reHit = k == 0 ? accel.intersect(ray, again) : accel.occluded(ray);
+                        ++rays;
+                        selfHits += reHit;
+                    }
+                    // Refraction-like rays into the surface.
+                    Ray ray;
+                    ray.direction = randomHemisphere(rng, -outward, true);
+                    ray.origin = Accelerator::offsetOrigin(*hit, ray.direction);
+                    Hit again;
+                    ++rays;
+                    // Inside a solid a hit on another face or the far side is
+                    // legitimate; a self-hit is one back at the spawn point.
+                    if (accel.intersect(ray, again) &&
+                        (!solid || (length(again.point - hit->point) < 1e-3 * scale &&
+                                    dot(again.geometricNormal, hit->geometricNormal) > 0.99)))
+                        ++selfHits;
+                }
+            }
+    EXPECT_EQ(selfHits, 0) << "self-hits among " << rays << " spawned rays";
+    EXPECT_GT(rays, 30000);
+    std::printf("self-intersection: %d re-hits in %d spawned rays\n", selfHits, rays);
+}
+
+} // namespace
+} // namespace drt

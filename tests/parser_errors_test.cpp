@@ -1,0 +1,223 @@
+// Every error the .drt parser can report, with its message, line and column.
+// Each case is a tiny scene whose first error is the one under test.
+#include "lang/load.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+namespace drt {
+namespace {
+
+struct ErrorCase {
+    const char* name;
+    const char* source;
+    const char* message;
+    int line, column;
+};
+
+std::ostream& operator<<(std::ostream& os, const ErrorCase& c) { return os << c.name; }
+
+class ParserErrors : public testing::TestWithParam<ErrorCase> {};
+
+TEST_P(ParserErrors, MessageAndLocation) {
+    const ErrorCase& c = GetParam();
+    Diagnostics diags;
+    const auto scene = loadSceneText(c.source, "e.drt", diags);
+    EXPECT_FALSE(scene);
+    ASSERT_GE(diags.errorCount(), 1);
+    const Diagnostic& d = diags.all()[0];
+    EXPECT_EQ(d.message, c.message);
+    EXPECT_EQ(d.loc.line, c.line);
+    EXPECT_EQ(d.loc.column, c.column);
+    EXPECT_EQ(d.severity, Severity::Error);
+}
+
+// clang-format off
+const ErrorCase kCases[] = {
+    // lexical errors reach the diagnostics with their location
+    {"LexicalError", "sphere { 0, 1 @ }", "unexpected character '@'", 1, 15},
+    // statements and directives
+    {"UnknownKeyword", "sphear { 0, 1 }", "unknown keyword 'sphear'; did you mean 'sphere'?", 1, 1},
+    {"UnknownKeywordNoSuggestion", "qqqqqqqq", "unknown keyword 'qqqqqqqq'", 1, 1},
+    {"UnknownDirective", "#delcare A = 1;", "unknown directive '#delcare'; did you mean '#declare'?", 1, 1},
+    {"NotAStatement", "#declare A = 1;\nA", "'A' is a number, not a statement", 2, 1},
+    {"ObjectNameAsStatement", "#declare B = sphere { 0, 1 }\nB", "'B' is an object, not a statement; write object { B }", 2, 1},
+    {"StatementExpected", "{", "expected a statement (an object, camera, light_source, ...), found '{'", 1, 1},
+    {"DeclareKeyword", "#declare sphere = 1;", "cannot declare 'sphere': it is a keyword", 1, 10},
+    {"DeclareNeedsName", "#declare = 1;", "expected a name after '#declare', found '='", 1, 10},
+    {"DeclareNeedsEquals", "#declare A 1;", "expected '=' after the declared name, found '1'", 1, 12},
+    {"DeclareNeedsSemicolon", "#declare A = 1\nsphere { 0, A }", "expected ';' after the value of 'A'", 1, 14},
+    {"IncludeNeedsString", "#include foo", "expected a file name in quotes after '#include', found 'foo'", 1, 10},
+    {"IncludeMissing", "#include \"no/such.drt\"", "cannot open include file 'no/such.drt' (looked for no/such.drt)", 1, 10},
+    {"MissingBrace", "sphere 0, 1 }", "expected '{' after 'sphere', found '0'", 1, 8},
+    {"UnclosedBlock", "sphere { 0, 1", "expected an object modifier or '}' to close 'sphere', found end of file", 1, 14},
+    // expressions
+    {"UnknownIdentifier", "#declare Radius = 1;\nsphere { 0, Radus }", "unknown identifier 'Radus'; did you mean 'Radius'?", 2, 13},
+    {"ValueExpected", "sphere { 0, * }", "expected a value (a number, a vector <x, y, z> or a name), found '*'", 1, 13},
+    {"UnclosedParen", "sphere { 0, (1 }", "expected ')' to close '(', found '}'", 1, 16},
+    {"DivisionByZero", "sphere { 0, 1 / 0 }", "division by zero", 1, 15},
+    {"VectorDivisionByZero", "sphere { <1, 1, 1> / <1, 0, 1>, 1 }", "division by zero", 1, 20},
+    {"ProductOverflow", "sphere { 0, 1e300 * 1e300 }", "result of '*' is not a finite number", 1, 19},
+    {"SumOverflow", "sphere { 0, 1e308 + 1e308 }", "result of '+' is not a finite number", 1, 19},
+    {"SqrtOfNegative", "sphere { 0, sqrt(-1) }", "result of 'sqrt' is not a finite number (argument out of its domain)", 1, 13},
+    {"LogOfZero", "sphere { 0, log(0) }", "result of 'log' is not a finite number (argument out of its domain)", 1, 13},
+    {"ModByZero", "sphere { 0, mod(1, 0) }", "result of 'mod' is not a finite number (argument out of its domain)", 1, 13},
+    {"NormalizeZero", "sphere { vnormalize(0), 1 }", "'vnormalize' of a zero-length vector", 1, 10},
+    {"WrongArity", "sphere { 0, pow(2) }", "'pow' takes 2 arguments, got 1", 1, 13},
+    {"WrongArityOne", "sphere { 0, sin(1, 2) }", "'sin' takes 1 argument, got 2", 1, 13},
+    {"MinNeedsTwo", "sphere { 0, min(1) }", "'min' takes at least 2 arguments, got 1", 1, 13},
+    {"FunctionNeedsParen", "sphere { 0, sqrt 4 }", "expected '(' after 'sqrt', found '4'", 1, 18},
+    {"FunctionArgumentKind", "sphere { 0, sqrt(<1, 2, 3>) }", "argument of 'sqrt' must be a number, not a vector", 1, 18},
+    {"VectorFunctionArgumentKind", "#declare T = texture { }\nsphere { 0, vlength(T) }", "argument of 'vlength' must be a number, not a texture", 2, 21},
+    {"AddTexture", "#declare T = texture { }\nsphere { 0, T + 1 }", "cannot apply '+' to a texture", 2, 15},
+    {"MultiplyPigment", "#declare P = pigment { }\nsphere { 0, 2 * P }", "cannot apply '*' to a pigment", 2, 15},
+    {"NegateFinish", "#declare F = finish { }\nsphere { 0, -F }", "cannot apply unary '-' to a finish", 2, 13},
+    {"VectorComponentKind", "sphere { <1, <1, 2>, 3>, 1 }", "a vector component must be a number, not a vector", 1, 14},
+    {"VectorTooLong", "sphere { <1, 2, 3, 4, 5, 6>, 1 }", "a vector has at most 5 components", 1, 26},
+    {"VectorTooShort", "sphere { <1>, 1 }", "a vector needs 2 to 5 components, got 1", 1, 10},
+    {"VectorUnclosed", "sphere { <1, 2 3>, 1 }", "expected ',' or '>' in the vector, found '3'", 1, 16},
+    {"FloatExpected", "sphere { 0, <1, 2, 3> }", "expected sphere radius, found a vector", 1, 13},
+    {"VectorExpected", "#declare T = texture { }\nsphere { T, 1 }", "expected the centre <x, y, z>, found a texture", 2, 10},
+    {"ColourExpected", "#declare F = finish { }\nbackground { F }", "expected a colour, found a finish", 2, 14},
+    {"ColourAfterColourKeyword", "#declare F = finish { }\nbackground { color F }", "expected a colour, found a finish", 2, 20},
+    {"RgbfNeedsFour", "background { rgbf <1, 2, 3> }", "'rgbf' needs 4 components, got 3", 1, 19},
+    {"RgbNeedsNumber", "#declare F = finish { }\nbackground { rgb F }", "'rgb' needs a number or a vector, not a finish", 2, 18},
+    {"WholeNumber", "global_settings { max_trace_level 2.5 }", "'max_trace_level' must be a whole number", 1, 35},
+    // transforms
+    {"ZeroScale", "sphere { 0, 1 scale <1, 0, 1> }", "scale has a zero component (the object would collapse)", 1, 21},
+    {"MatrixTooLong", "sphere { 0, 1 matrix <1,0,0,0,1,0,0,0,1,0,0,0,5> }", "'matrix' takes exactly 12 numbers", 1, 47},
+    {"MatrixTooShort", "sphere { 0, 1 matrix <1, 0, 0> }", "'matrix' takes exactly 12 numbers, got 3", 1, 15},
+    {"MatrixNeedsAngle", "sphere { 0, 1 matrix 1 }", "expected '<' after 'matrix', found '1'", 1, 22},
+    {"SingularMatrix", "sphere { 0, 1 matrix <1,0,0, 0,0,0, 0,0,1, 0,0,0> }", "singular matrix (it has no inverse)", 1, 15},
+    // camera
+    {"CameraUnknown", "camera { loction 0 }", "unknown keyword 'loction'; did you mean 'location'?", 1, 10},
+    {"CameraNotWord", "camera { 1 }", "expected a camera keyword or '}', found '1'", 1, 10},
+    {"LookAtIsLocation", "camera { location <1, 2, 3>\n look_at <1, 2, 3> }", "'look_at' is the same point as 'location'", 2, 10},
+    {"FocalPointIsLocation", "camera { focal_point 0 }", "'focal_point' is the same point as 'location'", 1, 22},
+    {"ZeroUp", "camera { up 0 }", "'up' must not be a zero-length vector", 1, 13},
+    {"ZeroSky", "camera { sky <0, 0, 0> }", "'sky' must not be a zero-length vector", 1, 14},
+    {"ZeroRight", "camera { right 0 }", "'right' must not be a zero-length vector", 1, 16},
+    {"ZeroDirection", "camera { direction 0 }", "'direction' must not be a zero-length vector", 1, 20},
+    {"AngleRange", "camera { angle 180 }", "'angle' must be between 0 and 180 degrees", 1, 16},
+    {"NegativeAperture", "camera { aperture -1 }", "'aperture' must not be negative", 1, 19},
+    {"FocalDistance", "camera { focal_distance 0 }", "'focal_distance' must be positive", 1, 25},
+    {"ShutterOrder", "camera { shutter_open 1 shutter_close 0.5 }", "'shutter_close' is before 'shutter_open'", 1, 39},
+    // light_source
+    {"LightUnknown", "light_source { 0, rgb 1 spotligt }", "unknown keyword 'spotligt'; did you mean 'spotlight'?", 1, 25},
+    {"LightNotWord", "light_source { 0, rgb 1 { }", "expected a light_source keyword or '}', found '{'", 1, 25},
+    {"LightNeedsPosition", "#declare T = texture { }\nlight_source { T }", "expected the light position <x, y, z>, found a texture", 2, 16},
+    {"SpotRadius", "light_source { 0 radius 95 }", "'radius' must be between 0 and 90 degrees", 1, 25},
+    {"SpotFalloff", "light_source { 0 falloff -1 }", "'falloff' must be between 0 and 90 degrees", 1, 26},
+    {"Tightness", "light_source { 0 tightness -1 }", "'tightness' must not be negative", 1, 28},
+    {"LightFadeDistance", "light_source { 0 fade_distance -1 }", "'fade_distance' must not be negative", 1, 32},
+    {"LightFadePower", "light_source { 0 fade_power -1 }", "'fade_power' must not be negative", 1, 29},
+    {"PointAtIsPosition", "light_source { y spotlight point_at y }", "'point_at' is the same point as the light position", 1, 37},
+    {"AreaAxisZero", "light_source { 0 area_light 0, z, 2, 2 }", "area_light axis must not be a zero-length vector", 1, 29},
+    {"AreaSecondAxisZero", "light_source { 0 area_light x, 0, 2, 2 }", "area_light axis must not be a zero-length vector", 1, 32},
+    {"AreaSize", "light_source { 0 area_light x, z, 0, 2 }", "area_light sizes must be at least 1", 1, 35},
+    {"AreaSecondSize", "light_source { 0 area_light x, z, 2, -1 }", "area_light sizes must be at least 1", 1, 38},
+    {"AreaComma", "light_source { 0 area_light x z }", "expected ',' after the first area_light axis, found 'z'", 1, 31},
+    {"Adaptive", "light_source { 0 adaptive -1 }", "'adaptive' must not be negative", 1, 27},
+    // background, global_settings, render
+    {"BackgroundUnclosed", "background { rgb 1 rgb 0", "expected '}' after the background colour, found end of file", 1, 25},
+    {"GlobalUnknown", "global_settings { max_trace 3 }", "unknown keyword 'max_trace'; did you mean 'max_trace_level'?", 1, 19},
+    {"GlobalNotWord", "global_settings { 3 }", "expected a global_settings keyword or '}', found '3'", 1, 19},
+    {"MaxTraceLevel", "global_settings { max_trace_level 0 }", "'max_trace_level' must be between 1 and 256", 1, 35},
+    {"AssumedGamma", "global_settings { assumed_gamma 0 }", "'assumed_gamma' must be positive", 1, 33},
+    {"AdcBailout", "global_settings { adc_bailout -1 }", "'adc_bailout' must not be negative", 1, 31},
+    {"RenderWidth", "render { width 0 }", "'width' must be at least 1", 1, 16},
+    {"RenderHeight", "render { height -2 }", "'height' must be at least 1", 1, 17},
+    {"RenderSamples", "render { samples 0 }", "'samples' must be at least 1", 1, 18},
+    {"RenderSeed", "render { seed -1 }", "'seed' must be a whole number >= 0", 1, 15},
+    {"RenderSampler", "render { sampler \"independant\" }", "unknown sampler 'independant'; did you mean 'independent'?", 1, 18},
+    {"RenderSamplerString", "render { sampler independent }", "expected a sampler name in quotes, found 'independent'", 1, 18},
+    {"RenderFilter", "render { filter \"gausian\" }", "unknown filter 'gausian'; did you mean 'gaussian'?", 1, 17},
+    {"RenderFilterString", "render { filter box }", "expected a filter name in quotes, found 'box'", 1, 17},
+    {"RenderUnknown", "render { widht 4 }", "unknown keyword 'widht'; did you mean 'width'?", 1, 10},
+    {"RenderNotWord", "render { \"x\" }", "expected a render keyword or '}', found string \"x\"", 1, 10},
+    // objects
+    {"UnknownModifier", "sphere { 0, 1 tranlate x }", "unknown keyword 'tranlate'; did you mean 'translate'?", 1, 15},
+    {"ModifierNotWord", "sphere { 0, 1 1 }", "expected an object modifier or '}' to close 'sphere', found '1'", 1, 15},
+    {"UnknownObject", "#declare Ball = sphere { 0, 1 }\nobject { Bal }", "unknown object 'Bal'; did you mean 'Ball'?", 2, 10},
+    {"NotAnObject", "#declare T = texture { }\nobject { T }", "'T' is a texture, not an object", 2, 10},
+    {"SphereRadius", "sphere { 0, -1 }", "sphere radius must be positive", 1, 13},
+    {"SphereComma", "sphere { 0 1 }", "expected ',' after the centre, found '1'", 1, 12},
+    {"PlaneNormal", "plane { 0, 1 }", "plane normal must not be a zero-length vector", 1, 9},
+    {"CylinderRadius", "cylinder { 0, y, 0 }", "cylinder radius must be positive", 1, 18},
+    {"CylinderAxis", "cylinder { y, y, 1 }", "cylinder base and cap are the same point (zero-length axis)", 1, 15},
+    {"ConeNegative", "cone { 0, -1, y, 1 }", "cone radius must not be negative", 1, 11},
+    {"ConeNegativeCap", "cone { 0, 1, y, -1 }", "cone radius must not be negative", 1, 17},
+    {"ConeBothZero", "cone { 0, 0, y, 0 }", "cone needs at least one positive radius", 1, 17},
+    {"ConeAxis", "cone { x, 1, x, 0 }", "cone base and cap are the same point (zero-length axis)", 1, 14},
+    {"DiscNormal", "disc { 0, 0, 1 }", "disc normal must not be a zero-length vector", 1, 11},
+    {"DiscRadius", "disc { 0, y, 0 }", "disc radius must be positive", 1, 14},
+    {"DiscHole", "disc { 0, y, 1, -1 }", "disc hole radius must not be negative", 1, 17},
+    {"TorusMajor", "torus { 0, 1 }", "torus major radius must be positive", 1, 9},
+    {"TorusMinor", "torus { 1, -0.5 }", "torus minor radius must be positive", 1, 12},
+    {"TriangleComma", "triangle { 0, x y }", "expected ',' between triangle corners, found 'y'", 1, 17},
+    {"SmoothNormal", "smooth_triangle { 0, 0, x, y, y, y }", "smooth_triangle normal must not be a zero-length vector", 1, 22},
+    {"EmptyMesh", "mesh { }", "mesh has no triangles", 1, 1},
+    {"MeshTriangleBrace", "mesh { triangle 0, x, y }", "expected '{' after 'triangle', found '0'", 1, 17},
+    {"EmptyUnion", "union { }", "union has no objects", 1, 1},
+    {"OpenOnSphere", "sphere { 0, 1 open }", "'open' applies only to cylinder and cone", 1, 15},
+    {"MotionTwice", "sphere { 0, 1 motion { translate x translate y } }", "'translate' given twice in motion", 1, 36},
+    {"MotionScaleZero", "sphere { 0, 1 motion { scale 0 } }", "motion scale has a zero component", 1, 30},
+    {"MotionUnknown", "sphere { 0, 1 motion { rotat y } }", "unknown keyword 'rotat'; did you mean 'rotate'?", 1, 24},
+    {"MotionNotWord", "sphere { 0, 1 motion { 1 } }", "expected 'translate', 'rotate', 'scale' or '}' in motion, found '1'", 1, 24},
+    {"TransformAfterRotatingMotion", "sphere { 0, 1 motion { rotate y } translate x }", "a transform after 'motion' needs a motion with translation only; put 'motion' last", 1, 35},
+    {"RotatingMotionInTransformedUnion", "union { sphere { 0, 1 motion { rotate y } } translate x }", "'motion' with rotate or scale inside a transformed union is not supported", 1, 9},
+    {"MotionInRotatingUnion", "union { sphere { 0, 1 motion { translate y } } motion { rotate y } }", "a moving object inside a union moving with rotate or scale is not supported", 1, 9},
+    // textures
+    {"TextureUnknown", "sphere { 0, 1 texture { pigmnt { } } }", "unknown keyword 'pigmnt'; did you mean 'pigment'?", 1, 25},
+    {"TextureNotWord", "sphere { 0, 1 texture { 1 } }", "expected 'pigment', 'finish', a transform or '}' in texture, found '1'", 1, 25},
+    {"TextureWrongName", "#declare F = finish { }\nsphere { 0, 1 texture { F } }", "'F' is a finish, not a texture", 2, 25},
+    {"PigmentUnknown", "sphere { 0, 1 pigment { chequer } }", "unknown keyword 'chequer'; did you mean 'checker'?", 1, 25},
+    {"PigmentNotWord", "sphere { 0, 1 pigment { } } }", "expected a statement (an object, camera, light_source, ...), found '}'", 1, 29},
+    {"PigmentBadItem", "sphere { 0, 1 pigment { ; } }", "expected a colour, a pattern or '}' in pigment, found ';'", 1, 25},
+    {"PigmentWrongName", "#declare F = finish { }\nsphere { 0, 1 pigment { F } }", "'F' is a finish, not a pigment or colour", 2, 25},
+    {"BrickSize", "sphere { 0, 1 pigment { brick brick_size <1, 0, 1> } }", "'brick_size' components must be positive", 1, 42},
+    {"Mortar", "sphere { 0, 1 pigment { brick mortar -1 } }", "'mortar' must not be negative", 1, 38},
+    {"GradientAxis", "sphere { 0, 1 pigment { gradient 0 } }", "gradient axis must not be a zero-length vector", 1, 34},
+    {"ColorMapRange", "sphere { 0, 1 pigment { gradient y color_map { [1.5 rgb 1] } } }", "color_map values must be between 0 and 1", 1, 49},
+    {"ColorMapOrder", "sphere { 0, 1 pigment { gradient y color_map { [0.5 rgb 1] [0.2 rgb 0] } } }", "color_map values must not decrease", 1, 61},
+    {"ColorMapEmpty", "sphere { 0, 1 pigment { gradient y color_map { } } }", "color_map has no entries", 1, 36},
+    {"ColorMapBracket", "sphere { 0, 1 pigment { gradient y color_map { 0 rgb 1 } } }", "expected '[' to start a color_map entry, or '}', found '0'", 1, 48},
+    {"ColorMapClose", "sphere { 0, 1 pigment { gradient y color_map { [0 rgb 1 } } }", "expected ']' to end the color_map entry, found '}'", 1, 57},
+    {"FinishUnknown", "sphere { 0, 1 finish { phog 1 } }", "unknown keyword 'phog'; did you mean 'phong'?", 1, 24},
+    {"FinishNotWord", "sphere { 0, 1 finish { 1 } }", "expected a finish keyword or '}', found '1'", 1, 24},
+    {"FinishWrongName", "#declare P = pigment { }\nsphere { 0, 1 finish { P } }", "'P' is a pigment, not a finish", 2, 24},
+    {"FinishNegative", "sphere { 0, 1 finish { diffuse -0.5 } }", "'diffuse' must not be negative", 1, 32},
+    {"PhongNegative", "sphere { 0, 1 finish { phong -1 } }", "'phong' must not be negative", 1, 30},
+    {"Roughness", "sphere { 0, 1 finish { roughness 0 } }", "'roughness' must be positive", 1, 34},
+    {"ReflectionBlur", "sphere { 0, 1 finish { reflection_blur 2 } }", "'reflection_blur' must be between 0 and 1", 1, 40},
+    {"RefractionBlur", "sphere { 0, 1 finish { refraction_blur -1 } }", "'refraction_blur' must be between 0 and 1", 1, 40},
+    {"ReflectionFalloff", "sphere { 0, 1 finish { reflection { 1 falloff 0 } } }", "'falloff' must be positive", 1, 47},
+    {"ReflectionUnknown", "sphere { 0, 1 finish { reflection { 1 fresnell } } }", "unknown keyword 'fresnell'; did you mean 'fresnel'?", 1, 39},
+    {"ReflectionNotWord", "sphere { 0, 1 finish { reflection { 1 2 } } }", "expected 'fresnel', 'falloff', 'metallic' or '}' in reflection, found '2'", 1, 39},
+    {"InteriorUnknown", "sphere { 0, 1 interior { iro 1 } }", "unknown keyword 'iro'; did you mean 'ior'?", 1, 26},
+    {"InteriorNotWord", "sphere { 0, 1 interior { 1 } }", "expected an interior keyword or '}', found '1'", 1, 26},
+    {"InteriorWrongName", "#declare P = pigment { }\nsphere { 0, 1 interior { P } }", "'P' is a pigment, not an interior", 2, 26},
+    {"Ior", "sphere { 0, 1 interior { ior 0 } }", "'ior' must be positive", 1, 30},
+    {"InteriorFadeDistance", "sphere { 0, 1 interior { fade_distance -1 } }", "'fade_distance' must not be negative", 1, 40},
+    {"InteriorFadePower", "sphere { 0, 1 interior { fade_power -1 } }", "'fade_power' must not be negative", 1, 37},
+};
+// clang-format on
+
+INSTANTIATE_TEST_SUITE_P(All, ParserErrors, testing::ValuesIn(kCases),
+                         [](const testing::TestParamInfo<ErrorCase>& info) { return std::string(info.param.name); });
+
+TEST(ParserErrors, IncludesNestedTooDeeply) {
+    const std::string dir = test::tempDir();
+    for (int i = 0; i < 70; ++i)
+        test::writeFile(dir + "/f" + std::to_string(i) + ".drt", "#include \"f" + std::to_string(i + 1) + ".drt\"\n");
+    test::writeFile(dir + "/f70.drt", "sphere { 0, 1 }\n");
+    Diagnostics diags;
+    EXPECT_FALSE(loadSceneFile(dir + "/f0.drt", diags));
+    ASSERT_EQ(diags.errorCount(), 1);
+    EXPECT_EQ(diags.all()[0].message, "includes nested too deeply");
+    EXPECT_EQ(diags.all()[0].loc.line, 1);
+    EXPECT_EQ(diags.all()[0].loc.column, 10);
+}
+
+} // namespace
+} // namespace drt

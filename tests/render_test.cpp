@@ -1,0 +1,587 @@
+// The renderer end to end on scenes built in C++: hand-computed pixels, POV-Ray
+// trace-depth semantics, determinism across threads and tiles, and robustness.
+#include "render/render.h"
+
+#include "render/directions.h"
+#include "render/film.h"
+#include "render/pigment.h"
+#include "render/shading.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace drt {
+namespace {
+
+Texture solid(Color rgb, double filter = 0, double transmit = 0) {
+    Texture t;
+    t.pigment.color = ColorFT{rgb, filter, transmit};
+    return t;
+}
+
+Object plane(Vec3 normal, double distance, Texture texture) {
+    Object o;
+    o.shape = Plane{normal, distance};
+    o.texture = texture;
+    return o;
+}
+
+Object sphere(Vec3 center, double radius, Texture texture) {
+    Object o;
+    o.shape = Sphere{center, radius};
+    o.texture = texture;
+    return o;
+}
+
+Light pointLight(Vec3 position, Color color) {
+    Light l;
+    l.position = position;
+    l.color = color;
+    return l;
+}
+
+// A camera whose every ray leaves `location` along `direction` (right and up
+// are vanishingly small), so a 1x1 image samples one known ray.
+CameraSpec needleCamera(Vec3 location, Vec3 direction, Vec3 upHint = {0, 0, 1}) {
+    CameraSpec c;
+    c.location = location;
+    c.direction = direction;
+    c.up = normalize(upHint) * 1e-9;
+    c.right = normalize(cross(upHint, direction)) * 1e-9;
+    return c;
+}
+
+RenderOptions options(int w, int h, int spp = 1) {
+    RenderOptions o;
+    o.width = w;
+    o.height = h;
+    o.samplesPerPixel = spp;
+    o.threads = 1;
+    return o;
+}
+
+Color pixel(const RenderResult& r, int x = 0, int y = 0) {
+    return {r.color.at(x, y, 0), r.color.at(x, y, 1), r.color.at(x, y, 2)};
+}
+
+void expectColorNear(const Color& a, const Color& b, double tolerance) {
+    EXPECT_NEAR(a.r, b.r, tolerance);
+    EXPECT_NEAR(a.g, b.g, tolerance);
+    EXPECT_NEAR(a.b, b.b, tolerance);
+}
+
+void expectAllFinite(const Image& image) {
+    for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v));
+}
+
+// ---------------------------------------------------------------- shading by hand
+
+TEST(Render, DiffusePlanePixelMatchesHandComputedValue) {
+    Scene scene;
+    Texture t = solid({0.8, 0.6, 0.4});
+    t.finish.ambient = Color(0.1);
+    t.finish.diffuse = 0.6;
+    scene.objects.push_back(plane({0, 1, 0}, 0, t));
+    scene.lights.push_back(pointLight({3, 4, 0}, {1, 0.5, 0.25}));
+    scene.camera = needleCamera({0, 1, 0}, {0, -1, 0});
+    // ambient P*0.1 + diffuse 0.6 * (N.L = 4/5) * P * I.
+    const Color expected{0.8 * 0.1 + 0.6 * 0.8 * 0.8 * 1.0, 0.6 * 0.1 + 0.6 * 0.8 * 0.6 * 0.5,
+                         0.4 * 0.1 + 0.6 * 0.8 * 0.4 * 0.25};
+    const RenderResult r = render(scene, options(1, 1));
+    expectColorNear(pixel(r), expected, 1e-6);
+    EXPECT_EQ(r.stats.cameraRays, 1u);
+    EXPECT_EQ(r.stats.shadowRays, 1u);
+}
+
+TEST(Render, HighlightsAndBrillianceMatchPovFormulas) {
+    Scene scene;
+    Texture t = solid({0.5, 0.5, 0.5});
+    t.finish.ambient = Color(0);
+    t.finish.diffuse = 0.5;
+    t.finish.brilliance = 2;
+    t.finish.phong = 0.7;
+    t.finish.phongSize = 10;
+    t.finish.specular = 0.3;
+    t.finish.roughness = 0.1;
+    scene.objects.push_back(plane({0, 1, 0}, 0, t));
+    scene.lights.push_back(pointLight({3, 4, 0}, Color(1)));
+    scene.camera = needleCamera({0, 1, 0}, {0, -1, 0});
+    // N = y, L = (0.6, 0.8, 0), I = -y: R = y so R.L = 0.8; H = normalize(0.6, 1.8, 0).
+    const double cosNH = 1.8 / std::sqrt(0.6 * 0.6 + 1.8 * 1.8);
+    const double value = 0.5 * std::pow(0.8, 2) * 0.5 + 0.7 * std::pow(0.8, 10) + 0.3 * std::pow(cosNH, 10);
+    expectColorNear(pixel(render(scene, options(1, 1))), Color(value), 1e-6);
+}
+
+TEST(Render, MirrorReflectsBackgroundExactly) {
+    Scene scene;
+    scene.background = {0.2, 0.4, 0.6};
+    Texture t = solid(Color(0));
+    t.finish.ambient = Color(0);
+    t.finish.diffuse = 0;
+    t.finish.reflectionMin = t.finish.reflectionMax = Color(0.5);
+    scene.objects.push_back(plane({0, 1, 0}, 0, t));
+    scene.camera.location = {0, 1, -3};
+    scene.camera.lookAt = Vec3(0, 0, 0);
+    const RenderResult r = render(scene, options(6, 4, 2));
+    for (int y = 0; y < 4; ++y) // the plane fills the lower half
+        for (int x = 0; x < 6; ++x)
+            if (y >= 2) {
+                EXPECT_EQ(r.color.at(x, y, 0), 0.1f);
+                EXPECT_EQ(r.color.at(x, y, 1), 0.2f);
+                EXPECT_EQ(r.color.at(x, y, 2), 0.3f);
+            }
+}
+
+TEST(Render, MetallicReflectionIsTintedByThePigment) {
+    Scene scene;
+    scene.background = Color(1);
+    Texture t = solid({1, 0.5, 0});
+    t.finish.ambient = Color(0);
+    t.finish.diffuse = 0;
+    t.finish.reflectionMin = t.finish.reflectionMax = Color(0.5);
+    t.finish.reflectionMetallic = 1;
+    scene.objects.push_back(plane({0, 1, 0}, 0, t));
+    scene.camera = needleCamera({0, 1, 0}, {0, -1, 0});
+    // Head on, POV-Ray's empirical Fresnel term is ~0: the full pigment tint.
+    expectColorNear(pixel(render(scene, options(1, 1))), {0.5, 0.25, 0}, 1e-6);
+}
+
+TEST(Render, GlossyReflectionOfUniformBackgroundKeepsItsEnergy) {
+    // Facing the mirror head on, every lobe direction leaves the surface: the
+    // glossy mirror of a uniform background is exactly reflection * background.
+    Scene scene;
+    scene.background = Color(0.5);
+    Texture t = solid(Color(0));
+    t.finish.ambient = Color(0);
+    t.finish.diffuse = 0;
+    t.finish.reflectionMin = t.finish.reflectionMax = Color(0.5);
+    t.finish.reflectionBlur = 0.4;
+    scene.objects.push_back(plane({0, 1, 0}, 0, t));
+    scene.camera = needleCamera({0, 1, 0}, {0, -1, 0});
+    expectColorNear(pixel(render(scene, options(1, 1, 16))), Color(0.25), 1e-7);
+
+    // At grazing incidence part of the lobe dips below the surface: weight 0,
+    // never negative, so the pixel lies in [0, 0.25] and loses energy.
+    t.finish.reflectionBlur = 1;
+    scene.objects[0] = plane({0, 1, 0}, 0, t);
+    scene.camera = needleCamera({0, 1, 0}, {1, -0.05, 0}, {0, 1, 0});
+    const Color grazing = pixel(render(scene, options(1, 1, 64)));
+    EXPECT_GE(grazing.r, 0.0);
+    EXPECT_LT(grazing.r, 0.25);
+    EXPECT_GT(grazing.r, 0.05);
+}
+
+TEST(Render, TransparentSphereWithIorOneIsInvisible) {
+    Scene scene;
+    Pigment checker;
+    checker.pattern = PatternKind::Checker;
+    checker.children.resize(2);
+    checker.children[0].color.rgb = {1, 1, 1};
+    checker.children[1].color.rgb = {0.1, 0.2, 0.7};
+    Texture floor;
+    floor.pigment = checker;
+    scene.objects.push_back(plane({0, 1, 0}, -1, floor));
+    scene.lights.push_back(pointLight({-3, 6, -4}, Color(1)));
+    scene.camera.location = {0, 1.5, -5};
+    scene.camera.lookAt = Vec3(0, -0.5, 0);
+    const RenderResult without = render(scene, options(24, 16));
+
+    Texture glass = solid({1, 1, 1}, 0, 1);
+    glass.finish.ambient = Color(0);
+    glass.finish.diffuse = 0;
+    scene.objects.push_back(sphere({0, 0, 0}, 1, glass));
+    const RenderResult with = render(scene, options(24, 16));
+    for (size_t i = 0; i < with.color.pixels.size(); ++i)
+        EXPECT_NEAR(with.color.pixels[i], without.color.pixels[i], 1e-5) << i;
+    EXPECT_GT(with.stats.secondaryRays, 0u);
+}
+
+// Inside glass of ior 1.5 below the plane y = 0, looking up: a steep ray leaves
+// and sees the red ceiling; a grazing one is totally reflected into the blue
+// background below.
+Scene totalInternalReflectionScene(Vec3 direction) {
+    Scene scene;
+    scene.background = {0, 0, 1};
+    Texture glass = solid({1, 1, 1}, 0, 1);
+    glass.finish.ambient = Color(0);
+    glass.finish.diffuse = 0;
+    Object surface = plane({0, 1, 0}, 0, glass);
+    surface.interior.ior = 1.5;
+    scene.objects.push_back(surface);
+    Texture red = solid({1, 0, 0});
+    red.finish.ambient = Color(1);
+    red.finish.diffuse = 0;
+    scene.objects.push_back(plane({0, -1, 0}, -10, red)); // y = 10, facing down
+    scene.camera = needleCamera({0, -1, 0}, direction, {0, 0, 1});
+    return scene;
+}
+
+TEST(Render, TotalInternalReflectionTracesTheReflectedRay) {
+    // sin(theta) = 0.98 > 1/1.5: total internal reflection.
+    const RenderResult grazing = render(totalInternalReflectionScene({1, 0.2, 0}), options(1, 1));
+    expectColorNear(pixel(grazing), {0, 0, 1}, 1e-6);
+    // sin(theta) = 0.196: refracted out to the ceiling.
+    const RenderResult steep = render(totalInternalReflectionScene({0.2, 1, 0}), options(1, 1));
+    expectColorNear(pixel(steep), {1, 0, 0}, 1e-6);
+    EXPECT_EQ(grazing.stats.nonFiniteSamples + steep.stats.nonFiniteSamples, 0u);
+}
+
+// Two facing mirrors with ambient a and reflection r: the pixel is
+// a (1 + r + ... + r^(levels-1)).
+Scene hallOfMirrors(int maxTraceLevel) {
+    Scene scene;
+    Texture t = solid(Color(1));
+    t.finish.ambient = Color(0.1);
+    t.finish.diffuse = 0;
+    t.finish.reflectionMin = t.finish.reflectionMax = Color(0.5);
+    scene.objects.push_back(plane({0, 0, 1}, 1, t));  // z = 1
+    scene.objects.push_back(plane({0, 0, -1}, 0, t)); // z = 0
+    scene.camera = needleCamera({0, 0, 0.5}, {0, 0, 1}, {0, 1, 0});
+    scene.global.maxTraceLevel = maxTraceLevel;
+    scene.global.adcBailout = 0;
+    return scene;
+}
+
+TEST(Render, MaxTraceLevelCountsLevelsLikePovRay) {
+    // (The film stores floats: tolerances are float rounding.)
+    expectColorNear(pixel(render(hallOfMirrors(1), options(1, 1))), Color(0.1), 1e-7);
+    expectColorNear(pixel(render(hallOfMirrors(3), options(1, 1))), Color(0.1 * 1.75), 1e-7);
+}
+
+TEST(Render, HugeMaxTraceLevelIsClampedNotACrash) {
+    const RenderResult r = render(hallOfMirrors(1000), options(2, 2));
+    // Clamped to kTraceLevelLimit = 256 levels: 0.1 (1 - 0.5^256) / (1 - 0.5).
+    expectColorNear(pixel(r), Color(0.2), 1e-6);
+    EXPECT_EQ(r.stats.secondaryRays, 4u * 255u);
+}
+
+TEST(Render, AdcBailoutStopsFaintRays) {
+    Scene scene = hallOfMirrors(100);
+    scene.global.adcBailout = 0.1; // weights 1, 0.5, 0.25, 0.125 pass; 0.0625 does not
+    expectColorNear(pixel(render(scene, options(1, 1))), Color(0.1 * 1.875), 1e-7);
+}
+
+// ---------------------------------------------------------------- lights
+
+TEST(Render, SpotlightAndFadeScaleTheDiffuseTerm) {
+    Scene scene;
+    Texture t = solid(Color(1));
+    t.finish.ambient = Color(0);
+    t.finish.diffuse = 1;
+    scene.objects.push_back(plane({0, 1, 0}, 0, t));
+    Light spot = pointLight({0, 2, 0}, Color(1));
+    spot.spotlight = true;
+    spot.pointAt = {2, 0, 0}; // 45 degrees off the shaded point (0, 0, 0)
+    spot.radius = 30;
+    spot.falloff = 60;
+    spot.fadeDistance = 1;
+    spot.fadePower = 2;
+    scene.lights.push_back(spot);
+    scene.camera = needleCamera({0, 1, 0}, {0, -1, 0});
+    const double cosFalloff = std::cos(kPi / 3), cosRadius = std::cos(kPi / 6), c = std::cos(kPi / 4);
+    const double s = (c - cosFalloff) / (cosRadius - cosFalloff);
+    const double expected = s * s * (3 - 2 * s) * (2.0 / (1 + 4.0)); // N.L = 1, distance 2
+    expectColorNear(pixel(render(scene, options(1, 1))), Color(expected), 1e-6);
+}
+
+TEST(Shading, SpotlightAttenuation) {
+    Light spot;
+    spot.spotlight = true;
+    spot.position = {0, 0, 0};
+    spot.pointAt = {0, 0, 1};
+    spot.radius = 20;
+    spot.falloff = 40;
+    EXPECT_DOUBLE_EQ(spotlightAttenuation(spot, spot.position, {0, 0, 5}), 1.0);
+    EXPECT_DOUBLE_EQ(spotlightAttenuation(spot, spot.position, {std::tan(0.3), 0, 1}), 1.0); // 17 degrees
+    EXPECT_DOUBLE_EQ(spotlightAttenuation(spot, spot.position, {1, 0, 1}), 0.0);             // 45 degrees
+    EXPECT_DOUBLE_EQ(spotlightAttenuation(spot, spot.position, {0, 0, -1}), 0.0);            // behind
+    spot.tightness = 10;
+    EXPECT_NEAR(spotlightAttenuation(spot, spot.position, {std::tan(0.3), 0, 1}), std::pow(std::cos(0.3), 10), 1e-12);
+    Light plain;
+    EXPECT_DOUBLE_EQ(spotlightAttenuation(plain, plain.position, {1, 0, -1}), 1.0);
+}
+
+TEST(Shading, FadeAttenuation) {
+    Light light;
+    EXPECT_DOUBLE_EQ(fadeAttenuation(light, 100), 1.0);
+    light.fadeDistance = 2;
+    light.fadePower = 1;
+    EXPECT_DOUBLE_EQ(fadeAttenuation(light, 0), 2.0);
+    EXPECT_DOUBLE_EQ(fadeAttenuation(light, 2), 1.0);
+    EXPECT_DOUBLE_EQ(fadeAttenuation(light, 6), 0.5);
+    light.fadePower = 2;
+    EXPECT_DOUBLE_EQ(fadeAttenuation(light, 4), 0.4);
+}
+
+TEST(Shading, FresnelAndReflectivity) {
+    EXPECT_NEAR(fresnelDielectric(1.0, 1 / 1.5), 0.04, 1e-12);
+    EXPECT_DOUBLE_EQ(fresnelDielectric(0.1, 1.5), 1.0); // total internal reflection
+    Finish f;
+    f.reflectionMin = Color(0.1);
+    f.reflectionMax = Color(0.9);
+    EXPECT_NEAR(reflectivity(f, 0.5, 1).r, 0.1 + 0.8 * 0.5, 1e-12); // (1 - cos)^1
+    f.reflectionFalloff = 2;
+    EXPECT_NEAR(reflectivity(f, 0.5, 1).r, 0.1 + 0.8 * 0.25, 1e-12);
+    f.reflectionFresnel = true;
+    EXPECT_NEAR(reflectivity(f, 1.0, 1 / 1.5).r, 0.1 + 0.8 * 0.04, 1e-12);
+}
+
+TEST(Shading, MetallicTintsHighlightsAtNormalIncidence) {
+    Finish f;
+    f.diffuse = 0;
+    f.phong = 1;
+    f.phongSize = 1;
+    ColorFT p{{1, 0.5, 0}, 0, 0};
+    const Vec3 n{0, 1, 0}, incoming{0, -1, 0}, toLight{0, 1, 0};
+    expectColorNear(lightTerm(f, p, n, incoming, toLight, Color(1)), Color(1), 1e-12);
+    f.metallic = 1;
+    expectColorNear(lightTerm(f, p, n, incoming, toLight, Color(1)), p.rgb, 1e-3);
+}
+
+TEST(Render, AreaLightPovModeAveragesOnlyTheShadow) {
+    // Two grid points at x = -1 and x = +1; a small sphere hides only the second.
+    Scene scene;
+    Texture t = solid(Color(1));
+    t.finish.ambient = Color(0);
+    t.finish.diffuse = 1;
+    scene.objects.push_back(plane({0, 1, 0}, 0, t));
+    scene.objects.push_back(sphere({0.9, 9, 0}, 0.3, solid(Color(1))));
+    Light light = pointLight({0, 10, 0}, Color(1));
+    light.area = AreaLight{};
+    light.area->axis1 = {2, 0, 0};
+    light.area->size1 = 2;
+    light.area->size2 = 1;
+    scene.lights.push_back(light);
+    scene.camera = needleCamera({0, 1, 0}, {0, -1, 0});
+    // Shading as the point light at the centre (N.L = 1) times visibility 1/2.
+    const RenderResult r = render(scene, options(1, 1));
+    expectColorNear(pixel(r), Color(0.5), 1e-6);
+    EXPECT_EQ(r.stats.shadowRays, 3u); // two samples, one walked through its blocker
+}
+
+TEST(Render, AreaLightFullIlluminationConvergesToThePointLight) {
+    Scene scene;
+    Texture t = solid(Color(1));
+    t.finish.ambient = Color(0);
+    t.finish.diffuse = 1;
+    scene.objects.push_back(plane({0, 1, 0}, 0, t));
+    Light light = pointLight({1, 3, 0}, Color(1));
+    scene.lights.push_back(light);
+    scene.camera = needleCamera({0, 1, 0}, {0, -1, 0});
+    const Color point = pixel(render(scene, options(1, 1)));
+    scene.lights[0].area = AreaLight{};
+    scene.lights[0].area->axis1 = {1e-4, 0, 0};
+    scene.lights[0].area->axis2 = {0, 0, 1e-4};
+    scene.lights[0].area->size1 = 3;
+    scene.lights[0].area->size2 = 3;
+    scene.lights[0].areaIllumination = true;
+    expectColorNear(pixel(render(scene, options(1, 1, 4))), point, 1e-4);
+}
+
+// ---------------------------------------------------------------- determinism and robustness
+
+Scene busyScene() {
+    Scene scene;
+    Pigment checker;
+    checker.pattern = PatternKind::Checker;
+    checker.children.resize(2);
+    checker.children[0].color.rgb = {0.9, 0.9, 0.9};
+    checker.children[1].color.rgb = {0.2, 0.3, 0.1};
+    Texture floor;
+    floor.pigment = checker;
+    floor.finish.reflectionMin = floor.finish.reflectionMax = Color(0.2);
+    floor.finish.reflectionBlur = 0.2;
+    scene.objects.push_back(plane({0, 1, 0}, -1, floor));
+    Texture glass = solid({0.9, 1, 0.9}, 0.2, 0.7);
+    glass.finish.phong = 0.8;
+    glass.finish.reflectionMin = Color(0.05);
+    glass.finish.reflectionMax = Color(1);
+    glass.finish.reflectionFresnel = true;
+    glass.finish.refractionBlur = 0.1;
+    Object ball = sphere({-0.6, 0, 0.5}, 0.9, glass);
+    ball.interior.ior = 1.5;
+    scene.objects.push_back(ball);
+    Texture chrome = solid({0.8, 0.3, 0.2});
+    chrome.finish.reflectionMin = chrome.finish.reflectionMax = Color(0.6);
+    chrome.finish.specular = 0.5;
+    scene.objects.push_back(sphere({1.2, -0.2, 1.5}, 0.8, chrome));
+    Light soft = pointLight({-3, 5, -3}, Color(0.7));
+    soft.area = AreaLight{{1, 0, 0}, {0, 0, 1}, 3, 2, true};
+    soft.areaIllumination = true;
+    scene.lights.push_back(soft);
+    Light pov = pointLight({4, 4, -2}, Color(0.5));
+    pov.area = AreaLight{{0.5, 0, 0}, {0, 0.5, 0}, 2, 2, true};
+    scene.lights.push_back(pov);
+    scene.background = {0.1, 0.2, 0.4};
+    scene.camera.location = {0, 1, -5};
+    scene.camera.lookAt = Vec3(0, 0, 0);
+    scene.camera.aperture = 0.1;
+    scene.camera.focalPoint = Vec3(0, 0, 0);
+    return scene;
+}
+
+TEST(Render, ImagesAreIdenticalForAnyThreadCountAndTileSize) {
+    const Scene scene = busyScene();
+    RenderOptions reference = options(37, 23, 3);
+    reference.seed = 7;
+    const RenderResult base = render(scene, reference);
+    expectAllFinite(base.color);
+    for (int threads : {2, 8}) {
+        for (int tile : {8, 32, 64}) {
+            RenderOptions o = reference;
+            o.threads = threads;
+            o.tileSize = tile;
+            const RenderResult r = render(scene, o);
+            EXPECT_EQ(r.color.pixels, base.color.pixels) << threads << " threads, tile " << tile;
+            EXPECT_EQ(r.variance.pixels, base.variance.pixels);
+            EXPECT_EQ(r.stats.totalRays(), base.stats.totalRays());
+        }
+    }
+    RenderOptions otherSeed = reference;
+    otherSeed.seed = 8;
+    EXPECT_NE(render(scene, otherSeed).color.pixels, base.color.pixels);
+}
+
+TEST(Render, DegenerateScenesGiveFiniteImages) {
+    Scene scene;
+    Texture odd = solid({1, 1, 1}, 0.5, 0.5);
+    odd.finish.reflectionMin = Color(0);
+    odd.finish.reflectionMax = Color(1);
+    odd.finish.reflectionFresnel = true;
+    odd.finish.reflectionBlur = 1;
+    odd.finish.refractionBlur = 1;
+    odd.finish.brilliance = 0;
+    odd.finish.roughness = 0;
+    odd.finish.specular = 1;
+    Object zeroIor = sphere({0, 0, 0}, 1, odd);
+    zeroIor.interior.ior = 0;
+    zeroIor.interior.fadeDistance = 0.5;
+    zeroIor.interior.fadePower = 2;
+    scene.objects.push_back(zeroIor);
+    Object hugeIor = sphere({2, 0, 0}, 0.5, odd);
+    hugeIor.interior.ior = 1e6;
+    scene.objects.push_back(hugeIor);
+    Texture emptyChecker;
+    emptyChecker.pigment.pattern = PatternKind::Checker; // no sub-pigments: black
+    scene.objects.push_back(plane({0, 1, 0}, -1, emptyChecker));
+    Light onSurface = pointLight({0, 1, 0}, Color(1)); // on the sphere
+    scene.lights.push_back(onSurface);
+    Light spot = pointLight({0, 3, 0}, Color(1));
+    spot.spotlight = true;
+    spot.pointAt = spot.position; // no axis
+    scene.lights.push_back(spot);
+    Light flat = pointLight({0, 4, 0}, Color(1));
+    flat.area = AreaLight{{0, 0, 0}, {0, 0, 0}, 4, 4, true, -1, true, true}; // zero size, circular, oriented
+    flat.areaIllumination = true;
+    scene.lights.push_back(flat);
+    Light zeroFade = pointLight({1, 1, -3}, Color(1));
+    zeroFade.fadeDistance = 1;
+    zeroFade.fadePower = 3;
+    scene.lights.push_back(zeroFade);
+    scene.camera.location = {0, 0, -4};
+    scene.camera.angle = 120;
+    const RenderResult r = render(scene, options(16, 12, 2));
+    expectAllFinite(r.color);
+    expectAllFinite(r.variance);
+    EXPECT_EQ(r.stats.nonFiniteSamples, 0u);
+}
+
+TEST(Render, BadOptionsAreRenderErrors) {
+    Scene scene;
+    EXPECT_THROW(render(scene, options(0, 4)), RenderError);
+    EXPECT_THROW(render(scene, options(4, 4, 0)), RenderError);
+    RenderOptions badTile = options(4, 4);
+    badTile.tileSize = 0;
+    EXPECT_THROW(render(scene, badTile), RenderError);
+    Scene badFilter;
+    badFilter.render.filter = "no-such-filter";
+    EXPECT_THROW(render(badFilter, options(4, 4)), RenderError);
+    RenderOptions badSampler = options(4, 4);
+    badSampler.sampler = "no-such-sampler";
+    EXPECT_THROW(render(scene, badSampler), RenderError);
+}
+
+TEST(Render, ProgressReachesOne) {
+    Scene scene;
+    RenderOptions o = options(20, 10);
+    o.tileSize = 8;
+    int calls = 0;
+    double last = 0;
+    o.progress = [&](double f) {
+        ++calls;
+        last = f;
+    };
+    render(scene, o);
+    EXPECT_EQ(calls, 3 * 2);
+    EXPECT_DOUBLE_EQ(last, 1.0);
+}
+
+TEST(Render, OptionsComeFromOverridesThenSceneThenDefaults) {
+    Scene scene;
+    scene.render.width = 640;
+    scene.render.samplesPerPixel = 9;
+    scene.render.seed = 3;
+    RenderOverrides overrides;
+    overrides.samplesPerPixel = 4;
+    overrides.threads = 2;
+    const RenderOptions o = resolveRenderOptions(scene, overrides);
+    EXPECT_EQ(o.width, 640);
+    EXPECT_EQ(o.height, 240);
+    EXPECT_EQ(o.samplesPerPixel, 4);
+    EXPECT_EQ(o.seed, 3u);
+    EXPECT_EQ(o.threads, 2);
+    EXPECT_EQ(o.sampler, "");
+}
+
+// ---------------------------------------------------------------- film and pigments
+
+TEST(Film, VarianceOfTheMeanAndDroppedSamples) {
+    PixelAccumulator p;
+    for (double v : {1.0, 2.0, 3.0, 6.0}) p.add(Color(v));
+    EXPECT_FALSE(p.add(Color(std::nan(""), 0, 0)));
+    EXPECT_FALSE(p.add(Color(INFINITY)));
+    EXPECT_EQ(p.count(), 4);
+    EXPECT_EQ(p.nonFinite(), 2u);
+    EXPECT_DOUBLE_EQ(p.mean().g, 3.0);
+    // Sample variance (4 + 1 + 0 + 9) / 3, over n = 4.
+    EXPECT_DOUBLE_EQ(p.varianceOfMean().b, 14.0 / 3.0 / 4.0);
+}
+
+TEST(Pigment, BlockPatterns) {
+    EXPECT_EQ(checkerIndex({0.5, 0.0, 0.5}), 0);
+    EXPECT_EQ(checkerIndex({1.5, 0.0, 0.5}), 1);
+    EXPECT_EQ(checkerIndex({-0.5, 0.0, 0.5}), 1);
+    EXPECT_EQ(checkerIndex({0.5, -1e-9, 0.5}), 0); // a plane at y = 0 stays on one side
+    EXPECT_EQ(hexagonIndex({0, 0, 0}), 0);
+    EXPECT_EQ(hexagonIndex({0, 0, std::sqrt(3.0)}), 1);
+    EXPECT_EQ(hexagonIndex({1.5, 0, std::sqrt(3.0) / 2}), 2);
+    EXPECT_EQ(hexagonIndex({0.9, 0, 0}), 0);  // inside the central hexagon (corner at x = 1)
+    EXPECT_EQ(hexagonIndex({0.95, 0, 0.2}), 2); // just across its slanted edge
+    EXPECT_EQ(hexagonIndex({1.2, 0, 0.3}), 2);
+    for (Vec3 p : {Vec3{0.3, 0, 0.7}, Vec3{2.2, 0, -1.1}, Vec3{-4.1, 0, 3.3}}) {
+        EXPECT_EQ(hexagonIndex(p), hexagonIndex({-p.x, 0, p.z}));              // POV-Ray mirrors x
+        EXPECT_EQ(hexagonIndex(p), hexagonIndex({p.x, 0, p.z + 3 * std::sqrt(3.0)})); // period in z
+    }
+    EXPECT_EQ(brickIndex({2, 1.5, 1}, {8, 3, 4.5}, 0.5), 1);
+    EXPECT_EQ(brickIndex({2, 2.9, 1}, {8, 3, 4.5}, 0.5), 0); // in the mortar between courses
+    EXPECT_EQ(brickIndex({-0.3, 1.5, 1}, {8, 3, 4.5}, 0.5), 0); // the vertical joint at x = 0
+}
+
+TEST(Pigment, ColourMapsAndPatternSpace) {
+    Pigment g;
+    g.pattern = PatternKind::Gradient;
+    g.gradientAxis = {0, 2, 0}; // normalised: period 1 along y
+    g.colorMap = {{0, ColorFT{Color(0), 0, 0}}, {0.5, ColorFT{Color(1), 0.5, 0}}};
+    EXPECT_NEAR(evaluatePigment(g, {0, 0.25, 0}).rgb.r, 0.5, 1e-12);
+    EXPECT_NEAR(evaluatePigment(g, {0, 0.25, 0}).filter, 0.25, 1e-12);
+    EXPECT_NEAR(evaluatePigment(g, {0, 1.75, 0}).rgb.r, 1.0, 1e-12); // above the last entry
+    g.toWorld = Transform::translate({0, 0.25, 0});
+    EXPECT_NEAR(evaluatePigment(g, {0, 0.25, 0}).rgb.r, 0.0, 1e-12);
+    EXPECT_NEAR(radialValue({0, 0, -1}), 0.25, 1e-12);
+    EXPECT_NEAR(radialValue({1, 0, 0}), 0.0, 1e-12);
+    EXPECT_NEAR(onionValue({0, 2.5, 0}), 0.5, 1e-12);
+}
+
+} // namespace
+} // namespace drt

@@ -1,0 +1,300 @@
+// Unit tests of the samplers (src/sampling/sampler.h): determinism, range,
+// the stratification each sampler promises, and the factory's errors.
+#include "sampling/filter.h"
+#include "sampling/sampler.h"
+#include "sampling/sobol.h"
+#include "sampling/warp.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <vector>
+
+namespace drt {
+namespace {
+
+using Point = std::vector<double>;
+
+// The first `count` pixel samples of pixel (x, y), dimensions 0..4 as a camera
+// reads them: pixel and lens by get2D, time by get1D.
+std::vector<Point> cameraPoints(const std::string& name, int count, uint64_t seed, int x = 3, int y = 7) {
+    auto sampler = makeSampler(name, count, seed);
+    std::vector<Point> points;
+    for (int i = 0; i < count; ++i) {
+        sampler->startPixelSample(x, y, i);
+        const Vec2 pixel = sampler->get2D(kDimPixel);
+        const double time = sampler->get1D(kDimTime);
+        const Vec2 lens = sampler->get2D(kDimLens);
+        points.push_back({pixel.x, pixel.y, time, lens.x, lens.y});
+    }
+    return points;
+}
+
+// True if every elementary box prod_j [c_j / 2^a_j, (c_j + 1) / 2^a_j) over the
+// dimensions `dims`, for every split a of `logCells` bits, holds exactly
+// points.size() / 2^logCells points: the net property with t = log2(n) - logCells.
+bool isNet(const std::vector<Point>& points, const std::vector<int>& dims, int logCells) {
+    const size_t s = dims.size();
+    const size_t expected = points.size() >> logCells;
+    std::vector<int> a(s, 0);
+    bool ok = true;
+    std::function<void(size_t, int)> split = [&](size_t j, int left) {
+        if (!ok) return;
+        if (j + 1 == s) {
+            a[j] = left;
+            std::vector<size_t> counts(size_t(1) << logCells, 0);
+            for (const Point& p : points) {
+                size_t cell = 0;
+                for (size_t k = 0; k < s; ++k)
+                    cell = (cell << a[k]) | static_cast<size_t>(std::ldexp(p[static_cast<size_t>(dims[k])], a[k]));
+                ++counts[cell];
+            }
+            for (size_t c : counts) ok = ok && c == expected;
+            return;
+        }
+        for (int v = 0; v <= left; ++v) {
+            a[j] = v;
+            split(j + 1, left - v);
+        }
+    };
+    split(0, logCells);
+    return ok;
+}
+
+TEST(Sampler, NamesAndDefault) {
+    const auto& names = samplerNames();
+    for (const char* n : {"independent", "stratified", "sobol"})
+        EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
+    EXPECT_EQ(defaultSamplerName(), "sobol");
+    for (const auto& n : names) EXPECT_EQ(makeSampler(n, 4, 0)->name(), n);
+}
+
+TEST(Sampler, FactoryRejectsBadInput) {
+    EXPECT_THROW(makeSampler("halton", 4, 0), std::invalid_argument);
+    EXPECT_THROW(makeSampler("sobol", 0, 0), std::invalid_argument);
+    try {
+        makeSampler("halton", 4, 0);
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("sobol"), std::string::npos) << "lists the accepted names";
+    }
+}
+
+TEST(Sampler, DeterministicInRangeAndSeedDependent) {
+    for (const auto& name : samplerNames()) {
+        auto a = makeSampler(name, 16, 1234);
+        auto b = makeSampler(name, 16, 1234);
+        auto c = makeSampler(name, 16, 1235);
+        int differing = 0;
+        for (int i = 0; i < 16; ++i) {
+            // Visit b in another order of dimensions: values depend on nothing but the inputs.
+            a->startPixelSample(5, -2, i);
+            b->startPixelSample(5, -2, i);
+            c->startPixelSample(5, -2, i);
+            for (int d = 40; d >= 0; --d) {
+                const double vb = b->get1D(d);
+                const Vec2 wb = b->get2D(d);
+                const Vec2 sb = b->get2DStratified(d, i % 5, 9);
+                const double va = a->get1D(d);
+                const Vec2 wa = a->get2D(d);
+                const Vec2 sa = a->get2DStratified(d, i % 5, 9);
+                EXPECT_EQ(va, vb) << name;
+                EXPECT_EQ(wa.x, wb.x) << name;
+                EXPECT_EQ(wa.y, wb.y) << name;
+                EXPECT_EQ(sa.x, sb.x) << name;
+                EXPECT_EQ(sa.y, sb.y) << name;
+                for (double v : {va, wa.x, wa.y, sa.x, sa.y}) {
+                    EXPECT_GE(v, 0.0) << name;
+                    EXPECT_LT(v, 1.0) << name;
+                }
+                differing += c->get1D(d) != va;
+            }
+        }
+        EXPECT_GT(differing, 16 * 41 * 9 / 10) << name << ": another seed gives other values";
+    }
+}
+
+TEST(Sampler, CloneGivesTheSameStream) {
+    for (const auto& name : samplerNames()) {
+        auto a = makeSampler(name, 8, 99);
+        a->startPixelSample(1, 1, 3);
+        auto b = a->clone();
+        EXPECT_EQ(b->name(), name);
+        EXPECT_EQ(b->samplesPerPixel(), 8);
+        EXPECT_EQ(b->seed(), 99u);
+        for (int i = 0; i < 8; ++i) {
+            a->startPixelSample(10, 20, i);
+            b->startPixelSample(10, 20, i);
+            for (int d = 0; d < 30; ++d) EXPECT_EQ(a->get1D(d), b->get1D(d)) << name;
+        }
+    }
+}
+
+TEST(Sampler, PixelsAreDecorrelated) {
+    // The same sample index in neighbouring pixels must not repeat a value.
+    for (const auto& name : samplerNames()) {
+        auto s = makeSampler(name, 16, 5);
+        s->startPixelSample(0, 0, 0);
+        const double a = s->get1D(0);
+        s->startPixelSample(1, 0, 0);
+        const double b = s->get1D(0);
+        s->startPixelSample(0, 1, 0);
+        const double c = s->get1D(0);
+        EXPECT_NE(a, b) << name;
+        EXPECT_NE(a, c) << name;
+    }
+}
+
+TEST(StratifiedSampler, OneSamplePerCellForSquareCounts) {
+    for (int n : {2, 3, 5, 8}) {
+        const auto points = cameraPoints("stratified", n * n, 17);
+        for (int pair : {0, 3}) { // pixel and lens
+            std::vector<int> cells(static_cast<size_t>(n * n), 0);
+            for (const Point& p : points)
+                ++cells[static_cast<size_t>(int(p[size_t(pair)] * n) + n * int(p[size_t(pair) + 1] * n))];
+            for (int c : cells) EXPECT_EQ(c, 1) << "n=" << n << " dims " << pair;
+        }
+        std::vector<int> strata(static_cast<size_t>(n * n), 0); // time: 1D strata
+        for (const Point& p : points) ++strata[static_cast<size_t>(p[2] * n * n)];
+        for (int c : strata) EXPECT_EQ(c, 1);
+    }
+}
+
+TEST(SobolSampler, PixelDimensionsAreA0m2Net) {
+    for (int m = 1; m <= 10; ++m) {
+        const auto points = cameraPoints("sobol", 1 << m, 2024 + uint64_t(m));
+        EXPECT_TRUE(isNet(points, {0, 1}, m)) << "m=" << m;
+    }
+}
+
+TEST(SobolSampler, PixelAndTimeAreJointlyStratified) {
+    // Sobol dimensions 0-2 (polynomials of degrees 1, 1, 2) form a (1,m,3)-net:
+    // every elementary box of volume 2^(1-m) holds exactly two points.
+    for (int m = 2; m <= 10; ++m) {
+        const auto points = cameraPoints("sobol", 1 << m, 7 * uint64_t(m));
+        EXPECT_TRUE(isNet(points, {0, 1, 2}, m - 1)) << "m=" << m;
+        EXPECT_TRUE(isNet(points, {2}, m)) << "time alone is a (0,m,1)-net";
+    }
+}
+
+TEST(SobolSampler, PixelAndLensAreJointlyStratified) {
+    // Dimensions 0, 1, 3, 4 (degrees 1, 1, 3, 3): t <= 0 + 0 + 2 + 2 = 4.
+    for (int m = 4; m <= 10; ++m) {
+        const auto points = cameraPoints("sobol", 1 << m, 11 * uint64_t(m));
+        EXPECT_TRUE(isNet(points, {0, 1, 3, 4}, m - 4)) << "m=" << m;
+        EXPECT_TRUE(isNet(points, {3, 4}, m - 4)) << "lens alone, m=" << m;
+    }
+}
+
+TEST(SobolSampler, PaddedPairsAreNetsToo) {
+    // A per-bounce 2D dimension: a scrambled (0,2)-sequence per pixel.
+    const int m = 8;
+    auto s = makeSampler("sobol", 1 << m, 3);
+    std::vector<Point> points;
+    for (int i = 0; i < (1 << m); ++i) {
+        s->startPixelSample(4, 4, i);
+        const Vec2 v = s->get2D(bounceDimension(1, kOffsetLobe));
+        points.push_back({v.x, v.y, s->get1D(bounceDimension(0, kOffsetLightChoice))});
+    }
+    EXPECT_TRUE(isNet(points, {0, 1}, m));
+    EXPECT_TRUE(isNet(points, {2}, m));
+}
+
+TEST(SobolSampler, StratifiedLightPointsAreNets) {
+    // count = 16 points per pixel sample form a (0,4,2)-net; all 16 x 16 of the
+    // pixel's points form a (0,8,2)-net.
+    auto s = makeSampler("sobol", 16, 8);
+    std::vector<Point> all;
+    const int dim = bounceDimension(0, kOffsetLight);
+    for (int i = 0; i < 16; ++i) {
+        s->startPixelSample(2, 3, i);
+        std::vector<Point> one;
+        for (int k = 0; k < 16; ++k) {
+            const Vec2 v = s->get2DStratified(dim, k, 16);
+            one.push_back({v.x, v.y});
+            all.push_back({v.x, v.y});
+        }
+        EXPECT_TRUE(isNet(one, {0, 1}, 4)) << "sample " << i;
+    }
+    EXPECT_TRUE(isNet(all, {0, 1}, 8));
+}
+
+TEST(BaseSampler, StratifiedLightPointsFillTheGrid) {
+    // The default get2DStratified: one point per cell of the near-square grid.
+    auto s = makeSampler("independent", 1, 4);
+    s->startPixelSample(0, 0, 0);
+    std::vector<int> cells(12, 0);
+    for (int k = 0; k < 12; ++k) {
+        const Vec2 v = s->get2DStratified(9, k, 12); // 3 x 4 cells
+        ++cells[static_cast<size_t>(int(v.x * 3) + 3 * int(v.y * 4))];
+    }
+    for (int c : cells) EXPECT_EQ(c, 1);
+}
+
+TEST(Owen, ScrambleIsABijectionKeepingPrefixes) {
+    // Nested uniform scrambling: values sharing their top k bits still share
+    // them afterwards (the digit flips depend only on the digits above).
+    for (uint32_t seed : {0u, 1u, 0xdeadbeefu}) {
+        for (uint32_t v = 0; v < 4096; v += 7) {
+            const uint32_t a = v << 20, b = (v << 20) | 0x000fffffu;
+            EXPECT_EQ(owenScramble(a, seed) >> 20, owenScramble(b, seed) >> 20);
+        }
+        std::vector<bool> seen(1 << 12, false);
+        for (uint32_t v = 0; v < (1u << 12); ++v) seen[owenScramble(v << 20, seed) >> 20] = true;
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), true), 1 << 12);
+    }
+}
+
+// Quick checks of the warps and filters; the chi-square tests are in tests/statistical.
+TEST(Warp, MapsIntoTheirDomains) {
+    for (int i = 0; i < 64; ++i) {
+        const Vec2 u{(i % 8 + 0.5) / 8.0, (i / 8 + 0.25) / 8.0};
+        const Vec2 d = squareToConcentricDisc(u);
+        EXPECT_LE(d.x * d.x + d.y * d.y, 1.0 + 1e-12);
+        const Vec3 c = squareToCosineHemisphere(u);
+        EXPECT_NEAR(length(c), 1.0, 1e-12);
+        EXPECT_GE(c.z, 0.0);
+        const Vec3 axis = normalize(Vec3{1, -2, 0.5});
+        const Vec3 g = sampleLobeAround(axis, 20.0, u);
+        EXPECT_NEAR(length(g), 1.0, 1e-12);
+        EXPECT_GT(dot(g, axis), 0.0);
+    }
+    EXPECT_EQ(squareToConcentricDisc({0.5, 0.5}).x, 0.0);
+    EXPECT_EQ(phongLobePdf(-0.1, 5), 0.0);
+    EXPECT_NEAR(phongLobePdf(1.0, 5), 6.0 / (2 * kPi), 1e-15);
+}
+
+TEST(Warp, SphericalRectangleSolidAngleAndDegenerateCases) {
+    // A unit square seen from its centre's normal at height 1: solid angle
+    // 4 asin(1/5) (van Oosterom & Strackee for a rectangle a x b at distance d:
+    // 4 asin(ab / sqrt((a^2 + 4d^2)(b^2 + 4d^2)))).
+    const SphericalRectangle r({0, 0, 0}, {-0.5, -0.5, 1}, {1, 0, 0}, {0, 1, 0});
+    ASSERT_TRUE(r.valid());
+    EXPECT_NEAR(r.solidAngle(), 4 * std::asin(1.0 / 5.0), 1e-12);
+    const Vec3 p = r.sample({0.3, 0.8});
+    EXPECT_NEAR(p.z, 1.0, 1e-12);
+    const SphericalRectangle inPlane({3, 0, 1}, {-0.5, -0.5, 1}, {1, 0, 0}, {0, 1, 0});
+    EXPECT_FALSE(inPlane.valid());
+    EXPECT_EQ(inPlane.pdf(), 0.0);
+}
+
+TEST(Filter, NamesSupportAndErrors) {
+    EXPECT_EQ(defaultFilterName(), "box");
+    for (const auto& n : filterNames()) {
+        const Filter f = makeFilter(n);
+        EXPECT_EQ(filterName(f), n);
+        for (int i = 0; i < 100; ++i) {
+            const Vec2 o = sampleFilter(f, {i / 100.0, (99 - i) / 100.0});
+            EXPECT_LE(std::fabs(o.x), f.radius);
+            EXPECT_LE(std::fabs(o.y), f.radius);
+        }
+    }
+    EXPECT_THROW(makeFilter("mitchell"), std::invalid_argument);
+    const Vec2 centre = sampleFilter(makeFilter("gaussian"), {0.5, 0.5});
+    EXPECT_NEAR(centre.x, 0.0, 1e-12);
+}
+
+} // namespace
+} // namespace drt
