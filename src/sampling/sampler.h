@@ -61,6 +61,13 @@ protected:
 };
 
 // Names accepted by --sampler and the scene: see samplerNames().
+//   sobol        (default) Owen-scrambled Sobol: dims 0-4 are one 5D point per
+//                sample, so pixel x time and pixel x lens are stratified jointly;
+//                dims 5+ are padded scrambled (0,2) pairs (sobol_sampler.cpp).
+//                Best with power-of-two sample counts.
+//   stratified   jittered grid per 2D pair, jittered strata per 1D dimension,
+//                pairs padded (decorrelated by independent permutations).
+//   independent  uniform random values: the N^-1/2 baseline.
 std::unique_ptr<Sampler> makeSampler(const std::string& name, int samplesPerPixel, uint64_t seed);
 const std::vector<std::string>& samplerNames();
 std::string defaultSamplerName();
