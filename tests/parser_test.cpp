@@ -169,6 +169,32 @@ TEST(Parser, LightSourceWithEveryOption) {
     expectNear(s.lights[1].position, {0, 6, 0});
     EXPECT_EQ(s.lights[1].color, Color(2));
     EXPECT_FALSE(s.lights[1].area);
+    EXPECT_FALSE(s.lights[1].inverseSquare);
+}
+
+TEST(Parser, AreaLightModes) {
+    // A bare area_light is Cook's full illumination from stratified points.
+    const Scene s = parseOk("light_source { 0 area_light x, z, 2, 2 }\n"
+                            "light_source { 0 area_light x, z, 2, 2 area_illumination off area_sampling pov_grid }\n"
+                            "light_source { 0 area_light x, z, 2, 2 area_sampling solid_angle inverse_square }\n"
+                            "light_source { 0 inverse_square off }");
+    ASSERT_EQ(s.lights.size(), 4u);
+    ASSERT_TRUE(s.lights[0].area && s.lights[1].area && s.lights[2].area);
+    EXPECT_TRUE(s.lights[0].areaIllumination);
+    EXPECT_EQ(s.lights[0].area->sampling, AreaSampling::Stratified);
+    EXPECT_FALSE(s.lights[0].inverseSquare);
+    EXPECT_FALSE(s.lights[1].areaIllumination);
+    EXPECT_EQ(s.lights[1].area->sampling, AreaSampling::PovGrid);
+    EXPECT_EQ(s.lights[2].area->sampling, AreaSampling::SolidAngle);
+    EXPECT_TRUE(s.lights[2].inverseSquare);
+    EXPECT_FALSE(s.lights[3].inverseSquare);
+
+    auto bad = parse("light_source { 0 area_light x, z, 2, 2 area_sampling cosine }");
+    ASSERT_TRUE(bad->diags.hasErrors());
+    const auto& d = bad->diags.all()[0];
+    EXPECT_EQ(d.message, "expected 'stratified', 'solid_angle' or 'pov_grid' after 'area_sampling', found 'cosine'");
+    EXPECT_EQ(d.loc.line, 1);
+    EXPECT_EQ(d.loc.column, 54);
 }
 
 TEST(Parser, SettingsBlocks) {

@@ -352,6 +352,8 @@ TEST(Render, AreaLightPovModeAveragesOnlyTheShadow) {
     light.area->axis1 = {2, 0, 0};
     light.area->size1 = 2;
     light.area->size2 = 1;
+    light.area->sampling = AreaSampling::PovGrid; // POV-Ray's placement,
+    light.areaIllumination = false;               // and its shadow-only averaging
     scene.lights.push_back(light);
     scene.camera = needleCamera({0, 1, 0}, {0, -1, 0});
     // Shading as the point light at the centre (N.L = 1) times visibility 1/2.
@@ -375,6 +377,7 @@ TEST(Render, AreaLightFullIlluminationConvergesToThePointLight) {
     scene.lights[0].area->axis2 = {0, 0, 1e-4};
     scene.lights[0].area->size1 = 3;
     scene.lights[0].area->size2 = 3;
+    scene.lights[0].area->sampling = AreaSampling::Stratified;
     scene.lights[0].areaIllumination = true;
     expectColorNear(pixel(render(scene, options(1, 1, 4))), point, 1e-4);
 }
@@ -408,10 +411,19 @@ Scene busyScene() {
     scene.objects.push_back(sphere({1.2, -0.2, 1.5}, 0.8, chrome));
     Light soft = pointLight({-3, 5, -3}, Color(0.7));
     soft.area = AreaLight{{1, 0, 0}, {0, 0, 1}, 3, 2, true};
+    soft.area->sampling = AreaSampling::Stratified;
     soft.areaIllumination = true;
     scene.lights.push_back(soft);
     Light pov = pointLight({4, 4, -2}, Color(0.5));
     pov.area = AreaLight{{0.5, 0, 0}, {0, 0.5, 0}, 2, 2, true};
+    pov.area->sampling = AreaSampling::PovGrid;
+    pov.areaIllumination = false;
+    Light solid = pointLight({-4, 3, -4}, Color(0.4));
+    solid.area = AreaLight{{0.8, 0, 0}, {0, 0.8, 0}, 2, 2};
+    solid.area->sampling = AreaSampling::SolidAngle;
+    solid.areaIllumination = true;
+    solid.inverseSquare = true;
+    scene.lights.push_back(solid);
     scene.lights.push_back(pov);
     scene.background = {0.1, 0.2, 0.4};
     scene.camera.location = {0, 1, -5};
@@ -473,8 +485,14 @@ TEST(Render, DegenerateScenesGiveFiniteImages) {
     scene.lights.push_back(spot);
     Light flat = pointLight({0, 4, 0}, Color(1));
     flat.area = AreaLight{{0, 0, 0}, {0, 0, 0}, 4, 4, true, -1, true, true}; // zero size, circular, oriented
+    flat.area->sampling = AreaSampling::Stratified;
     flat.areaIllumination = true;
+    flat.inverseSquare = true;
     scene.lights.push_back(flat);
+    Light flatSolidAngle = flat; // zero solid angle: falls back to area sampling
+    flatSolidAngle.area->sampling = AreaSampling::SolidAngle;
+    flatSolidAngle.area->circular = false;
+    scene.lights.push_back(flatSolidAngle);
     Light zeroFade = pointLight({1, 1, -3}, Color(1));
     zeroFade.fadeDistance = 1;
     zeroFade.fadePower = 3;

@@ -1,5 +1,5 @@
 // Ray queries: Embree finds the nearest primitive in float; the hit is then
-// rebuilt in double (analytic shapes re-solved, triangles from barycentrics)
+// rebuilt in double (analytic shapes re-solved, triangles intersected again)
 // so that the point lies on the surface to double precision, which is what
 // offsetOrigin needs to avoid self-intersection.
 #include "accel/accel_impl.h"
@@ -52,6 +52,38 @@ Vec3 unitOr(const Vec3& v, const Vec3& fallback) {
     return len > 0 && std::isfinite(len) ? v / len : fallback;
 }
 
+// Embree picks a SIMD kernel for the CPU it runs on (SSE, AVX2, AVX-512), and
+// its float barycentrics may differ in the last bits between kernels. So the
+// hit is solved again in double from the triangle's vertices (Moeller and
+// Trumbore 1997: o + t d = (1-u-v) p0 + u p1 + v p2 by Cramer's rule), which
+// makes the point and normals the same on every CPU once Embree has chosen
+// the triangle. The barycentrics are clamped to the triangle, as the hit lies
+// on it up to float error. A ray (nearly) parallel to the plane keeps
+// Embree's values: det is then too small to divide by.
+void resolveTriangleHit(const Vec3& o, const Vec3& d, const Vec3& p0, const Vec3& p1, const Vec3& p2, double& t,
+                        double& u, double& v) {
+    const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+    const Vec3 pv = cross(d, e2);
+    const double det = dot(e1, pv);
+    // det = d . (e2 x e1): the sine of the ray's angle to the plane times |d||e1||e2|.
+    if (!(std::fabs(det) > 1e-12 * length(d) * length(e1) * length(e2))) return;
+    const Vec3 tv = o - p0;
+    const Vec3 qv = cross(tv, e1);
+    const double uu = dot(tv, pv) / det, vv = dot(d, qv) / det, tt = dot(e2, qv) / det;
+    if (!std::isfinite(uu) || !std::isfinite(vv) || !std::isfinite(tt)) return;
+    // Embree's t is good to float precision; a far larger disagreement means
+    // the double solve lost its digits, and Embree's answer is the better one.
+    if (std::fabs(tt - t) > 1e-3 * std::fmax(1.0, std::fabs(t))) return;
+    u = std::fmax(0.0, uu);
+    v = std::fmax(0.0, vv);
+    if (u + v > 1) {
+        const double sum = u + v;
+        u /= sum;
+        v /= sum;
+    }
+    t = tt;
+}
+
 } // namespace
 
 bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
@@ -98,8 +130,10 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         const MeshRecord& mesh = level->meshes[ref.index];
         const auto& tri = mesh.triangles[rayhit.hit.primID];
         const Vec3 &p0 = mesh.vertices[tri[0]], &p1 = mesh.vertices[tri[1]], &p2 = mesh.vertices[tri[2]];
-        const double u = rayhit.hit.u, v = rayhit.hit.v, w = 1 - u - v;
+        double u = rayhit.hit.u, v = rayhit.hit.v;
         hit.t = embreeT;
+        resolveTriangleHit(o, d, p0, p1, p2, hit.t, u, v);
+        const double w = 1 - u - v;
         point = w * p0 + u * p1 + v * p2;
         // A degenerate triangle has no winding normal: face the ray instead of NaN.
         geometric = unitOr(cross(p1 - p0, p2 - p0), towardOrigin);

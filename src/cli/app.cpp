@@ -19,11 +19,14 @@ struct RenderArguments {
     int width = 0, height = 0, spp = 0, threads = 0, tileSize = 0;
     uint64_t seed = 0;
     std::string sampler;
+    bool adaptive = false;
+    double adaptiveError = 0;
+    int minSpp = 0, maxSpp = 0;
 };
 
 CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     CLI::App* render = app.add_subcommand("render", "Render a scene to an image file");
-    render->add_option("scene", a.command.scene, "Scene file (.drt)")->required();
+    render->add_option("scene", a.command.scene, "Scene file (.drt or .pov)")->required();
     render
         ->add_option("-o,--output", a.command.output,
                      "Output image; the extension picks the format (.png .jpg .tif: sRGB, .exr .hdr: linear)")
@@ -42,7 +45,20 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
         ->check(CLI::PositiveNumber);
     render->add_option("--variance", a.command.varianceOutput,
                        "Also write the per-pixel variance of the mean to this .exr file");
+    render->add_flag("--adaptive,!--no-adaptive", a.adaptive,
+                     "Adaptive sampling: each pixel samples until its error is small (overrides the scene)");
+    render->add_option("--adaptive-error", a.adaptiveError,
+                       "Adaptive target: standard error of a pixel's mean relative to sqrt(mean^2 + 0.01)")
+        ->check(CLI::PositiveNumber);
+    render->add_option("--min-spp", a.minSpp, "Adaptive: samples every pixel takes first")
+        ->check(CLI::Range(1, 1 << 24));
+    render->add_option("--max-spp", a.maxSpp, "Adaptive: samples no pixel exceeds")->check(CLI::Range(1, 1 << 24));
+    render->add_option("--spp-image", a.command.sppImageOutput,
+                       "Also write the samples taken per pixel to this image (.exr: counts; else scaled to the most)");
     render->add_flag("-q,--quiet", a.command.quiet, "No progress line and no summary");
+    render->add_option("-L,--include-path", a.command.pov.includePaths,
+                       "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");
+    render->add_flag("--strict", a.command.pov.strict, "POV-Ray scenes: unsupported features are errors");
     return render;
 }
 
@@ -64,6 +80,14 @@ void fillOverrides(CLI::App& render, RenderArguments& a) {
         o.sampler = a.sampler;
     if (render.count("--tile-size"))
         a.command.tileSize = a.tileSize;
+    if (render.count("--adaptive") || render.count("--no-adaptive"))
+        o.adaptive = a.adaptive;
+    if (render.count("--adaptive-error"))
+        o.adaptiveError = a.adaptiveError;
+    if (render.count("--min-spp"))
+        o.minSamplesPerPixel = a.minSpp;
+    if (render.count("--max-spp"))
+        o.maxSamplesPerPixel = a.maxSpp;
     a.command.progress = ::isatty(STDERR_FILENO) != 0;
 }
 
@@ -116,9 +140,26 @@ int runCommandLine(int argc, char** argv) {
     CLI::App* render = addRender(app, renderArguments);
     std::string checkScene;
     CLI::App* check = app.add_subcommand("check", "Parse and validate a scene; print every diagnostic");
-    check->add_option("scene", checkScene, "Scene file (.drt)")->required();
+    check->add_option("scene", checkScene, "Scene file (.drt or .pov)")->required();
+    PovCliOptions checkPov;
+    check->add_option("-L,--include-path", checkPov.includePaths,
+                      "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");
+    check->add_flag("--strict", checkPov.strict, "POV-Ray scenes: unsupported features are errors");
+    BenchCommand benchCommand;
+    CLI::App* bench = addBenchSubcommand(app, benchCommand);
+    ConvertCommand convertCommand;
+    CLI::App* convert = addConvertSubcommand(app, convertCommand);
     CompareCommand compareCommand;
     CLI::App* compare = addCompare(app, compareCommand);
+    TestCommand testCommand;
+    CLI::App* test = app.add_subcommand(
+        "test", "Run the golden-image tests in a folder (exit 0 all pass, 1 a test failed or is missing, 3 I/O "
+                "error); see docs/golden-tests.md");
+    test->add_option("folder", testCommand.folder, "Folder of NAME.drt / NAME.golden.json / NAME.golden.exr")
+        ->required();
+    test->add_flag("--update", testCommand.update, "Rewrite the goldens (and variance images) from fresh renders");
+    test->add_option("--report", testCommand.reportDir, "Write an HTML page of the failures to this folder");
+    test->add_option("--only", testCommand.only, "Run only the test of this name (repeatable)");
 
     try {
         app.parse(argc, argv);
@@ -132,7 +173,7 @@ int runCommandLine(int argc, char** argv) {
         return runRender(renderArguments.command, std::cout, std::cerr);
     }
     if (check->parsed())
-        return runCheck(checkScene, std::cout, std::cerr);
+        return runCheck(checkScene, checkPov, std::cout, std::cerr);
     if (compare->parsed()) {
         if (!compareCommand.zmapOutput.empty() && compareCommand.referenceVariance.empty() &&
             compareCommand.candidateVariance.empty()) {
@@ -144,6 +185,12 @@ int runCommandLine(int argc, char** argv) {
             compare->count("--warn-percent");
         return runCompare(compareCommand, std::cout, std::cerr);
     }
+    if (bench->parsed())
+        return runBenchCommand(benchCommand, std::cout, std::cerr);
+    if (convert->parsed())
+        return runConvert(convertCommand, std::cout, std::cerr);
+    if (test->parsed())
+        return runTest(testCommand, std::cout, std::cerr);
     return kUsageError;
 }
 

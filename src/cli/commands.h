@@ -9,29 +9,45 @@
 // compare uses idiff's statuses instead (compare/compare.h: CompareStatus).
 #pragma once
 
+#include "bench/bench.h"
 #include "compare/compare.h"
 #include "render/render.h"
 
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
 
 namespace drt::cli {
 
 enum ExitCode { kSuccess = 0, kSceneError = 1, kUsageError = 2, kIoError = 3 };
 
+// Options of the POV-Ray front end (pov/load.h) for .pov scenes: -L and --strict.
+struct PovCliOptions {
+    std::vector<std::string> includePaths; // searched after the scene's folder
+    bool strict = false;                   // warnings become errors
+};
+
 struct RenderCommand {
     std::string scene;
     std::string output;
     std::string varianceOutput; // "" : none; else an .exr path
+    std::string sppImageOutput; // "" : none; samples taken per pixel (--spp-image)
     RenderOverrides overrides;
     std::optional<int> tileSize;
     bool quiet = false;
     bool progress = false; // draw a progress line (the caller checks that stderr is a terminal)
+    PovCliOptions pov;
 };
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err);
 
 int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err);
+// The same with the POV-Ray front end's options (used for .pov scenes).
+int runCheck(const std::string& scenePath, const PovCliOptions& pov, std::ostream& out, std::ostream& err);
 
 struct CompareCommand {
     std::string candidate;
@@ -45,6 +61,56 @@ struct CompareCommand {
     CompareOptions options;
 };
 int runCompare(const CompareCommand& command, std::ostream& out, std::ostream& err);
+
+// `drt test DIR`: the golden-test runner (golden/golden.h, docs/golden-tests.md).
+// Exit statuses: 0 every test passed (or, with --update, every golden was
+// written), 1 a test failed, is missing its golden, or its scene/sidecar is
+// broken, 2 usage error, 3 I/O error (the folder cannot be read, the report
+// cannot be written).
+struct TestCommand {
+    std::string folder;
+    bool update = false;            // --update: rewrite the goldens
+    std::string reportDir;          // --report: HTML page of the failures
+    std::vector<std::string> only;  // --only NAME (repeatable): run these tests
+};
+int runTest(const TestCommand& command, std::ostream& out, std::ostream& err);
+
+// `drt bench SCENE -o DIR`: speed against accuracy (bench/bench.h). Exit
+// statuses as render's: 1 scene or render error, 2 usage error, 3 I/O error.
+struct BenchCommand {
+    bench::BenchOptions options;
+    std::string sppList; // --spp "1,4,16"; "" keeps the default
+};
+int runBenchCommand(const BenchCommand& command, std::ostream& out, std::ostream& err);
+// Declares the `bench` subcommand and its options (bound to `command`) on `app`.
+CLI::App* addBenchSubcommand(CLI::App& app, BenchCommand& command);
+
+// `drt convert SCENE.pov -o SCENE.drt`: a POV-Ray scene -> .drt (pov/load.h,
+// lang/writer.h). Exit statuses as render's (1 also when the written .drt
+// cannot be loaded back, e.g. CSG .drt cannot express yet). `--report DIR`
+// converts every .pov under DIR, each in a child process with a time limit,
+// and prints clean / with warnings / failed per scene and a summary (exit 0
+// unless the folder cannot be read).
+struct ConvertCommand {
+    std::string scene;          // a .pov file
+    std::string output;         // -o: the .drt file
+    std::string reportDir;      // --report: convert every .pov under this folder
+    PovCliOptions pov;
+    double timeoutSeconds = 30; // --timeout: per scene, in --report
+};
+int runConvert(const ConvertCommand& command, std::ostream& out, std::ostream& err);
+// Declares the `convert` subcommand and its options (bound to `command`) on `app`.
+CLI::App* addConvertSubcommand(CLI::App& app, ConvertCommand& command);
+
+// What --report finds for one scene (run in-process: no time limit).
+struct ConversionCheck {
+    enum class Outcome { Clean = 0, Warnings = 1, Failed = 2 };
+    Outcome outcome = Outcome::Failed;
+    std::string reason;                   // why it failed
+    std::vector<std::string> unsupported; // kinds of unsupported-feature warning
+    std::vector<std::string> notes;       // warnings that are not missing features (#warning, "as POV-Ray")
+};
+ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions& pov, int width, int height);
 
 // The metadata drt stores in rendered images (keys "drt:...").
 Metadata renderMetadata(const std::string& scenePath, const RenderOptions& options, const RenderStats& stats,

@@ -3,6 +3,7 @@
 
 #include "cli/progress.h"
 #include "lang/load.h"
+#include "pov/load.h"
 #include "sampling/sampler.h"
 
 #include <algorithm>
@@ -37,7 +38,8 @@ bool looksBinary(const std::string& path) {
 
 // Loads a scene, printing every diagnostic to `err`. Returns kSuccess and sets
 // `scene`, or the exit status to stop with.
-int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene) {
+int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene,
+              const PovCliOptions& pov = {}, const RenderOverrides& overrides = {}) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !std::ifstream(path)) {
         err << fmt::format("drt: cannot read scene '{}': {}\n", path,
@@ -48,12 +50,23 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         err << fmt::format("drt: {}: not a scene file (it holds binary data)\n", path);
         return kSceneError;
     }
-    if (lowerExtension(path) == ".pov") {
-        err << fmt::format("drt: {}: POV-Ray scenes are not supported yet (use a .drt scene)\n", path);
-        return kSceneError;
-    }
     Diagnostics diagnostics;
-    scene = loadSceneFile(path, diagnostics);
+    if (lowerExtension(path) == ".pov" || lowerExtension(path) == ".inc") {
+        // POV-Ray front end: the scene sees the image size it will be rendered at.
+        PovOptions options;
+        options.strict = pov.strict;
+        if (!pov.includePaths.empty()) {
+            const std::string dir = fs::path(path).parent_path().string();
+            options.includePaths.push_back(dir.empty() ? "." : dir);
+            options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(), pov.includePaths.end());
+            options.includePaths.push_back(kPovStandardIncludeDir);
+        }
+        if (overrides.width) options.imageWidth = *overrides.width;
+        if (overrides.height) options.imageHeight = *overrides.height;
+        scene = loadPovSceneFile(path, diagnostics, options);
+    } else {
+        scene = loadSceneFile(path, diagnostics);
+    }
     err << diagnostics.formatAll();
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),
@@ -78,6 +91,18 @@ uint64_t clearNonFinite(Image& image) {
     return pixels;
 }
 
+// The samples-per-pixel image: raw counts for a float file, else scaled so
+// that the largest count is white.
+Image sampleCountImage(const Image& counts, bool raw) {
+    Image out = counts;
+    if (raw) return out;
+    float most = 0;
+    for (float v : out.pixels) most = std::max(most, v);
+    if (most > 0)
+        for (float& v : out.pixels) v /= most;
+    return out;
+}
+
 std::string millions(uint64_t n) {
     return fmt::format("{:.2f}M", double(n) / 1e6);
 }
@@ -91,17 +116,27 @@ Metadata renderMetadata(const std::string& scenePath, const RenderOptions& optio
         {"drt:version", DRT_VERSION},
         {"drt:scene", fs::path(scenePath).filename().string()},
         {"drt:seed", std::to_string(options.seed)},
-        {"drt:spp", std::to_string(options.samplesPerPixel)},
+        {"drt:spp", options.adaptive ? fmt::format("{}-{} adaptive", stats.minPixelSamples, stats.maxPixelSamples)
+                                     : std::to_string(options.samplesPerPixel)},
         {"drt:sampler", options.sampler.empty() ? defaultSamplerName() : options.sampler},
         {"drt:render_seconds", fmt::format("{:.3f}", stats.renderSeconds)},
         {"drt:nonfinite_samples", std::to_string(stats.nonFiniteSamples)},
         {"drt:nonfinite_pixels", std::to_string(nonFinitePixels)},
+        {"drt:effects", describeEffects(stats.effects)},
+        {"drt:samples_taken", std::to_string(stats.pixelSamples)},
+        {"drt:adaptive", options.adaptive ? fmt::format("error {} min {} max {}", options.adaptiveError,
+                                                         options.minSamplesPerPixel, options.maxSamplesPerPixel)
+                                          : "off"},
     };
 }
 
 int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err) {
+    return runCheck(scenePath, PovCliOptions{}, out, err);
+}
+
+int runCheck(const std::string& scenePath, const PovCliOptions& pov, std::ostream& out, std::ostream& err) {
     std::optional<Scene> scene;
-    if (int status = loadScene(scenePath, err, scene); status != kSuccess)
+    if (int status = loadScene(scenePath, err, scene, pov); status != kSuccess)
         return status;
     out << fmt::format("{}: ok ({} objects, {} lights)\n", scenePath, scene->objects.size(),
                        scene->lights.size());
@@ -111,7 +146,7 @@ int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err)
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
     (void)out;
     std::optional<Scene> scene;
-    if (int status = loadScene(command.scene, err, scene); status != kSuccess)
+    if (int status = loadScene(command.scene, err, scene, command.pov, command.overrides); status != kSuccess)
         return status;
 
     RenderOptions options = resolveRenderOptions(*scene, command.overrides);
@@ -130,6 +165,12 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
             return kUsageError;
         }
         if (std::string problem = checkWritable(command.varianceOutput); !problem.empty()) {
+            err << "drt: " << problem << "\n";
+            return kIoError;
+        }
+    }
+    if (!command.sppImageOutput.empty()) {
+        if (std::string problem = checkWritable(command.sppImageOutput); !problem.empty()) {
             err << "drt: " << problem << "\n";
             return kIoError;
         }
@@ -171,16 +212,32 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
         }
     }
 
+    if (!command.sppImageOutput.empty()) {
+        Metadata sppMetadata = metadata;
+        Image counts = sampleCountImage(result.sampleCount, lowerExtension(command.sppImageOutput) == ".exr");
+        sppMetadata.emplace_back("drt:content", "samples per pixel");
+        if (std::string problem = writeImage(command.sppImageOutput, counts, sppMetadata); !problem.empty()) {
+            err << "drt: " << problem << "\n";
+            return kIoError;
+        }
+    }
+
     if (!command.quiet) {
         const RenderStats& s = result.stats;
         const double traceSeconds = s.renderSeconds > 0 ? s.renderSeconds : seconds;
+        const double pixels = double(result.color.width) * result.color.height;
+        const std::string spp =
+            options.adaptive ? fmt::format("{}-{} spp (mean {:.1f}, adaptive)", s.minPixelSamples, s.maxPixelSamples,
+                                           double(s.pixelSamples) / pixels)
+                             : fmt::format("{} spp", options.samplesPerPixel);
         err << fmt::format(
-            "drt: {} {}x{} at {} spp in {} (build {}, trace {}): {:.2f} Mrays/s "
-            "(camera {}, shadow {}, secondary {}), {} NaN/Inf samples\n",
-            command.output, result.color.width, result.color.height, options.samplesPerPixel,
-            formatDuration(seconds), formatDuration(s.buildSeconds), formatDuration(traceSeconds),
+            "drt: {} {}x{} at {} in {} (build {}, trace {}): {} samples, {:.2f} Mrays/s "
+            "(camera {}, shadow {}, secondary {}), {} NaN/Inf samples; effects: {}\n",
+            command.output, result.color.width, result.color.height, spp, formatDuration(seconds),
+            formatDuration(s.buildSeconds), formatDuration(traceSeconds), millions(s.pixelSamples),
             traceSeconds > 0 ? double(s.totalRays()) / traceSeconds / 1e6 : 0.0, millions(s.cameraRays),
-            millions(s.shadowRays), millions(s.secondaryRays), s.nonFiniteSamples + nonFinitePixels);
+            millions(s.shadowRays), millions(s.secondaryRays), s.nonFiniteSamples + nonFinitePixels,
+            describeEffects(s.effects));
     }
     return kSuccess;
 }

@@ -111,6 +111,7 @@ private:
     void background();
     void globalSettings();
     void renderBlock();
+    void adaptiveBlock(const SourceLoc& keyword);
     void requireNonZero(const Vec3& v, const SourceLoc& loc, const char* what);
     // translate/rotate/scale/matrix at the current token, or nothing.
     std::optional<Transform> transformItem();

@@ -109,7 +109,8 @@ void Parser::lightSource() {
     static const std::vector<std::string> known{
         "color",   "colour", "rgb",         "spotlight", "point_at", "radius",   "falloff",
         "tightness", "fade_distance", "fade_power", "shadowless", "area_light", "jitter", "adaptive",
-        "circular", "orient", "area_illumination", "translate", "rotate", "scale", "matrix"};
+        "circular", "orient", "area_illumination", "area_sampling", "inverse_square", "translate", "rotate",
+        "scale", "matrix"};
     const Token keyword = current_;
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'light_source'");
@@ -117,7 +118,10 @@ void Parser::lightSource() {
     light.loc = keyword.loc;
     light.position = vectorExpr("the light position <x, y, z>");
     match(TokenKind::Comma);
+    // drt's default area light is Cook's: full illumination from stratified points.
+    light.areaIllumination = true;
     AreaLight area;
+    area.sampling = AreaSampling::Stratified;
     bool hasArea = false;
     SourceLoc pointAtLoc;
     while (!match(TokenKind::RightBrace)) {
@@ -181,6 +185,15 @@ void Parser::lightSource() {
         } else if (w == "circular") area.circular = booleanOr(true);
         else if (w == "orient") area.orient = booleanOr(true);
         else if (w == "area_illumination") light.areaIllumination = booleanOr(true);
+        else if (w == "inverse_square") light.inverseSquare = booleanOr(true);
+        else if (w == "area_sampling") {
+            const Token name = current_;
+            if (name.kind == TokenKind::Identifier && name.text == "stratified") area.sampling = AreaSampling::Stratified;
+            else if (name.kind == TokenKind::Identifier && name.text == "solid_angle") area.sampling = AreaSampling::SolidAngle;
+            else if (name.kind == TokenKind::Identifier && name.text == "pov_grid") area.sampling = AreaSampling::PovGrid;
+            else failExpected("'stratified', 'solid_angle' or 'pov_grid' after 'area_sampling'");
+            advance();
+        }
         else failUnknown(word, known);
     }
     if (light.spotlight && light.pointAt == light.position)
@@ -227,7 +240,7 @@ void Parser::globalSettings() {
 
 // render = "render" "{" { render-item } "}"   (drt: image size and sampling)
 void Parser::renderBlock() {
-    static const std::vector<std::string> known{"width", "height", "samples", "seed", "sampler", "filter"};
+    static const std::vector<std::string> known{"width", "height", "samples", "seed", "sampler", "filter", "adaptive"};
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'render'");
     RenderSettings& r = scene_.render;
@@ -245,6 +258,8 @@ void Parser::renderBlock() {
             const double s = floatExpr();
             if (s < 0 || s != std::floor(s) || s > 1.8e19) error(loc, "'seed' must be a whole number >= 0");
             else r.seed = static_cast<uint64_t>(s);
+        } else if (w == "adaptive") {
+            adaptiveBlock(word.loc);
         } else if (w == "sampler" || w == "filter") {
             const bool sampler = w == "sampler";
             const Token name = expect(TokenKind::String, sampler ? "a sampler name in quotes" : "a filter name in quotes");
@@ -260,6 +275,34 @@ void Parser::renderBlock() {
             failUnknown(word, known);
         }
     }
+}
+
+// adaptive = "adaptive" [ "{" { adaptive-item } "}" ]   (render/render.h: RenderOptions)
+void Parser::adaptiveBlock(const SourceLoc& keyword) {
+    static const std::vector<std::string> known{"error", "min_samples", "max_samples"};
+    RenderSettings& r = scene_.render;
+    r.adaptive = true;
+    if (!match(TokenKind::LeftBrace)) return;
+    while (!match(TokenKind::RightBrace)) {
+        if (!check(TokenKind::Identifier)) failExpected("an adaptive keyword or '}'");
+        const Token word = current_;
+        advance();
+        const SourceLoc loc = current_.loc;
+        if (word.text == "error") {
+            const double e = floatExpr();
+            if (!(e > 0)) error(loc, "'error' must be positive");
+            else r.adaptiveError = e;
+        } else if (word.text == "min_samples" || word.text == "max_samples") {
+            const int n = intExpr(("'" + word.text + "'").c_str());
+            if (n < 1 || n > (1 << 24)) error(loc, "'" + word.text + "' must be between 1 and 16777216");
+            else (word.text == "min_samples" ? r.minSamplesPerPixel : r.maxSamplesPerPixel) = n;
+        } else {
+            failUnknown(word, known);
+        }
+    }
+    if (r.minSamplesPerPixel && r.maxSamplesPerPixel && *r.maxSamplesPerPixel < *r.minSamplesPerPixel)
+        error(keyword, "adaptive 'max_samples' (" + std::to_string(*r.maxSamplesPerPixel) +
+                           ") must not be below 'min_samples' (" + std::to_string(*r.minSamplesPerPixel) + ")");
 }
 
 } // namespace drt

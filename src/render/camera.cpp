@@ -11,6 +11,8 @@ namespace drt {
 
 namespace {
 
+constexpr double kMaxLensRadius = 1e15;
+
 void requireUsable(const Vec3& v, const char* what) {
     if (!isFinite(v) || dot(v, v) == 0.0) throw RenderError(std::string("camera: ") + what + " must be a finite non-zero vector");
 }
@@ -63,7 +65,9 @@ ResolvedCamera resolveCamera(const CameraSpec& spec, int width, int height) {
     cam.lensV = normalize(cam.up);
 
     if (!(spec.aperture >= 0) || !std::isfinite(spec.aperture)) throw RenderError("camera: aperture must be >= 0");
-    cam.lensRadius = spec.aperture / 2;
+    // Embree traces in float: a lens point (the ray origin) beyond ~1e15 would
+    // overflow its squared-length arithmetic. No real lens is that wide.
+    cam.lensRadius = std::min(spec.aperture / 2, kMaxLensRadius);
     if (spec.focalDistance) {
         if (!(*spec.focalDistance > 0) || !std::isfinite(*spec.focalDistance))
             throw RenderError("camera: focal distance must be positive");

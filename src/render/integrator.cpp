@@ -10,6 +10,8 @@
 
 namespace drt {
 
+static_assert(kTraceLevelLimit < kMaxLightDepth, "extra lights' sampler dimensions must lie past every bounce's");
+
 Integrator::Integrator(const Scene& scene, const Accelerator& accel)
     : scene_(scene), accel_(accel),
       maxTraceLevel_(std::clamp(scene.global.maxTraceLevel, 1, kTraceLevelLimit)),

@@ -4,7 +4,9 @@
 #include "render/pigment.h"
 #include "render/shading.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace drt {
 
@@ -37,6 +39,13 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
     return Color(0);
 }
 
+int lightDimension(int depth, int lightIndex) {
+    if (lightIndex <= 0) return bounceDimension(depth, kOffsetLight);
+    // Two dimensions per (light, depth) pair; wraps (harmlessly) past 2^30.
+    const int64_t slot = int64_t(lightIndex - 1) * kMaxLightDepth + std::clamp(depth, 0, kMaxLightDepth - 1);
+    return kFirstExtraLightDimension + static_cast<int>((2 * slot) % (int64_t(1) << 30));
+}
+
 namespace {
 
 struct AreaFrame {
@@ -67,15 +76,18 @@ Color lightIntensityAt(const Light& light, const Vec3& lightPosition, const Vec3
                           fadeAttenuation(light, length(lightPosition - point)));
 }
 
+// Diffuse and highlights from a point light at `lightPosition` whose colour is
+// scaled by `scale` (and by 1/r^2 when `inverseSquare`), shadowed unless shadowless.
 Color shadePointLight(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
-                      const Vec3& lightPosition, const Color& scale, RayCounts& counts) {
+                      const Vec3& lightPosition, double scale, bool inverseSquare, RayCounts& counts) {
     const Vec3 toLight = lightPosition - sp.hit.point;
     const double distance = length(toLight);
     if (!(distance > 0)) return Color(0);
     const Vec3 l = toLight / distance;
     if (!(dot(sp.normal, l) > 0)) return Color(0);
+    if (inverseSquare) scale /= distance * distance;
     Color intensity = lightIntensityAt(light, lightPosition, sp.hit.point) * scale;
-    if (isBlack(intensity)) return Color(0);
+    if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return Color(0);
     if (!light.shadowless) {
         intensity *= shadowTransmittance(accel, sp.hit, lightPosition, sp.time, counts);
         if (isBlack(intensity)) return Color(0);
@@ -83,57 +95,132 @@ Color shadePointLight(const Accelerator& accel, const ShadingPoint& sp, const Li
     return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity);
 }
 
-Color shadeAreaLightPov(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
-                        Sampler& sampler, RayCounts& counts) {
-    const AreaLight& area = *light.area;
+// One sample point of an area light and the weight of its point light
+// (lighting.h: 1/N, or the solid-angle and inverse-square factors).
+struct AreaSample {
+    Vec3 position;
+    double weight = 0;
+};
+
+// The N sample points of an area light seen from `point`.
+class AreaSampler {
+public:
+    AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex)
+        : light_(light), area_(*light.area), point_(point),
+          frame_(areaFrame(area_, light.position, point)), n1_(std::max(1, area_.size1)),
+          n2_(std::max(1, area_.size2)), count_(n1_ * n2_), dimension_(lightDimension(depth, lightIndex)) {
+        const Vec3 normal = cross(frame_.axis1, frame_.axis2);
+        areaMeasure_ = length(normal);
+        if (area_.circular) areaMeasure_ *= kPi / 4;
+        if (areaMeasure_ > 0 && std::isfinite(areaMeasure_)) normal_ = normal / length(normal);
+        sampling_ = area_.sampling;
+        if (sampling_ == AreaSampling::SolidAngle) {
+            const double l1 = length(frame_.axis1), l2 = length(frame_.axis2);
+            const bool perpendicular = std::fabs(dot(frame_.axis1, frame_.axis2)) <= 1e-9 * l1 * l2;
+            if (area_.circular || !perpendicular) {
+                sampling_ = AreaSampling::Stratified;
+            } else {
+                rectangle_.emplace(point, light.position - 0.5 * (frame_.axis1 + frame_.axis2), frame_.axis1,
+                                   frame_.axis2);
+                if (!rectangle_->valid() || !std::isfinite(rectangle_->solidAngle())) sampling_ = AreaSampling::Stratified;
+            }
+        }
+    }
+
+    int count() const { return count_; }
+
+    AreaSample sample(Sampler& sampler, int k) const {
+        const bool inverseSquare = light_.inverseSquare;
+        AreaSample s;
+        if (sampling_ == AreaSampling::PovGrid) {
+            const int i = k % n1_, j = k / n1_;
+            // Edge to edge: i / (n1 - 1); a single row sits on the centre line.
+            double u = n1_ > 1 ? double(i) / (n1_ - 1) : 0.5;
+            double v = n2_ > 1 ? double(j) / (n2_ - 1) : 0.5;
+            if (area_.jitter) {
+                const Vec2 jitter = sampler.get2DStratified(dimension_, k, count_);
+                if (n1_ > 1) u += (jitter.x - 0.5) / (n1_ - 1);
+                if (n2_ > 1) v += (jitter.y - 0.5) / (n2_ - 1);
+            }
+            s.position = light_.position + areaOffset(area_, frame_, u, v);
+        } else if (sampling_ == AreaSampling::Stratified) {
+            const Vec2 u = sampler.get2DStratified(dimension_, k, count_);
+            s.position = light_.position + areaOffset(area_, frame_, u.x, u.y);
+        } else {
+            s.position = rectangle_->sample(sampler.get2DStratified(dimension_, k, count_));
+            const double omega = rectangle_->solidAngle();
+            if (inverseSquare) {
+                // L Omega / N with L = C / A (the colour C is applied later).
+                s.weight = omega / (count_ * areaMeasure_);
+            } else {
+                // Omega r^2 / (N A |cos theta_e|): area density over solid-angle density.
+                const Vec3 d = point_ - s.position;
+                const double r2 = dot(d, d);
+                const double cosEmitter = std::fabs(dot(normal_, d)) / std::sqrt(r2);
+                s.weight = cosEmitter > 0 ? omega * r2 / (count_ * areaMeasure_ * cosEmitter) : 0.0;
+            }
+            return s;
+        }
+        s.weight = 1.0 / count_;
+        if (inverseSquare) {
+            // C |cos theta_e| / (N r^2): the area-sampled estimate of int L cos dOmega.
+            const Vec3 d = point_ - s.position;
+            const double r2 = dot(d, d);
+            s.weight = r2 > 0 ? s.weight * emitterCosine(s.position) / r2 : 0.0;
+        }
+        return s;
+    }
+
+private:
+    double emitterCosine(const Vec3& position) const {
+        if (!(areaMeasure_ > 0)) return 1; // a segment or a point: N point lights
+        const Vec3 d = point_ - position;
+        const double len = length(d);
+        return len > 0 ? std::fabs(dot(normal_, d)) / len : 0.0;
+    }
+
+    const Light& light_;
+    const AreaLight& area_;
+    Vec3 point_;
+    AreaFrame frame_;
+    int n1_, n2_, count_, dimension_;
+    double areaMeasure_ = 0;
+    Vec3 normal_{0, 0, 0};
+    AreaSampling sampling_;
+    std::optional<SphericalRectangle> rectangle_;
+};
+
+// areaIllumination off: a point light at the centre times the mean visibility.
+Color shadeAreaLightShadowOnly(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
+                               int lightIndex, Sampler& sampler, RayCounts& counts) {
     const Vec3 toCenter = light.position - sp.hit.point;
     const double distance = length(toCenter);
     if (!(distance > 0)) return Color(0);
     const Vec3 l = toCenter / distance;
     if (!(dot(sp.normal, l) > 0)) return Color(0);
-    const Color intensity = lightIntensityAt(light, light.position, sp.hit.point);
+    Color intensity = lightIntensityAt(light, light.position, sp.hit.point);
+    if (light.inverseSquare) intensity = intensity / (distance * distance);
     if (isBlack(intensity)) return Color(0);
     Color visibility(1);
     if (!light.shadowless) {
-        const int n1 = std::max(1, area.size1), n2 = std::max(1, area.size2);
-        const int count = n1 * n2;
-        const AreaFrame frame = areaFrame(area, light.position, sp.hit.point);
-        const int dimension = bounceDimension(sp.depth, kOffsetLight);
+        const AreaSampler points(light, sp.hit.point, sp.depth, lightIndex);
         visibility = Color(0);
-        for (int k = 0; k < count; ++k) {
-            const int i = k % n1, j = k / n1;
-            // Edge to edge: i / (n1 - 1); a single row sits on the centre line.
-            double u = n1 > 1 ? double(i) / (n1 - 1) : 0.5;
-            double v = n2 > 1 ? double(j) / (n2 - 1) : 0.5;
-            if (area.jitter) {
-                const Vec2 jitter = sampler.get2DStratified(dimension, k, count);
-                if (n1 > 1) u += (jitter.x - 0.5) / (n1 - 1);
-                if (n2 > 1) v += (jitter.y - 0.5) / (n2 - 1);
-            }
-            const Vec3 position = light.position + areaOffset(area, frame, u, v);
-            visibility += shadowTransmittance(accel, sp.hit, position, sp.time, counts);
-        }
-        visibility = visibility / count;
+        for (int k = 0; k < points.count(); ++k)
+            visibility += shadowTransmittance(accel, sp.hit, points.sample(sampler, k).position, sp.time, counts);
+        visibility = visibility / points.count();
         if (isBlack(visibility)) return Color(0);
     }
     return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity * visibility);
 }
 
-Color shadeAreaLightCook(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
+// areaIllumination on: each sample point shades as a weighted point light.
+Color shadeAreaLightFull(const Accelerator& accel, const ShadingPoint& sp, const Light& light, int lightIndex,
                          Sampler& sampler, RayCounts& counts) {
-    const AreaLight& area = *light.area;
-    const int n1 = std::max(1, area.size1), n2 = std::max(1, area.size2);
-    const int count = n1 * n2;
-    const AreaFrame frame = areaFrame(area, light.position, sp.hit.point);
-    const int dimension = bounceDimension(sp.depth, kOffsetLight);
-    const Color share(1.0 / count);
+    const AreaSampler points(light, sp.hit.point, sp.depth, lightIndex);
     Color sum(0);
-    for (int k = 0; k < count; ++k) {
-        const int i = k % n1, j = k / n1;
-        const Vec2 jitter = sampler.get2DStratified(dimension, k, count);
-        const double u = (i + jitter.x) / n1, v = (j + jitter.y) / n2;
-        const Vec3 position = light.position + areaOffset(area, frame, u, v);
-        sum += shadePointLight(accel, sp, light, position, share, counts);
+    for (int k = 0; k < points.count(); ++k) {
+        const AreaSample s = points.sample(sampler, k);
+        if (s.weight > 0) sum += shadePointLight(accel, sp, light, s.position, s.weight, false, counts);
     }
     return sum;
 }
@@ -143,14 +230,16 @@ Color shadeAreaLightCook(const Accelerator& accel, const ShadingPoint& sp, const
 Color directLighting(const Scene& scene, const Accelerator& accel, const ShadingPoint& point, Sampler& sampler,
                      RayCounts& counts) {
     Color sum(0);
-    for (const Light& light : scene.lights) {
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = scene.lights[i];
         if (isBlack(light.color)) continue;
+        const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
         if (!light.area)
-            sum += shadePointLight(accel, point, light, light.position, Color(1), counts);
+            sum += shadePointLight(accel, point, light, light.position, 1.0, light.inverseSquare, counts);
         else if (light.areaIllumination)
-            sum += shadeAreaLightCook(accel, point, light, sampler, counts);
+            sum += shadeAreaLightFull(accel, point, light, index, sampler, counts);
         else
-            sum += shadeAreaLightPov(accel, point, light, sampler, counts);
+            sum += shadeAreaLightShadowOnly(accel, point, light, index, sampler, counts);
     }
     return sum;
 }

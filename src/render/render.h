@@ -26,6 +26,16 @@ struct RenderOptions {
     std::string sampler; // "" -> defaultSamplerName()
     int threads = 0;     // 0: all cores
     int tileSize = 32;
+    // Adaptive sampling (render.cpp, "Adaptive sampling"): each pixel takes
+    // samples in rounds that double its count, from minSamplesPerPixel, until
+    // the standard error of its mean is at most adaptiveError * sqrt(mean^2 +
+    // adaptiveDarkFloor^2) in every channel, or it has maxSamplesPerPixel.
+    // samplesPerPixel is then unused.
+    bool adaptive = false;
+    double adaptiveError = 0.02;
+    double adaptiveDarkFloor = 0.1; // the 0.01 = 0.1^2 of relMSE's denominator
+    int minSamplesPerPixel = 16;
+    int maxSamplesPerPixel = 1024;
     // Called now and then from render threads with the fraction done.
     std::function<void(double)> progress;
 };
@@ -35,10 +45,31 @@ struct RenderOverrides {
     std::optional<int> width, height, samplesPerPixel, threads;
     std::optional<uint64_t> seed;
     std::optional<std::string> sampler;
+    std::optional<bool> adaptive;
+    std::optional<double> adaptiveError;
+    std::optional<int> minSamplesPerPixel, maxSamplesPerPixel;
 };
 
 // Scene settings, then overrides, then defaults (320x240, 1 spp, seed 0).
 RenderOptions resolveRenderOptions(const Scene& scene, const RenderOverrides& overrides);
+
+// The effects a render used (render/summary: "what the scene used"). Each is
+// true only if its code path ran: a pinhole camera draws no lens samples, a
+// zero shutter or a scene without motion draws no time samples, etc.
+struct SceneEffects {
+    bool antialiasing = false; // more than one sample per pixel
+    bool depthOfField = false; // a thin lens with aperture > 0
+    bool motionBlur = false;   // an object with motion and an open shutter
+    bool areaLights = false;   // a (lit) area light
+    bool gloss = false;        // reflection_blur on a reflective finish
+    bool translucency = false; // refraction_blur on a transmitting finish
+    bool adaptive = false;     // adaptive sampling
+};
+
+// What `scene` rendered with `options` uses.
+SceneEffects sceneEffects(const Scene& scene, const RenderOptions& options);
+// "AA, DOF, motion, area lights, gloss, translucency, adaptive" (the ones used), or "none".
+std::string describeEffects(const SceneEffects& effects);
 
 struct RenderStats {
     double buildSeconds = 0;  // Embree scene build
@@ -47,12 +78,17 @@ struct RenderStats {
     uint64_t shadowRays = 0;
     uint64_t secondaryRays = 0; // reflection + refraction
     uint64_t nonFiniteSamples = 0; // NaN/Inf samples caught (and dropped) before the film
+    uint64_t pixelSamples = 0;     // camera samples taken, over all pixels
+    int minPixelSamples = 0;       // fewest / most samples any pixel took
+    int maxPixelSamples = 0;
+    SceneEffects effects;
     uint64_t totalRays() const { return cameraRays + shadowRays + secondaryRays; }
 };
 
 struct RenderResult {
     Image color;    // linear RGB, the per-pixel mean
     Image variance; // per-pixel variance of the mean, RGB
+    Image sampleCount; // samples taken per pixel, one channel
     RenderStats stats;
 };
 

@@ -164,6 +164,14 @@ struct Object {
 
 // ---------------------------------------------------------------- lights
 
+// Where an area light's n1 x n2 sample points go (issue 3; the estimators are
+// in render/lighting.h).
+enum class AreaSampling {
+    PovGrid,    // POV-Ray: edge-to-edge n1 x n2 grid, jittered only with `jitter`
+    Stratified, // Cook: one jittered point in each of n1 x n2 cells of the rectangle
+    SolidAngle, // Urena, Fajardo & King 2013: n1 n2 stratified points uniform in solid angle
+};
+
 struct AreaLight {
     Vec3 axis1{1, 0, 0};
     Vec3 axis2{0, 0, 1};
@@ -173,6 +181,9 @@ struct AreaLight {
     int adaptive = -1; // POV-Ray `adaptive`; -1: not given (full grid)
     bool circular = false;
     bool orient = false;
+    // The scene model's default is POV-Ray's grid; the .drt parser sets
+    // Stratified (Cook's full area illumination is drt's documented default).
+    AreaSampling sampling = AreaSampling::PovGrid;
 };
 
 struct Light {
@@ -192,6 +203,10 @@ struct Light {
     // POV-Ray's default averages only the shadow over an area light; with
     // area_illumination each sample point shades as a point light.
     bool areaIllumination = false;
+    // drt's radiometric light (`inverse_square`): a point light of colour C gives
+    // irradiance C cos(theta) / r^2; an area light is a two-sided Lambertian
+    // rectangle of radiance C / area. Off: POV-Ray's lights, no distance falloff.
+    bool inverseSquare = false;
     SourceLoc loc;
 };
 
@@ -234,6 +249,12 @@ struct RenderSettings {
     std::optional<uint64_t> seed;
     std::optional<std::string> sampler;
     std::optional<std::string> filter;
+    // Adaptive sampling (`adaptive { error E min_samples a max_samples b }`);
+    // see render/render.h RenderOptions.
+    std::optional<bool> adaptive;
+    std::optional<double> adaptiveError;
+    std::optional<int> minSamplesPerPixel;
+    std::optional<int> maxSamplesPerPixel;
 };
 
 struct Scene {

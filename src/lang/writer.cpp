@@ -1,0 +1,519 @@
+// Scene model -> .drt text. Each block is written so that the .drt parser
+// (src/lang/parser*.cpp) rebuilds the same model; where the parser derives a
+// value (a pigment's pattern -> world map from the transforms around it), the
+// writer composes the candidate text the way the parser will and keeps it only
+// if the result is identical (writer_detail.h).
+#include "lang/writer.h"
+
+#include "lang/writer_detail.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+namespace drt {
+
+using writer::decompose;
+using writer::formatSteps;
+using writer::number;
+using writer::Step;
+using writer::vector;
+
+namespace {
+
+std::string colorText(const Color& c) {
+    if (c.r == c.g && c.g == c.b) return "rgb " + number(c.r);
+    return "rgb " + vector(Vec3(c.r, c.g, c.b));
+}
+
+std::string colorText(const ColorFT& c) {
+    const std::string rgb = number(c.rgb.r) + ", " + number(c.rgb.g) + ", " + number(c.rgb.b);
+    if (c.filter == 0 && c.transmit == 0) return colorText(c.rgb);
+    if (c.transmit == 0) return "rgbf <" + rgb + ", " + number(c.filter) + ">";
+    if (c.filter == 0) return "rgbt <" + rgb + ", " + number(c.transmit) + ">";
+    return "rgbft <" + rgb + ", " + number(c.filter) + ", " + number(c.transmit) + ">";
+}
+
+// A pigment that is POV-Ray's default (solid black), whatever its transform.
+bool isDefaultPigment(const Pigment& p) {
+    const Pigment d;
+    return p.pattern == PatternKind::Solid && p.color == d.color && p.children.empty() && p.colorMap.empty() &&
+           p.gradientAxis == d.gradientAxis && p.brickSize == d.brickSize && p.mortar == d.mortar;
+}
+
+bool isDefaultFinish(const Finish& f) {
+    const Finish d;
+    return f.ambient == d.ambient && f.emission == d.emission && f.diffuse == d.diffuse &&
+           f.brilliance == d.brilliance && f.phong == d.phong && f.phongSize == d.phongSize &&
+           f.specular == d.specular && f.roughness == d.roughness && f.metallic == d.metallic &&
+           f.reflectionMin == d.reflectionMin && f.reflectionMax == d.reflectionMax &&
+           f.reflectionFresnel == d.reflectionFresnel && f.reflectionFalloff == d.reflectionFalloff &&
+           f.reflectionMetallic == d.reflectionMetallic && f.conserveEnergy == d.conserveEnergy &&
+           f.reflectionBlur == d.reflectionBlur && f.refractionBlur == d.refractionBlur;
+}
+
+bool isDefaultInterior(const Interior& i) {
+    const Interior d;
+    return i.ior == d.ior && i.fadeDistance == d.fadeDistance && i.fadePower == d.fadePower &&
+           i.fadeColor == d.fadeColor;
+}
+
+// The parser normalises plane, disc and smooth-triangle normals. A unit
+// vector rarely normalises to itself to the last bit, so look for the short
+// direction the author most likely wrote (<0, 1, 1> for a 45-degree disc).
+Vec3 unnormalised(const Vec3& n) {
+    const double largest = maxComponent(abs(n));
+    if (!(largest > 0)) return n;
+    const Vec3 scaled = n / largest;
+    auto rounded = [&](double perUnit) {
+        auto r = [&](double v) { return std::round(v * perUnit) / perUnit; };
+        return Vec3(r(scaled.x), r(scaled.y), r(scaled.z));
+    };
+    for (const Vec3& c : {n, rounded(1e10), rounded(1e6), scaled})
+        if (length(c) > 0 && c / length(c) == n) return c;
+    return n;
+}
+
+const char* csgKeyword(Csg::Op op) {
+    switch (op) {
+    case Csg::Op::Union: return "union";
+    case Csg::Op::Merge: return "merge";
+    case Csg::Op::Difference: return "difference";
+    case Csg::Op::Intersection: return "intersection";
+    }
+    return "union";
+}
+
+class SceneWriter {
+public:
+    explicit SceneWriter(const WriterOptions& options) : options_(options) {}
+
+    std::string write(const Scene& scene);
+    std::vector<std::string> problems() const { return {problems_.begin(), problems_.end()}; }
+
+private:
+    void line(int indent, const std::string& text) { out_ += std::string(size_t(indent) * 2, ' ') + text + "\n"; }
+    void sourceComment(int indent, const SourceLoc& loc);
+    void settings(const Scene& scene);
+    void camera(const CameraSpec& c);
+    void light(const Light& l);
+    void topLevelObject(const Object& o);
+    void flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow, bool hollow,
+                      const std::optional<Motion>& motion);
+    void object(const Object& o, int indent);
+    std::string shapeHead(const Object& o, int indent);
+    std::string meshText(const Mesh& m, int indent);
+    void texture(const Texture& t, const std::string& pigment, int indent);
+    std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool& exact);
+    std::string finishBody(const Finish& f);
+    std::string interiorBody(const Interior& i);
+    static std::string motionText(const Motion& m);
+
+    WriterOptions options_;
+    std::string out_;
+    std::set<std::string> problems_;
+};
+
+std::string SceneWriter::write(const Scene& scene) {
+    if (options_.sourceName.empty()) line(0, "// Written by drt's .drt writer (src/lang/writer.cpp).");
+    else line(0, "// Converted from " + options_.sourceName + " by drt convert.");
+    line(0, "// The .drt language: docs/language.md.");
+    out_ += "\n";
+    settings(scene);
+    camera(scene.camera);
+    for (const Light& l : scene.lights) light(l);
+    for (const Object& o : scene.objects) topLevelObject(o);
+    return out_;
+}
+
+void SceneWriter::sourceComment(int indent, const SourceLoc& loc) {
+    if (!options_.sourceFiles || !loc.valid() || loc.file >= options_.sourceFiles->count()) return;
+    const std::string name = std::filesystem::path(options_.sourceFiles->path(loc.file)).filename().string();
+    line(indent, "// " + name + ":" + std::to_string(loc.line));
+}
+
+void SceneWriter::settings(const Scene& scene) {
+    const RenderSettings& r = scene.render;
+    std::string items;
+    if (r.width) items += " width " + std::to_string(*r.width);
+    if (r.height) items += " height " + std::to_string(*r.height);
+    if (r.samplesPerPixel) items += " samples " + std::to_string(*r.samplesPerPixel);
+    if (r.seed) {
+        items += " seed " + std::to_string(*r.seed);
+        if (*r.seed > (uint64_t(1) << 53)) problems_.insert("a seed above 2^53 (the .drt parser reads it as a double)");
+    }
+    if (r.sampler) items += " sampler \"" + *r.sampler + "\"";
+    if (r.filter) items += " filter \"" + *r.filter + "\"";
+    if (r.adaptive.value_or(false)) {
+        std::string adaptive;
+        if (r.adaptiveError) adaptive += " error " + number(*r.adaptiveError);
+        if (r.minSamplesPerPixel) adaptive += " min_samples " + std::to_string(*r.minSamplesPerPixel);
+        if (r.maxSamplesPerPixel) adaptive += " max_samples " + std::to_string(*r.maxSamplesPerPixel);
+        items += adaptive.empty() ? " adaptive" : " adaptive {" + adaptive + " }";
+    } else if (r.adaptiveError || r.minSamplesPerPixel || r.maxSamplesPerPixel) {
+        problems_.insert("adaptive sampling limits without adaptive sampling");
+    }
+    if (!items.empty()) line(0, "render {" + items + " }");
+
+    const GlobalSettings& g = scene.global;
+    const GlobalSettings d;
+    items.clear();
+    if (g.maxTraceLevel != d.maxTraceLevel) items += " max_trace_level " + std::to_string(g.maxTraceLevel);
+    if (!(g.ambientLight == d.ambientLight)) items += " ambient_light " + colorText(g.ambientLight);
+    if (g.assumedGamma != d.assumedGamma) items += " assumed_gamma " + number(g.assumedGamma);
+    if (g.adcBailout != d.adcBailout) items += " adc_bailout " + number(g.adcBailout);
+    if (!items.empty()) line(0, "global_settings {" + items + " }");
+    if (!isBlack(scene.background)) line(0, "background { color " + colorText(scene.background) + " }");
+    out_ += "\n";
+}
+
+void SceneWriter::camera(const CameraSpec& c) {
+    const CameraSpec d;
+    line(0, "camera {");
+    line(1, "location " + vector(c.location));
+    if (!(c.direction == d.direction)) line(1, "direction " + vector(c.direction));
+    if (!(c.up == d.up)) line(1, "up " + vector(c.up));
+    if (c.right) line(1, "right " + vector(*c.right));
+    if (!(c.sky == d.sky)) line(1, "sky " + vector(c.sky));
+    if (c.lookAt) line(1, "look_at " + vector(*c.lookAt));
+    if (c.angle) line(1, "angle " + number(*c.angle));
+    if (c.aperture != d.aperture) line(1, "aperture " + number(c.aperture));
+    if (c.focalPoint) line(1, "focal_point " + vector(*c.focalPoint));
+    if (c.focalDistance) line(1, "focal_distance " + number(*c.focalDistance));
+    if (c.shutterOpen != d.shutterOpen) line(1, "shutter_open " + number(c.shutterOpen));
+    if (c.shutterClose != d.shutterClose) line(1, "shutter_close " + number(c.shutterClose));
+    line(0, "}");
+    out_ += "\n";
+}
+
+void SceneWriter::light(const Light& l) {
+    const Light d;
+    sourceComment(0, l.loc);
+    line(0, "light_source {");
+    line(1, vector(l.position) + ", color " + colorText(l.color));
+    if (l.spotlight) line(1, "spotlight");
+    if (!(l.pointAt == d.pointAt)) line(1, "point_at " + vector(l.pointAt));
+    std::string items;
+    if (l.radius != d.radius) items += " radius " + number(l.radius);
+    if (l.falloff != d.falloff) items += " falloff " + number(l.falloff);
+    if (l.tightness != d.tightness) items += " tightness " + number(l.tightness);
+    if (l.fadeDistance != d.fadeDistance) items += " fade_distance " + number(l.fadeDistance);
+    if (l.fadePower != d.fadePower) items += " fade_power " + number(l.fadePower);
+    if (!items.empty()) line(1, items.substr(1));
+    if (l.shadowless) line(1, "shadowless");
+    if (l.area) {
+        const AreaLight& a = *l.area;
+        std::string area = "area_light " + vector(a.axis1) + ", " + vector(a.axis2) + ", " + std::to_string(a.size1) +
+                           ", " + std::to_string(a.size2);
+        if (a.jitter) area += " jitter";
+        if (a.adaptive >= 0) area += " adaptive " + std::to_string(a.adaptive);
+        if (a.circular) area += " circular";
+        if (a.orient) area += " orient";
+        line(1, area);
+    }
+    // The .drt defaults differ from the model's (POV-Ray's): area_illumination
+    // on and stratified sampling; say so whenever the model differs.
+    if (!l.areaIllumination) line(1, "area_illumination off");
+    if (l.area && l.area->sampling != AreaSampling::Stratified)
+        line(1, l.area->sampling == AreaSampling::PovGrid ? "area_sampling pov_grid" : "area_sampling solid_angle");
+    if (l.inverseSquare) line(1, "inverse_square");
+    line(0, "}");
+}
+
+void SceneWriter::topLevelObject(const Object& o) {
+    if (const Csg* csg = std::get_if<Csg>(&o.shape); csg && csg->op == Csg::Op::Union) {
+        flattenUnion(o, Transform{}, false, false, false, std::nullopt);
+        return;
+    }
+    out_ += "\n";
+    object(o, 0);
+}
+
+// The .drt parser stores a union as its members, each with the union's
+// transforms after its own; the renderer treats both forms alike.
+void SceneWriter::flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow, bool hollow,
+                               const std::optional<Motion>& motion) {
+    Object leaf = o;
+    leaf.transform = o.transform.then(parent);
+    leaf.inverse = o.inverse != inverse;
+    leaf.noShadow = o.noShadow || noShadow;
+    leaf.hollow = o.hollow || hollow;
+    if (motion) {
+        if (leaf.motion) problems_.insert("motion on both a union and one of its members");
+        else leaf.motion = motion;
+    }
+    if (const Csg* csg = std::get_if<Csg>(&o.shape); csg && csg->op == Csg::Op::Union) {
+        if (leaf.motion && !parent.isIdentity()) problems_.insert("motion inside a transformed union");
+        for (const Object& child : csg->children)
+            flattenUnion(child, leaf.transform, leaf.inverse, leaf.noShadow, leaf.hollow, leaf.motion);
+        return;
+    }
+    out_ += "\n";
+    object(leaf, 0);
+}
+
+// Writes one object. Non-union CSG is written with its transforms baked into
+// its members (the pigments are already in world space).
+void SceneWriter::object(const Object& o, int indent) {
+    if (indent == 0) sourceComment(indent, o.loc);
+    const std::string head = shapeHead(o, indent);
+    if (head.empty()) return;
+    line(indent, head);
+    if (const Csg* csg = std::get_if<Csg>(&o.shape)) {
+        if (csg->op != Csg::Op::Union)
+            problems_.insert(std::string(csgKeyword(csg->op)) +
+                             " (CSG): .drt has only union; written in POV-Ray syntax");
+        for (const Object& child : csg->children) {
+            Object baked = child;
+            baked.transform = child.transform.then(o.transform);
+            object(baked, indent + 1);
+        }
+        if (o.inverse) line(indent + 1, "inverse");
+        if (o.noShadow) line(indent + 1, "no_shadow");
+        if (o.hollow) line(indent + 1, "hollow");
+        if (o.motion) line(indent + 1, motionText(*o.motion));
+        line(indent, "}");
+        return;
+    }
+    const std::vector<Step> steps = decompose(o.transform);
+    // A texture moves with the transforms written after it. Before the
+    // transforms, a pattern placed with the object needs no transform of its
+    // own; after them, it needs its whole pattern -> world map. Take the form
+    // that rebuilds the model exactly, the one without `matrix` if both do.
+    const Texture& t = o.texture;
+    const bool untextured = isDefaultPigment(t.pigment) && isDefaultFinish(t.finish) &&
+                            writer::sameTransform(t.pigment.toWorld, writer::compose(steps));
+    bool exactBefore = true, exactAfter = true;
+    const std::string before = untextured ? "" : pigmentBody(t.pigment, steps, exactBefore);
+    const std::string after = untextured || steps.empty() ? before : pigmentBody(t.pigment, {}, exactAfter);
+    const bool readableBefore = before.find(" matrix") == std::string::npos;
+    const bool textureBefore =
+        untextured || steps.empty() || (exactBefore && (readableBefore || !exactAfter)) || (!exactBefore && !exactAfter);
+    if (textureBefore && !untextured) texture(t, before, indent + 1);
+    if (!steps.empty()) line(indent + 1, formatSteps(steps).substr(1));
+    if (!textureBefore) texture(t, after, indent + 1);
+    if (!isDefaultInterior(o.interior)) line(indent + 1, "interior {" + interiorBody(o.interior) + " }");
+    std::string flags;
+    if (o.noShadow) flags += " no_shadow";
+    if (o.hollow) flags += " hollow";
+    if (o.inverse) flags += " inverse";
+    if (!flags.empty()) line(indent + 1, flags.substr(1));
+    if (o.motion) line(indent + 1, motionText(*o.motion));
+    line(indent, "}");
+}
+
+std::string SceneWriter::motionText(const Motion& m) {
+    std::string text = "motion {";
+    if (!(m.translate == Vec3(0))) text += " translate " + vector(m.translate);
+    if (!(m.rotate == Vec3(0))) text += " rotate " + vector(m.rotate);
+    if (!(m.scale == Vec3(1))) text += " scale " + vector(m.scale);
+    return text + " }";
+}
+
+// The opening of an object's block, through its fixed arguments.
+std::string SceneWriter::shapeHead(const Object& o, int indent) {
+    struct Visitor {
+        SceneWriter& w;
+        int indent;
+        std::string operator()(const Sphere& s) const { return "sphere { " + vector(s.center) + ", " + number(s.radius); }
+        std::string operator()(const Plane& p) const {
+            // The parser divides both the normal and the distance by the normal's length.
+            const Vec3 n = unnormalised(p.normal);
+            const double len = length(n);
+            const double guess = p.distance * len;
+            double d = guess;
+            for (double c : {guess, std::nextafter(guess, INFINITY), std::nextafter(guess, -INFINITY)})
+                if (c / len == p.distance) {
+                    d = c;
+                    break;
+                }
+            return "plane { " + vector(n) + ", " + number(d);
+        }
+        std::string operator()(const Box& b) const { return "box { " + vector(b.corner1) + ", " + vector(b.corner2); }
+        std::string operator()(const Cylinder& c) const {
+            return "cylinder { " + vector(c.base) + ", " + vector(c.cap) + ", " + number(c.radius) +
+                   (c.open ? " open" : "");
+        }
+        std::string operator()(const Cone& c) const {
+            return "cone { " + vector(c.base) + ", " + number(c.baseRadius) + ", " + vector(c.cap) + ", " +
+                   number(c.capRadius) + (c.open ? " open" : "");
+        }
+        std::string operator()(const Disc& d) const {
+            return "disc { " + vector(d.center) + ", " + vector(unnormalised(d.normal)) + ", " + number(d.radius) +
+                   (d.holeRadius != 0 ? ", " + number(d.holeRadius) : "");
+        }
+        std::string operator()(const Torus& t) const {
+            return "torus { " + number(t.majorRadius) + ", " + number(t.minorRadius);
+        }
+        std::string operator()(const Mesh& m) const { return w.meshText(m, indent); }
+        std::string operator()(const Csg& c) const {
+            if (c.children.empty()) {
+                w.problems_.insert("a CSG with no members (left out)");
+                return "";
+            }
+            return std::string(csgKeyword(c.op)) + " {";
+        }
+    };
+    return std::visit(Visitor{*this, indent}, o.shape);
+}
+
+// A face normal exactly as the .drt parser computes it for a flat triangle.
+static Vec3 faceNormal(const Vec3& a, const Vec3& b, const Vec3& c) {
+    Vec3 n = cross(b - a, c - a);
+    return length(n) > 0 ? normalize(n) : n;
+}
+
+std::string SceneWriter::meshText(const Mesh& m, int indent) {
+    if (m.triangles.empty()) {
+        problems_.insert("a mesh with no triangles (left out)");
+        return "";
+    }
+    const bool hasNormals = !m.normals.empty() && m.normalIndices.size() == m.triangles.size();
+    auto triangleBody = [&](size_t t, bool& smooth) {
+        const auto& tri = m.triangles[t];
+        const Vec3 a = m.vertices[size_t(tri[0])], b = m.vertices[size_t(tri[1])], c = m.vertices[size_t(tri[2])];
+        smooth = false;
+        Vec3 n[3];
+        if (hasNormals) {
+            const Vec3 face = faceNormal(a, b, c);
+            for (int k = 0; k < 3; ++k) {
+                n[k] = m.normals[size_t(m.normalIndices[t][size_t(k)])];
+                smooth = smooth || !(n[k] == face);
+            }
+        }
+        if (!smooth) return vector(a) + ", " + vector(b) + ", " + vector(c);
+        return vector(a) + ", " + vector(unnormalised(n[0])) + ", " + vector(b) + ", " + vector(unnormalised(n[1])) +
+               ", " + vector(c) + ", " + vector(unnormalised(n[2]));
+    };
+    bool smooth = false;
+    if (m.triangles.size() == 1) {
+        const std::string body = triangleBody(0, smooth);
+        return std::string(smooth ? "smooth_triangle { " : "triangle { ") + body;
+    }
+    std::string text = "mesh {";
+    const std::string pad(size_t(indent + 1) * 2, ' ');
+    for (size_t t = 0; t < m.triangles.size(); ++t) {
+        const std::string body = triangleBody(t, smooth);
+        text += "\n" + pad + (smooth ? "smooth_triangle { " : "triangle { ") + body + " }";
+    }
+    return text;
+}
+
+void SceneWriter::texture(const Texture& t, const std::string& pigmentText, int indent) {
+    const std::string pigment = "pigment {" + pigmentText + " }";
+    if (isDefaultFinish(t.finish)) {
+        line(indent, "texture { " + pigment + " }");
+        return;
+    }
+    line(indent, "texture {");
+    line(indent + 1, pigment);
+    line(indent + 1, "finish {" + finishBody(t.finish) + " }");
+    line(indent, "}");
+}
+
+// The inside of `pigment { ... }` for `p`, given the transform items the
+// enclosing text applies after it (`suffix`). Its own items are chosen so
+// that own-then-suffix composes to p.toWorld.
+std::string SceneWriter::pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool& exact) {
+    const Transform after = writer::compose(suffix);
+    std::vector<Step> own;
+    if (!writer::sameTransform(p.toWorld, after)) {
+        own = decompose(p.toWorld.then(after.inverted()));
+        exact = exact && writer::sameTransform(writer::compose(suffix, writer::compose(own)), p.toWorld);
+    }
+    std::vector<Step> childSuffix = own;
+    childSuffix.insert(childSuffix.end(), suffix.begin(), suffix.end());
+
+    std::string text;
+    auto subPigment = [&](const Pigment& child) {
+        const std::string body = pigmentBody(child, childSuffix, exact);
+        if (child.pattern == PatternKind::Solid && body.find(" matrix") == std::string::npos &&
+            body.find(" translate") == std::string::npos && body.find(" rotate") == std::string::npos &&
+            body.find(" scale") == std::string::npos)
+            return body.substr(1); // just the colour
+        return "pigment {" + body + " }";
+    };
+    auto list = [&](const char* keyword, size_t count) {
+        text += std::string(" ") + keyword;
+        if (p.children.size() != count) problems_.insert(std::string(keyword) + " with a sub-pigment count other than " +
+                                                         std::to_string(count));
+        for (size_t i = 0; i < p.children.size() && i < count; ++i) text += (i ? ", " : " ") + subPigment(p.children[i]);
+    };
+    auto colorMap = [&] {
+        if (!p.children.empty()) problems_.insert("a pigment_map (sub-pigments of a colour-map pattern)");
+        std::vector<ColorMapEntry> map = p.colorMap;
+        if (map.empty()) map = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // the renderer's empty-map ramp
+        text += " color_map {";
+        for (const ColorMapEntry& e : map) text += " [" + number(e.value) + " " + colorText(e.color) + "]";
+        text += " }";
+    };
+    switch (p.pattern) {
+    case PatternKind::Solid: text += " color " + colorText(p.color); break;
+    case PatternKind::Checker: list("checker", 2); break;
+    case PatternKind::Hexagon: list("hexagon", 3); break;
+    case PatternKind::Brick: list("brick", 2); break;
+    case PatternKind::Gradient: text += " gradient " + vector(p.gradientAxis); colorMap(); break;
+    case PatternKind::Radial: text += " radial"; colorMap(); break;
+    case PatternKind::Onion: text += " onion"; colorMap(); break;
+    }
+    const Pigment d;
+    if (!(p.brickSize == d.brickSize)) text += " brick_size " + vector(p.brickSize);
+    if (p.mortar != d.mortar) text += " mortar " + number(p.mortar);
+    return text + formatSteps(own);
+}
+
+std::string SceneWriter::finishBody(const Finish& f) {
+    const Finish d;
+    std::string text;
+    if (!(f.ambient == d.ambient)) text += " ambient " + colorText(f.ambient);
+    if (!(f.emission == d.emission)) text += " emission " + colorText(f.emission);
+    if (f.diffuse != d.diffuse) text += " diffuse " + number(f.diffuse);
+    if (f.brilliance != d.brilliance) text += " brilliance " + number(f.brilliance);
+    if (f.phong != d.phong) text += " phong " + number(f.phong);
+    if (f.phongSize != d.phongSize) text += " phong_size " + number(f.phongSize);
+    if (f.specular != d.specular) text += " specular " + number(f.specular);
+    if (f.roughness != d.roughness) text += " roughness " + number(f.roughness);
+    if (f.metallic != d.metallic) text += " metallic " + number(f.metallic);
+    const bool plainReflection = f.reflectionMin == f.reflectionMax && f.reflectionFresnel == d.reflectionFresnel &&
+                                 f.reflectionFalloff == d.reflectionFalloff &&
+                                 f.reflectionMetallic == d.reflectionMetallic;
+    if (plainReflection) {
+        if (!isBlack(f.reflectionMax)) text += " reflection " + colorText(f.reflectionMax);
+    } else {
+        text += " reflection { " + colorText(f.reflectionMin) + ", " + colorText(f.reflectionMax);
+        if (f.reflectionFresnel) text += " fresnel on";
+        if (f.reflectionFalloff != d.reflectionFalloff) text += " falloff " + number(f.reflectionFalloff);
+        if (f.reflectionMetallic != d.reflectionMetallic) text += " metallic " + number(f.reflectionMetallic);
+        text += " }";
+    }
+    if (f.conserveEnergy) text += " conserve_energy";
+    if (f.reflectionBlur != d.reflectionBlur) text += " reflection_blur " + number(f.reflectionBlur);
+    if (f.refractionBlur != d.refractionBlur) text += " refraction_blur " + number(f.refractionBlur);
+    return text;
+}
+
+std::string SceneWriter::interiorBody(const Interior& i) {
+    const Interior d;
+    std::string text;
+    if (i.ior != d.ior) text += " ior " + number(i.ior);
+    if (i.fadeDistance != d.fadeDistance) text += " fade_distance " + number(i.fadeDistance);
+    if (i.fadePower != d.fadePower) text += " fade_power " + number(i.fadePower);
+    if (!(i.fadeColor == d.fadeColor)) text += " fade_color " + colorText(i.fadeColor);
+    return text;
+}
+
+} // namespace
+
+std::string writeDrtScene(const Scene& scene, const WriterOptions& options) {
+    SceneWriter writer(options);
+    return writer.write(scene);
+}
+
+std::vector<std::string> drtInexpressible(const Scene& scene) {
+    SceneWriter writer(WriterOptions{});
+    writer.write(scene);
+    return writer.problems();
+}
+
+} // namespace drt

@@ -1,0 +1,41 @@
+// Private to the .drt writer (writer.cpp, writer_transform.cpp): number
+// formatting and the search for a readable transform sequence.
+#pragma once
+
+#include "core/transform.h"
+#include "core/vec.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace drt::writer {
+
+// The shortest decimal text that reads back (strtod) as exactly `v`.
+std::string number(double v);
+std::string vector(const Vec3& v); // "<x, y, z>"
+
+// One transform item as the .drt parser reads it.
+struct Step {
+    enum class Kind { Translate, Rotate, Scale, Matrix };
+    Kind kind = Kind::Translate;
+    Vec3 v;                      // translate / rotate (degrees) / scale
+    std::array<double, 12> m{};  // matrix, POV-Ray order
+    Transform transform() const; // what the parser builds for this item
+};
+
+// `start` followed by the steps, composed one at a time as the parser does.
+Transform compose(const std::vector<Step>& steps, const Transform& start = {});
+
+// Matrix and inverse both bit-identical: the renderer uses both.
+bool sameTransform(const Transform& a, const Transform& b);
+
+// Steps that compose to `t`: the readable translate/rotate/scale form when it
+// reproduces the matrix exactly (preferring one that also reproduces the
+// inverse), else one `matrix` step. Identity gives no steps.
+std::vector<Step> decompose(const Transform& t);
+
+// " translate <...> rotate <...>": each step preceded by a space.
+std::string formatSteps(const std::vector<Step>& steps);
+
+} // namespace drt::writer

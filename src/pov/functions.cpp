@@ -1,0 +1,345 @@
+// Built-in constants and functions of POV-Ray's language.
+#include "pov/parser.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace drt::pov {
+
+using Kind = PovValue::Kind;
+
+namespace {
+
+double radians(double d) { return d * kPi / 180.0; }
+
+// POV-Ray's rand(): a 32-bit linear congruential stream, stream = stream *
+// 1812433253 + 12345, returned as (stream & 0xFFFFFFFF) / 0xFFFFFFFF.
+double nextRandom(uint32_t& stream) {
+    stream = stream * 1812433253u + 12345u;
+    return double(stream) / 4294967295.0;
+}
+
+// Rotates v by `degrees` about x, then y, then z (POV-Ray's rotate, left-handed).
+Vec3 rotateXyz(Vec3 v, const Vec3& degrees) { return Transform::rotate(degrees).vector(v); }
+
+// POV-Ray's str(): L is the minimum width (negative pads with zeros), P the
+// digits after the point (negative: as many as needed, up to 6).
+std::string formatNumber(double value, int width, int precision) {
+    std::string s = precision < 0 ? fmt::format("{:g}", value) : fmt::format("{:.{}f}", value, precision);
+    const size_t w = size_t(std::abs(width));
+    if (s.size() >= w) return s;
+    const std::string pad(w - s.size(), width < 0 ? '0' : ' ');
+    if (width < 0 && s[0] == '-') return "-" + pad + s.substr(1);
+    return pad + s;
+    return s;
+}
+
+} // namespace
+
+bool PovParser::startsFloat(const Tok& t) const {
+    if (t.kind == TokKind::Number || t.is("(") || t.is("-") || t.is("+") || t.is("!")) return true;
+    if (t.kind != TokKind::Word) return false;
+    if (const Cell c = lookup(t.text)) return c->kind == Kind::Float || c->kind == Kind::Macro;
+    static const std::set<std::string> words = {
+        "pi", "tau", "true", "false", "yes", "no", "on", "off", "clock", "image_width", "image_height", "version",
+        "abs", "acos", "asin", "atan", "atan2", "ceil", "cos", "cosh", "degrees", "div", "exp", "floor", "int", "ln",
+        "log", "max", "min", "mod", "pow", "radians", "rand", "sin", "sinh", "sqrt", "tan", "tanh", "vdot",
+        "vlength", "strlen", "val", "select", "dimension_size", "defined", "frame_number", "clock_delta"};
+    return words.count(t.text) > 0;
+}
+
+bool PovParser::builtin(const Tok& name, PovValue& out) {
+    const std::string& w = name.text;
+    // ---- constants
+    static const std::map<std::string, double> floats = {
+        {"pi", kPi}, {"tau", 2 * kPi}, {"true", 1}, {"yes", 1}, {"on", 1}, {"false", 0}, {"no", 0}, {"off", 0},
+        {"clock_delta", 1}, {"clock_on", 0}, {"initial_frame", 1}, {"final_frame", 1}, {"frame_number", 0},
+        {"initial_clock", 0}, {"final_clock", 1}, {"max_intersections", 64}};
+    if (auto it = floats.find(w); it != floats.end()) {
+        out = PovValue::makeFloat(it->second);
+        return true;
+    }
+    if (w == "clock") return out = PovValue::makeFloat(options_.clock), true;
+    if (w == "image_width") return out = PovValue::makeFloat(options_.imageWidth), true;
+    if (w == "image_height") return out = PovValue::makeFloat(options_.imageHeight), true;
+    if (w == "version") return out = PovValue::makeFloat(version_), true;
+    if (w == "x" || w == "y" || w == "z") {
+        out = PovValue::makeVector({w == "x" ? 1.0 : 0.0, w == "y" ? 1.0 : 0.0, w == "z" ? 1.0 : 0.0});
+        return true;
+    }
+    if (w == "t") {
+        out.kind = Kind::Vector;
+        out.size = 4;
+        out.v = {0, 0, 0, 1, 0};
+        return true;
+    }
+    if (w == "u" || w == "v") {
+        out.kind = Kind::Vector;
+        out.size = 2;
+        out.v = {w == "u" ? 1.0 : 0.0, w == "v" ? 1.0 : 0.0, 0, 0, 0};
+        return true;
+    }
+    if (w == "input_file_name") return out = PovValue::makeString(diags_.files().path(name.loc.file)), true;
+
+    // ---- functions with a parenthesised argument list
+    static const std::set<std::string> functions = {
+        "abs", "acos", "acosh", "asin", "asinh", "atan", "atanh", "atan2", "ceil", "cos", "cosh", "degrees", "div",
+        "exp", "floor", "int", "ln", "log", "max", "min", "mod", "pow", "radians", "rand", "seed", "sin", "sinh",
+        "sqrt", "tan", "tanh", "select", "bitwise_and", "bitwise_or", "bitwise_xor", "vaxis_rotate", "vcross",
+        "vdot", "vlength", "vnormalize", "vrotate", "vturbulence", "concat", "str", "chr", "substr", "strlen",
+        "val", "asc", "strupr", "strlwr", "vstr", "dimension_size", "dimensions", "defined", "file_exists",
+        "inside", "trace", "noise3d", "f_noise3d", "strcmp", "sqr", "prod", "sum", "datetime"};
+    if (!functions.count(w)) return false;
+
+    if (w == "defined") {
+        expectSymbol("(", "after 'defined'");
+        noExpand_ = true;
+        const Tok id = next();
+        noExpand_ = false;
+        if (id.kind != TokKind::Word) failExpected(id, "an identifier");
+        expectSymbol(")", "after the identifier");
+        out = PovValue::makeFloat(lookup(id.text) ? 1 : 0);
+        return true;
+    }
+    if (w == "trace" || w == "inside")
+        fail(name.loc, "'" + w + "' needs the renderer's geometry and is not supported by the POV-Ray front end");
+
+    expectSymbol("(", ("after '" + w + "'").c_str());
+    std::vector<PovValue> args;
+    std::vector<SourceLoc> locs;
+    if (!peek().is(")")) {
+        const bool saved = inVector_;
+        inVector_ = false;
+        do {
+            locs.push_back(peek().loc);
+            args.push_back(expression());
+        } while (acceptSymbol(","));
+        inVector_ = saved;
+    }
+    expectSymbol(")", ("to close the arguments of '" + w + "'").c_str());
+    auto need = [&](size_t lo, size_t hi) {
+        if (args.size() < lo || args.size() > hi)
+            fail(name.loc, lo == hi ? fmt::format("'{}' takes {} argument{}, given {}", w, lo, lo == 1 ? "" : "s", args.size())
+                                    : fmt::format("'{}' takes {} to {} arguments, given {}", w, lo, hi, args.size()));
+    };
+    auto f = [&](size_t i) { return toFloat(args[i], locs[i]); };
+    auto vec = [&](size_t i) { return toVector(args[i], locs[i]); };
+    auto str = [&](size_t i) -> const std::string& {
+        if (args[i].kind != Kind::String) fail(locs[i], std::string("expected a string, found a ") + kindName(args[i].kind));
+        return args[i].text;
+    };
+    auto setFloat = [&](double value) {
+        if (!std::isfinite(value)) fail(name.loc, "'" + w + "' gives a result that is not a finite number");
+        out = PovValue::makeFloat(value);
+    };
+
+    // One-argument float functions.
+    static const std::map<std::string, double (*)(double)> unary = {
+        {"acos", [](double a) { return std::acos(a); }},    {"acosh", [](double a) { return std::acosh(a); }},
+        {"asin", [](double a) { return std::asin(a); }},    {"asinh", [](double a) { return std::asinh(a); }},
+        {"atanh", [](double a) { return std::atanh(a); }},  {"ceil", [](double a) { return std::ceil(a); }},
+        {"cos", [](double a) { return std::cos(a); }},      {"cosh", [](double a) { return std::cosh(a); }},
+        {"degrees", [](double a) { return a * 180.0 / kPi; }}, {"exp", [](double a) { return std::exp(a); }},
+        {"floor", [](double a) { return std::floor(a); }},  {"int", [](double a) { return std::trunc(a); }},
+        {"ln", [](double a) { return std::log(a); }},       {"log", [](double a) { return std::log10(a); }},
+        {"radians", [](double a) { return radians(a); }},   {"sin", [](double a) { return std::sin(a); }},
+        {"sinh", [](double a) { return std::sinh(a); }},    {"sqrt", [](double a) { return std::sqrt(a); }},
+        {"tan", [](double a) { return std::tan(a); }},      {"tanh", [](double a) { return std::tanh(a); }},
+        {"sqr", [](double a) { return a * a; }}};
+    if (auto it = unary.find(w); it != unary.end()) {
+        need(1, 1);
+        setFloat(it->second(f(0)));
+        return true;
+    }
+    if (w == "abs") {
+        need(1, 1);
+        if (args[0].kind == Kind::Float) setFloat(std::fabs(args[0].number));
+        else {
+            out = args[0];
+            for (double& c : out.v) c = std::fabs(c);
+            if (!out.isNumeric()) fail(locs[0], "abs() needs a number");
+        }
+        return true;
+    }
+    if (w == "atan") {
+        need(1, 2);
+        setFloat(args.size() == 2 ? std::atan2(f(0), f(1)) : std::atan(f(0)));
+        return true;
+    }
+    if (w == "atan2" || w == "pow" || w == "mod" || w == "div") {
+        need(2, 2);
+        const double a = f(0), b = f(1);
+        if ((w == "mod" || w == "div") && b == 0) fail(locs[1], "'" + w + "' by zero");
+        if (w == "atan2") setFloat(std::atan2(a, b));
+        else if (w == "pow") setFloat(std::pow(a, b));
+        else if (w == "mod") setFloat(std::fmod(a, b));
+        else setFloat(std::trunc(a / b));
+        return true;
+    }
+    if (w == "max" || w == "min") {
+        if (args.empty()) need(1, 1);
+        double r = f(0);
+        for (size_t i = 1; i < args.size(); ++i) r = w == "max" ? std::max(r, f(i)) : std::min(r, f(i));
+        setFloat(r);
+        return true;
+    }
+    if (w == "select") {
+        need(3, 4);
+        const double s = f(0);
+        out = s < 0 ? args[1] : (args.size() == 3 || s == 0 ? args[2] : args[3]);
+        return true;
+    }
+    if (w == "bitwise_and" || w == "bitwise_or" || w == "bitwise_xor") {
+        if (args.size() < 2) need(2, 2);
+        long r = long(f(0));
+        for (size_t i = 1; i < args.size(); ++i) {
+            const long b = long(f(i));
+            r = w == "bitwise_and" ? (r & b) : w == "bitwise_or" ? (r | b) : (r ^ b);
+        }
+        setFloat(double(r));
+        return true;
+    }
+    if (w == "seed") {
+        need(1, 1);
+        randomStreams_.push_back(static_cast<uint32_t>(static_cast<int64_t>(f(0))));
+        setFloat(double(randomStreams_.size() - 1));
+        return true;
+    }
+    if (w == "rand") {
+        need(1, 1);
+        const double s = f(0);
+        if (!(s >= 0) || s >= double(randomStreams_.size()) || s != std::floor(s))
+            fail(locs[0], "rand() needs a stream made by seed()");
+        setFloat(nextRandom(randomStreams_[size_t(s)]));
+        return true;
+    }
+    // ---- vectors
+    if (w == "vdot") {
+        need(2, 2);
+        setFloat(dot(vec(0), vec(1)));
+        return true;
+    }
+    if (w == "vlength") {
+        need(1, 1);
+        setFloat(length(vec(0)));
+        return true;
+    }
+    if (w == "vcross" || w == "vnormalize" || w == "vrotate" || w == "vaxis_rotate" || w == "vturbulence") {
+        Vec3 r;
+        if (w == "vcross") need(2, 2), r = cross(vec(0), vec(1));
+        else if (w == "vnormalize") {
+            need(1, 1);
+            const Vec3 a = vec(0);
+            r = length(a) == 0 ? Vec3(0) : normalize(a); // POV-Ray gives <0,0,0> for a zero vector
+        } else if (w == "vrotate") need(2, 2), r = rotateXyz(vec(0), vec(1));
+        else if (w == "vaxis_rotate") {
+            need(3, 3);
+            if (length(vec(1)) == 0) fail(locs[1], "vaxis_rotate about a zero axis");
+            r = Transform::rotateAxis(vec(1), f(2)).vector(vec(0));
+        } else {
+            need(4, 4);
+            warnOnce("vturbulence", name.loc, "vturbulence() is not supported; it returns <0,0,0>");
+        }
+        out = PovValue::makeVector(r);
+        return true;
+    }
+    if (w == "noise3d" || w == "f_noise3d") {
+        warnOnce("noise", name.loc, "noise functions are not supported; '" + w + "' returns 0.5");
+        setFloat(0.5);
+        return true;
+    }
+    // ---- strings
+    if (w == "concat") {
+        std::string s;
+        for (size_t i = 0; i < args.size(); ++i) s += str(i);
+        out = PovValue::makeString(s);
+        return true;
+    }
+    if (w == "str") {
+        need(3, 3);
+        out = PovValue::makeString(formatNumber(f(0), int(f(1)), int(f(2))));
+        return true;
+    }
+    if (w == "vstr") {
+        need(5, 5);
+        const int n = int(f(0));
+        const auto c = args[1].isNumeric() ? toColor(args[1], locs[1]) : std::array<double, 5>{};
+        if (!args[1].isNumeric()) fail(locs[1], "vstr() needs a vector");
+        std::string s;
+        for (int i = 0; i < std::clamp(n, 1, 5); ++i) {
+            if (i) s += str(2);
+            s += formatNumber(c[size_t(i)], int(f(3)), int(f(4)));
+        }
+        out = PovValue::makeString(s);
+        return true;
+    }
+    if (w == "chr") {
+        need(1, 1);
+        const int c = int(f(0));
+        if (c < 0 || c > 255) fail(locs[0], "chr() takes a code in 0..255");
+        out = PovValue::makeString(std::string(1, char(c)));
+        return true;
+    }
+    if (w == "asc") {
+        need(1, 1);
+        setFloat(str(0).empty() ? 0 : double(static_cast<unsigned char>(str(0)[0])));
+        return true;
+    }
+    if (w == "strlen") {
+        need(1, 1);
+        setFloat(double(str(0).size()));
+        return true;
+    }
+    if (w == "strcmp") {
+        need(2, 2);
+        const int c = str(0).compare(str(1));
+        setFloat(c < 0 ? -1 : c > 0 ? 1 : 0);
+        return true;
+    }
+    if (w == "substr") {
+        need(3, 3);
+        const std::string& s = str(0);
+        const int start = int(f(1)), count = int(f(2)); // start is 1-based
+        if (start < 1 || count < 0 || size_t(start - 1 + count) > s.size())
+            fail(name.loc, fmt::format("substr({}, {}) is outside the {}-character string", start, count, s.size()));
+        out = PovValue::makeString(s.substr(size_t(start - 1), size_t(count)));
+        return true;
+    }
+    if (w == "strupr" || w == "strlwr") {
+        need(1, 1);
+        std::string s = str(0);
+        for (char& c : s) c = char(w == "strupr" ? std::toupper((unsigned char)c) : std::tolower((unsigned char)c));
+        out = PovValue::makeString(s);
+        return true;
+    }
+    if (w == "val") {
+        need(1, 1);
+        setFloat(std::strtod(str(0).c_str(), nullptr));
+        return true;
+    }
+    if (w == "file_exists") {
+        need(1, 1);
+        setFloat(findInclude(str(0), ".").empty() ? 0 : 1);
+        return true;
+    }
+    if (w == "datetime") {
+        out = PovValue::makeString("");
+        return true;
+    }
+    // ---- arrays
+    if (w == "dimensions" || w == "dimension_size") {
+        need(w == "dimensions" ? 1 : 2, w == "dimensions" ? 1 : 2);
+        if (args[0].kind != Kind::Array) fail(locs[0], "'" + w + "' needs an array");
+        const auto& sizes = args[0].array->sizes;
+        if (w == "dimensions") {
+            setFloat(double(sizes.size()));
+        } else {
+            const int d = int(f(1));
+            setFloat(d >= 1 && size_t(d) <= sizes.size() ? double(sizes[size_t(d - 1)]) : 0);
+        }
+        return true;
+    }
+    fail(name.loc, "'" + w + "' is not supported");
+}
+
+} // namespace drt::pov

@@ -1,0 +1,184 @@
+// The POV-Ray evaluator. POV-Ray's language is a macro language evaluated
+// while it is read, so parsing and evaluation are one pass, as in POV-Ray: the
+// token stream (reader.cpp) runs directives, includes, loops and macro calls as
+// the parser pulls tokens; expressions (expr.cpp), textures (textures.cpp),
+// objects (objects.cpp) and the scene statements (scene_items.cpp) consume it.
+#pragma once
+
+#include "pov/lexer.h"
+#include "pov/load.h"
+#include "pov/value.h"
+
+#include <map>
+#include <set>
+
+namespace drt::pov {
+
+// Thrown after an error has been reported: POV-Ray stops at the first error.
+struct PovAbort {};
+
+class PovParser {
+public:
+    PovParser(Diagnostics& diags, const PovOptions& options);
+
+    // Evaluates a file (already added to SourceFiles as `fileId`) into scene_.
+    std::optional<Scene> run(int fileId, const std::string& baseDir);
+
+    // ------------------------------------------------------------ tokens (reader.cpp)
+    Tok next();          // directives run, macros expanded
+    Tok peek();          // the same token next() will return
+    Tok peekOperator();  // stops at a directive (returned unconsumed, kind Directive)
+    void pushBack(Tok t) { pushed_.push_back(std::move(t)); }
+    bool acceptSymbol(const char* s);
+    Tok expectSymbol(const char* s, const char* context);
+    bool acceptWord(const char* w);
+    Tok expectWord(const char* context); // any word
+    // After '{' was consumed: skips to its matching '}', directives included.
+    void skipBlock();
+
+    // ------------------------------------------------------------ diagnostics
+    [[noreturn]] void fail(SourceLoc loc, const std::string& message);
+    [[noreturn]] void failExpected(const Tok& got, const std::string& what);
+    void warn(SourceLoc loc, const std::string& message);
+    // One warning per `kind` for the whole scene.
+    void warnOnce(const std::string& kind, SourceLoc loc, const std::string& message);
+    void note(SourceLoc loc, const std::string& message);
+
+    // ------------------------------------------------------------ symbols
+    Cell lookup(const std::string& name) const;
+    // lookup() for a use of the identifier: reports the warnings its declaration deferred.
+    Cell use(const std::string& name);
+    void declare(const std::string& name, const PovValue& value, bool local);
+    bool isMacro(const std::string& name) const;
+
+    // ------------------------------------------------------------ expressions (expr.cpp)
+    PovValue expression();
+    double floatExpr();
+    Vec3 vectorExpr(); // a float promotes to <f,f,f>
+    std::array<double, 5> colorExpr(); // colour keywords and expressions
+    std::string stringExpr();
+    bool boolExpr() { return floatExpr() != 0; }
+    // Whether `t` starts a float expression (a number, '(', a sign, a float identifier, a function).
+    bool startsFloat(const Tok& t) const;
+    // The right-hand side of #declare and of a macro argument: an expression or a scene item.
+    PovValue rvalue();
+    // Built-in functions and constants (functions.cpp); false if `name` is none.
+    bool builtin(const Tok& name, PovValue& out);
+    PovValue primary();
+    PovValue postfix(PovValue v, SourceLoc loc);
+    PovValue arrayLiteral(SourceLoc loc); // after 'array'
+    bool inVector_ = false;               // '>' closes a vector literal, not a comparison
+    // Scalar conversions with a clear error.
+    double toFloat(const PovValue& v, SourceLoc loc);
+    Vec3 toVector(const PovValue& v, SourceLoc loc);
+    std::array<double, 5> toColor(const PovValue& v, SourceLoc loc);
+
+    // ------------------------------------------------------------ textures (textures.cpp)
+    Texture texture(const Texture& base);  // after 'texture'
+    Pigment pigment(const Pigment& base);  // after 'pigment'
+    Finish finish(const Finish& base);     // after 'finish'
+    Interior interior(const Interior& base);
+    PovMaterial material(const PovMaterial& base);
+    void normalBlock(); // after 'normal': parsed and ignored
+    std::vector<ColorMapEntry> colorMap(); // after 'color_map'
+    // A transform keyword (translate rotate scale matrix transform) at the current token, or nothing.
+    std::optional<Transform> transformItem();
+    Transform transformBlock(); // after 'transform'
+
+    // ------------------------------------------------------------ objects (objects.cpp)
+    bool isObjectWord(const Tok& t) const;
+    PovObject object(const Tok& keyword); // keyword consumed
+    void applyTransform(PovObject& o, const Transform& t);
+
+    // ------------------------------------------------------------ scene (scene_items.cpp)
+    void statement(const Tok& t);
+    CameraSpec camera(const CameraSpec& base, SourceLoc loc);
+    Light lightSource(SourceLoc loc);
+    void globalSettings();
+    void addToScene(PovObject o);
+    void finishScene(); // gamma rules, defaults
+
+    Scene scene_;
+    bool cameraSeen_ = false;
+    std::optional<double> assumedGamma_;
+    double version_ = 3.7;
+    bool versionSeen_ = false;
+    std::vector<uint32_t> randomStreams_; // seed(n) returns an index into this
+
+private:
+    friend class DirectiveRunner;
+    struct Frame {
+        std::shared_ptr<const std::vector<Tok>> tokens;
+        size_t pos = 0;
+        bool isMacro = false;
+        SourceLoc includedFrom; // include frames: the #include directive
+        size_t condDepth = 0;   // conds_.size() when the frame started
+        std::string dir;        // include frames: folder of the file
+    };
+    struct Cond {
+        enum class Type { If, While, For, Switch } type = Type::If;
+        size_t frame = 0;
+        size_t pos = 0; // While: the condition; For: the first body token
+        SourceLoc loc;
+        std::string forName;
+        double forEnd = 0, forStep = 1;
+        long iterations = 0;
+        double switchValue = 0;
+        bool switchMatched = false;
+    };
+
+    Tok rawNext();
+    const Tok& rawPeek() const;
+    void endFrame();
+    void directive(const Tok& t);
+    void declareDirective(const Tok& t, bool local);
+    void includeDirective(const Tok& t);
+    void ifDirective(const Tok& t, int kind); // 0 #if, 1 #ifdef, 2 #ifndef
+    void branchSkip(const Tok& start);       // skip a false branch: to #else / #elseif / #end
+    void whileHead(const Tok& t);
+    void forDirective(const Tok& t);
+    void switchDirective(const Tok& t);
+    void switchScan(const Tok& t); // find the matching #case / #range / #else / #end
+    void endDirective(const Tok& t);
+    void breakDirective(const Tok& t);
+    void macroDefinition(const Tok& t);
+    void invokeMacro(const Tok& t);
+    void messageDirective(const Tok& t);
+    void versionDirective(const Tok& t);
+    // Skips raw tokens until a directive in `stops` at nesting depth 0; returns it.
+    Tok skipTo(const std::set<std::string>& stops, const Tok& start);
+    std::vector<SourceLoc> includeChain() const;
+    std::string findInclude(const std::string& name, const std::string& fromDir) const;
+    void pushFile(int fileId, SourceLoc includedFrom, const std::string& dir);
+    Cell* arrayElementForAssignment(const Tok& name, Cell cell);
+
+    Diagnostics& diags_;
+    PovOptions options_;
+    std::vector<Frame> frames_;
+    std::vector<Cond> conds_;
+    std::vector<Tok> pushed_;
+    std::vector<std::map<std::string, Cell>> scopes_;
+    std::set<std::string> warned_;
+    std::vector<PendingWarning>* pending_ = nullptr; // while evaluating a #declare
+    std::map<std::string, std::shared_ptr<const std::vector<Tok>>> lexedFiles_;
+    int expressionDepth_ = 0;
+    bool noExpand_ = false;
+    friend struct DepthGuard;
+};
+
+// Applies `t` to a pigment and its sub-pigments (pattern space moves with it).
+void transformPigmentTree(Pigment& p, const Transform& t);
+// POV-Ray colour (r g b filter transmit) -> scene colour.
+ColorFT toColorFT(const std::array<double, 5>& c);
+
+// The mean colour of a pigment (patterns averaged over their colour map or sub-pigments).
+ColorFT pigmentAverage(const Pigment& p);
+
+// Counts nesting of a recursive parse function and stops runaway recursion.
+struct DepthGuard {
+    DepthGuard(PovParser& p, SourceLoc loc);
+    ~DepthGuard();
+    int& depth;
+};
+
+} // namespace drt::pov

@@ -1,0 +1,286 @@
+// Primary expressions (literals, identifiers, colour keywords, parentheses),
+// postfix swizzles and indexing, array literals, and the right-hand side of
+// #declare, which may also be a scene item.
+#include "pov/parser.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace drt::pov {
+
+using Kind = PovValue::Kind;
+
+namespace {
+
+double srgbToLinear(double c) {
+    // IEC 61966-2-1 decoding.
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+std::vector<std::string> keywordsForSuggestions() {
+    return {"sphere", "box", "plane", "cylinder", "cone", "torus", "disc", "union", "difference",
+            "intersection", "merge", "object", "pigment", "texture", "finish", "color", "rgb", "camera",
+            "light_source", "translate", "rotate", "scale", "location", "look_at"};
+}
+
+} // namespace
+
+PovValue PovParser::postfix(PovValue v, SourceLoc loc) {
+    (void)loc;
+    while (peekOperator().is(".")) {
+        const Tok dot = next();
+        const Tok member = expectWord("a component name after '.'");
+        const std::string& m = member.text;
+        int index = -1;
+        if (m == "x" || m == "u" || m == "red") index = 0;
+        else if (m == "y" || m == "v" || m == "green") index = 1;
+        else if (m == "z" || m == "blue") index = 2;
+        else if (m == "t" || m == "filter") index = 3;
+        else if (m == "transmit") index = 4;
+        else if (m == "gray" || m == "grey") {
+            const auto c = toColor(v, dot.loc);
+            // POV-Ray's gray: 0.297 R + 0.589 G + 0.114 B.
+            v = PovValue::makeFloat(0.297 * c[0] + 0.589 * c[1] + 0.114 * c[2]);
+            continue;
+        } else {
+            fail(member.loc, "unknown component '." + m + "' (use .x .y .z .t .u .v .red .green .blue .filter .transmit .gray)");
+        }
+        if (v.kind == Kind::Float) {
+            if (index > 0) fail(dot.loc, "'." + m + "' of a float");
+            continue;
+        }
+        if (v.kind != Kind::Vector && v.kind != Kind::Color)
+            fail(dot.loc, std::string("'.") + m + "' of a " + kindName(v.kind));
+        if (index >= v.size) fail(member.loc, fmt::format("'.{}' of a {}-component vector", m, v.size));
+        v = PovValue::makeFloat(v.v[size_t(index)]);
+    }
+    return v;
+}
+
+PovValue PovParser::primary() {
+    const Tok t = next();
+    if (t.kind == TokKind::Number) return postfix(PovValue::makeFloat(t.number), t.loc);
+    if (t.kind == TokKind::String) return PovValue::makeString(t.text);
+    if (t.is("(")) {
+        const bool saved = inVector_;
+        inVector_ = false;
+        PovValue v = expression();
+        expectSymbol(")", "to close '('");
+        inVector_ = saved;
+        return postfix(v, t.loc);
+    }
+    if (t.is("<")) {
+        const bool saved = inVector_;
+        inVector_ = true;
+        PovValue v;
+        v.kind = Kind::Vector;
+        int n = 0;
+        do {
+            const SourceLoc loc = peek().loc;
+            if (n == 5) fail(loc, "a vector has at most 5 components");
+            v.v[size_t(n++)] = toFloat(expression(), loc);
+            // POV-Ray accepts components separated by blanks only: <4 0 0>.
+        } while (acceptSymbol(",") || (!peek().is(">") && n < 5));
+        expectSymbol(">", "to close the vector");
+        inVector_ = saved;
+        if (n < 2) fail(t.loc, "a vector needs at least 2 components");
+        v.size = n;
+        return postfix(v, t.loc);
+    }
+    if (t.kind != TokKind::Word) failExpected(t, "an expression");
+
+    if (const Cell c = use(t.text)) {
+        if (c->kind == Kind::Array && peek().is("[")) {
+            Cell cell = c;
+            while (cell->kind == Kind::Array && peek().is("[")) {
+                const PovArray& a = *cell->array;
+                size_t index = 0;
+                for (size_t d = 0; d < a.sizes.size(); ++d) {
+                    const Tok open = expectSymbol("[", "for an array index");
+                    const int i = static_cast<int>(floatExpr());
+                    expectSymbol("]", "after an array index");
+                    if (i < 0 || i >= a.sizes[d])
+                        fail(open.loc, fmt::format("array index {} out of range 0..{} for '{}'", i, a.sizes[d] - 1, t.text));
+                    index = index * size_t(a.sizes[d]) + size_t(i);
+                }
+                if (!a.items[index]) fail(t.loc, "array element of '" + t.text + "' used before it was given a value");
+                cell = a.items[index];
+            }
+            return postfix(*cell, t.loc);
+        }
+        return postfix(*c, t.loc);
+    }
+
+    const std::string& w = t.text;
+    if (w == "rgb" || w == "rgbf" || w == "rgbt" || w == "rgbft" || w == "srgb" || w == "srgbf" || w == "srgbt" ||
+        w == "srgbft") {
+        const SourceLoc loc = peek().loc;
+        const PovValue v = expression();
+        const bool srgb = w[0] == 's';
+        const std::string form = srgb ? w.substr(1) : w;
+        const int need = form == "rgb" ? 3 : form == "rgbft" ? 5 : 4;
+        std::array<double, 5> c{};
+        if (v.kind == Kind::Float) {
+            for (int i = 0; i < need; ++i) c[size_t(i)] = v.number;
+        } else if (v.kind == Kind::Vector || v.kind == Kind::Color) {
+            if (v.size < need) fail(loc, fmt::format("'{}' needs {} components, found {}", w, need, v.size));
+            for (int i = 0; i < need; ++i) c[size_t(i)] = v.v[size_t(i)];
+        } else {
+            fail(loc, "'" + w + "' needs a float or a vector, found a " + kindName(v.kind));
+        }
+        if (form == "rgbt") c[4] = c[3], c[3] = 0;
+        if (srgb)
+            for (int i = 0; i < 3; ++i) c[size_t(i)] = srgbToLinear(c[size_t(i)]);
+        PovValue out = PovValue::makeColor(c);
+        out.text = srgb ? "srgb" : "";
+        return out;
+    }
+    if (w == "color" || w == "colour") return PovValue::makeColor(colorExpr());
+    PovValue out;
+    if (builtin(t, out)) return postfix(out, t.loc);
+    std::string message = "undeclared identifier '" + w + "'";
+    if (const std::string near = nearestWord(w, keywordsForSuggestions()); !near.empty())
+        message += " (did you mean '" + near + "'?)";
+    fail(t.loc, message);
+}
+
+PovValue PovParser::arrayLiteral(SourceLoc loc) {
+    auto a = std::make_shared<PovArray>();
+    size_t total = 1;
+    while (peekOperator().is("[")) {
+        next();
+        const SourceLoc at = peek().loc;
+        const double n = floatExpr();
+        expectSymbol("]", "after the array size");
+        if (!(n >= 1) || n > 1e7) fail(at, fmt::format("array size {} out of range", n));
+        a->sizes.push_back(static_cast<int>(n));
+        total *= size_t(n);
+        if (total > 10000000) fail(at, "array too large");
+    }
+    if (a->sizes.empty()) fail(loc, "array needs a size: array[n]");
+    a->items.resize(total);
+    if (peekOperator().is("{")) {
+        // Nested braces, one level per dimension.
+        size_t index = 0;
+        auto fill = [&](auto&& self, size_t dim) -> void {
+            expectSymbol("{", "to start an array initialiser");
+            for (int i = 0; i < a->sizes[dim]; ++i) {
+                if (dim + 1 < a->sizes.size()) self(self, dim + 1);
+                else a->items[index++] = std::make_shared<PovValue>(rvalue());
+                if (i + 1 < a->sizes[dim]) acceptSymbol(","); // POV-Ray tolerates a missing comma
+            }
+            acceptSymbol(",");
+            expectSymbol("}", "after the array items (too many items?)");
+        };
+        fill(fill, 0);
+    }
+    PovValue v;
+    v.kind = Kind::Array;
+    v.array = a;
+    return v;
+}
+
+PovValue PovParser::rvalue() {
+    const Tok t = peek();
+    PovValue v;
+    if (t.kind == TokKind::Word && !lookup(t.text)) {
+        const std::string& w = t.text;
+        if (isObjectWord(t) || w == "light_source") {
+            next();
+            v.kind = Kind::Object;
+            v.object = std::make_shared<PovObject>(object(t));
+            return v;
+        }
+        if (w == "texture") {
+            next();
+            v.kind = Kind::Texture;
+            v.texture = std::make_shared<Texture>(texture(Texture{}));
+            // `texture {..} texture {..}`: a layered texture; drt keeps the bottom layer.
+            while (peekOperator().isWord("texture")) {
+                const Tok layer = next();
+                warnOnce("layered", layer.loc, "layered textures are not supported; only the first (bottom) layer is used");
+                texture(Texture{});
+            }
+            return v;
+        }
+        if (w == "pigment") {
+            next();
+            v.kind = Kind::Pigment;
+            v.pigment = std::make_shared<Pigment>(pigment(Pigment{}));
+            return v;
+        }
+        if (w == "finish") {
+            next();
+            v.kind = Kind::Finish;
+            v.finish = std::make_shared<Finish>(finish(Finish{}));
+            return v;
+        }
+        if (w == "interior") {
+            next();
+            v.kind = Kind::Interior;
+            v.interior = std::make_shared<Interior>(interior(Interior{}));
+            return v;
+        }
+        if (w == "material") {
+            next();
+            v.kind = Kind::Material;
+            v.material = std::make_shared<PovMaterial>(material(PovMaterial{}));
+            return v;
+        }
+        if (w == "normal") {
+            next();
+            normalBlock();
+            v.kind = Kind::Normal;
+            return v;
+        }
+        if (w == "camera") {
+            next();
+            v.kind = Kind::Camera;
+            v.camera = std::make_shared<CameraSpec>(camera(CameraSpec{}, t.loc));
+            return v;
+        }
+        if (w == "color_map" || w == "colour_map") {
+            next();
+            v.kind = Kind::ColorMap;
+            v.colorMap = std::make_shared<std::vector<ColorMapEntry>>(colorMap());
+            return v;
+        }
+        if (w == "transform") {
+            next();
+            v.kind = Kind::Transform;
+            v.transform = std::make_shared<Transform>(transformBlock());
+            return v;
+        }
+        if (w == "array") {
+            next();
+            return arrayLiteral(t.loc);
+        }
+        static const std::set<std::string> opaque = {
+            "function", "spline", "pigment_map", "normal_map", "texture_map", "slope_map", "density_map",
+            "material_map", "media", "density", "interior_texture", "rainbow", "fog", "sky_sphere", "photons",
+            "radiosity"};
+        if (opaque.count(w)) {
+            next();
+            warnOnce("declare-" + w, t.loc, "'" + w + "' is not supported; the declared value cannot be used");
+            if (peek().is("(")) {
+                next();
+                int depth = 1;
+                while (depth > 0) {
+                    const Tok s = next();
+                    if (s.kind == TokKind::EndOfFile) fail(t.loc, "unbalanced '('");
+                    depth += s.is("(") ? 1 : s.is(")") ? -1 : 0;
+                }
+            }
+            if (peek().is("{")) {
+                next();
+                skipBlock();
+            }
+            v.kind = Kind::Opaque;
+            v.text = w;
+            return v;
+        }
+    }
+    return expression();
+}
+
+} // namespace drt::pov

@@ -1,0 +1,370 @@
+// Top-level statements: camera, light_source, objects, background, sky_sphere,
+// global_settings; and the end-of-scene gamma rule.
+#include "pov/parser.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace drt::pov {
+
+using Kind = PovValue::Kind;
+
+namespace {
+
+// The camera vectors after POV-Ray's angle and look_at rules (the same as
+// render/camera.cpp's resolveCamera), so that a transform can act on them.
+void resolveCameraVectors(CameraSpec& c) {
+    Vec3 right = c.right.value_or(Vec3(1.33, 0, 0));
+    Vec3 dir = c.direction, up = c.up;
+    if (c.angle && *c.angle > 0 && *c.angle < 180 && length(dir) > 0)
+        dir = normalize(dir) * (0.5 * length(right) / std::tan(*c.angle * kPi / 360.0));
+    if (c.lookAt) {
+        const Vec3 to = *c.lookAt - c.location;
+        const Vec3 r = cross(c.sky, to);
+        if (length(to) > 0 && length(r) > 0) {
+            const double handedness = dot(cross(up, dir), right);
+            const Vec3 d = normalize(to);
+            const Vec3 ru = normalize(cross(c.sky, d));
+            dir = d * length(dir);
+            right = ru * (handedness > 0 ? length(right) : -length(right));
+            up = cross(d, ru) * length(up);
+        }
+    }
+    c.direction = dir;
+    c.right = right;
+    c.up = up;
+    c.angle.reset();
+    c.lookAt.reset();
+}
+
+Color decodeGamma(const Color& c, double gamma) {
+    auto d = [&](double v) { return v > 0 ? std::pow(v, gamma) : v; };
+    return {d(c.r), d(c.g), d(c.b)};
+}
+
+void decodePigment(Pigment& p, double gamma) {
+    p.color.rgb = decodeGamma(p.color.rgb, gamma);
+    for (ColorMapEntry& e : p.colorMap) e.color.rgb = decodeGamma(e.color.rgb, gamma);
+    for (Pigment& c : p.children) decodePigment(c, gamma);
+}
+
+void decodeObject(Object& o, double gamma) {
+    decodePigment(o.texture.pigment, gamma);
+    if (Csg* csg = std::get_if<Csg>(&o.shape))
+        for (Object& c : csg->children) decodeObject(c, gamma);
+}
+
+Object toObject(const PovObject& po) {
+    Object o = po.object;
+    if (Csg* csg = std::get_if<Csg>(&o.shape)) {
+        csg->children.clear();
+        for (const PovObject& c : po.children) csg->children.push_back(toObject(c));
+    }
+    return o;
+}
+
+} // namespace
+
+CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
+    expectSymbol("{", "after 'camera'");
+    CameraSpec c = base;
+    c.loc = loc;
+    if (!c.right) c.right = Vec3(1.33, 0, 0);
+    double aperture = c.aperture * 2; // POV-Ray's aperture (the model's is half of it)
+    int blurSamples = aperture > 0 ? 1 : 0;
+    SourceLoc apertureLoc = loc;
+    bool nonPerspective = false;
+    for (;;) {
+        const Tok t = peek();
+        if (t.is("}")) {
+            next();
+            break;
+        }
+        if (std::optional<Transform> tr = transformItem()) {
+            resolveCameraVectors(c);
+            c.location = tr->point(c.location);
+            c.direction = tr->vector(c.direction);
+            c.right = tr->vector(*c.right);
+            c.up = tr->vector(c.up);
+            if (c.focalPoint) c.focalPoint = tr->point(*c.focalPoint);
+            continue;
+        }
+        next();
+        if (t.kind != TokKind::Word) failExpected(t, "a camera item or '}'");
+        const std::string& w = t.text;
+        const Cell id = use(w);
+        if (id && id->kind == Kind::Camera) {
+            c = *id->camera;
+            aperture = c.aperture * 2;
+            continue;
+        }
+        if (w == "perspective") continue;
+        if (w == "orthographic" || w == "fisheye" || w == "ultra_wide_angle" || w == "omnimax" || w == "panoramic" ||
+            w == "cylinder" || w == "spherical" || w == "mesh_camera") {
+            warnOnce("camera-" + w, t.loc, "'" + w + "' camera is not supported; a perspective camera is used");
+            nonPerspective = true;
+            if (w == "cylinder") floatExpr();
+            if (w == "mesh_camera") expectSymbol("{", ""), skipBlock();
+        } else if (w == "location") c.location = vectorExpr();
+        else if (w == "look_at") c.lookAt = vectorExpr();
+        else if (w == "direction") c.direction = vectorExpr();
+        else if (w == "right") c.right = vectorExpr();
+        else if (w == "up") c.up = vectorExpr();
+        else if (w == "sky") c.sky = vectorExpr();
+        else if (w == "angle") {
+            const SourceLoc at = peek().loc;
+            const double a = floatExpr();
+            if (acceptSymbol(",")) {
+                floatExpr();
+                warnOnce("angle-vertical", at, "the vertical camera angle is ignored (it follows from up/right)");
+            }
+            if (a > 0 && a < 180) c.angle = a;
+            else if (!nonPerspective) fail(at, "camera angle must be in (0, 180) degrees for a perspective camera");
+        } else if (w == "aperture") {
+            apertureLoc = t.loc;
+            aperture = floatExpr();
+        } else if (w == "blur_samples") {
+            blurSamples = static_cast<int>(floatExpr());
+            if (acceptSymbol(",")) blurSamples = std::max(blurSamples, static_cast<int>(floatExpr()));
+        } else if (w == "focal_point") c.focalPoint = vectorExpr();
+        else if (w == "confidence" || w == "variance") {
+            floatExpr();
+            warnOnce("focal-adaptive", t.loc,
+                     "focal blur 'confidence'/'variance' (POV-Ray's adaptive stop) are not used: drt takes "
+                     "blur_samples samples per pixel");
+        } else if (w == "normal") {
+            normalBlock();
+        } else if (w == "bokeh") {
+            warnOnce("bokeh", t.loc, "'bokeh' is not supported; the lens is a uniform disc");
+            expectSymbol("{", "");
+            skipBlock();
+        } else {
+            failExpected(t, "a camera item or '}'");
+        }
+    }
+    // POV-Ray blurs only when aperture != 0 and blur_samples > 0; its lens radius
+    // is aperture/4, so the model's lens diameter is aperture/2.
+    if (aperture != 0 && blurSamples <= 0) {
+        warnOnce("aperture-no-samples", apertureLoc, "'aperture' without 'blur_samples': no focal blur (as POV-Ray)");
+        aperture = 0;
+    }
+    c.aperture = std::fabs(aperture) / 2;
+    if (c.aperture > 0) {
+        const int spp = std::max(blurSamples, scene_.render.samplesPerPixel.value_or(0));
+        scene_.render.samplesPerPixel = spp;
+    }
+    return c;
+}
+
+Light PovParser::lightSource(SourceLoc loc) {
+    expectSymbol("{", "after 'light_source'");
+    Light l;
+    l.loc = loc;
+    const Tok first = peek();
+    const Cell id = first.kind == TokKind::Word ? use(first.text) : nullptr;
+    if (id && id->kind == Kind::Object && id->object->lightOnly && !id->object->lights.empty()) {
+        next();
+        l = id->object->lights.front();
+    } else {
+        l.position = vectorExpr();
+        acceptSymbol(",");
+        static const std::set<std::string> items = {
+            "spotlight", "area_light", "shadowless", "translate", "rotate", "scale", "matrix", "transform",
+            "fade_distance", "fade_power", "point_at", "radius", "falloff", "tightness", "looks_like",
+            "parallel", "cylinder", "media_interaction", "media_attenuation", "projected_through", "photons",
+            "area_illumination", "jitter", "adaptive", "circular", "orient"};
+        const Tok c = peek();
+        if (!c.is("}") && !(c.kind == TokKind::Word && items.count(c.text)))
+            l.color = toColorFT(colorExpr()).rgb;
+    }
+    for (;;) {
+        const Tok t = peek();
+        if (t.is("}")) {
+            next();
+            break;
+        }
+        if (std::optional<Transform> tr = transformItem()) {
+            l.position = tr->point(l.position);
+            l.pointAt = tr->point(l.pointAt);
+            if (l.area) {
+                l.area->axis1 = tr->vector(l.area->axis1);
+                l.area->axis2 = tr->vector(l.area->axis2);
+            }
+            continue;
+        }
+        next();
+        if (t.kind != TokKind::Word) failExpected(t, "a light_source item or '}'");
+        const std::string& w = t.text;
+        if (w == "color" || w == "colour" || w.rfind("rgb", 0) == 0 || w.rfind("srgb", 0) == 0) {
+            pushBack(t);
+            l.color = toColorFT(colorExpr()).rgb;
+        } else if (w == "spotlight") l.spotlight = true;
+        else if (w == "point_at") l.pointAt = vectorExpr();
+        else if (w == "radius") l.radius = floatExpr();
+        else if (w == "falloff") l.falloff = floatExpr();
+        else if (w == "tightness") l.tightness = floatExpr();
+        else if (w == "shadowless") l.shadowless = true;
+        else if (w == "fade_distance") l.fadeDistance = floatExpr();
+        else if (w == "fade_power") l.fadePower = floatExpr();
+        else if (w == "area_light") {
+            AreaLight a;
+            a.axis1 = vectorExpr();
+            acceptSymbol(",");
+            a.axis2 = vectorExpr();
+            acceptSymbol(",");
+            const SourceLoc at = peek().loc;
+            a.size1 = static_cast<int>(floatExpr());
+            acceptSymbol(",");
+            a.size2 = static_cast<int>(floatExpr());
+            if (a.size1 < 1 || a.size2 < 1) fail(at, "area_light sizes must be at least 1");
+            if (a.size1 * double(a.size2) > 1e6) fail(at, "area_light grid is too large");
+            // POV-Ray's semantics: edge-to-edge grid, shadow-only averaging unless area_illumination.
+            a.sampling = AreaSampling::PovGrid;
+            l.area = a;
+        } else if (w == "adaptive" || w == "jitter" || w == "circular" || w == "orient") {
+            if (!l.area) fail(t.loc, "'" + w + "' needs an area_light before it");
+            if (w == "adaptive") l.area->adaptive = static_cast<int>(floatExpr());
+            else if (w == "jitter") l.area->jitter = true;
+            else if (w == "circular") l.area->circular = true;
+            else l.area->orient = true;
+        } else if (w == "area_illumination") {
+            const Tok n = peekOperator();
+            l.areaIllumination = (n.kind == TokKind::Number || n.isWord("on") || n.isWord("off") ||
+                                  n.isWord("true") || n.isWord("false"))
+                                     ? boolExpr()
+                                     : true;
+        } else if (w == "looks_like" || w == "projected_through" || w == "photons") {
+            warnOnce("light-" + w, t.loc, "light_source '" + w + "' is not supported and is ignored");
+            expectSymbol("{", "");
+            skipBlock();
+        } else if (w == "parallel" || w == "cylinder") {
+            warnOnce("light-" + w, t.loc, "'" + w + "' lights are not supported; treated as a point light");
+        } else if (w == "media_interaction" || w == "media_attenuation") {
+            const Tok n = peekOperator();
+            if (n.kind == TokKind::Number || n.isWord("on") || n.isWord("off")) floatExpr();
+        } else {
+            failExpected(t, "a light_source item or '}'");
+        }
+    }
+    return l;
+}
+
+void PovParser::globalSettings() {
+    expectSymbol("{", "after 'global_settings'");
+    for (;;) {
+        const Tok t = next();
+        if (t.is("}")) return;
+        if (t.kind != TokKind::Word) failExpected(t, "a global setting or '}'");
+        const std::string& w = t.text;
+        if (w == "assumed_gamma") {
+            const SourceLoc at = peek().loc;
+            assumedGamma_ = floatExpr();
+            if (!(*assumedGamma_ > 0)) fail(at, "'assumed_gamma' must be positive");
+        } else if (w == "max_trace_level") {
+            scene_.global.maxTraceLevel = std::max(1, static_cast<int>(floatExpr()));
+        } else if (w == "ambient_light") {
+            scene_.global.ambientLight = toColorFT(colorExpr()).rgb;
+        } else if (w == "adc_bailout") {
+            scene_.global.adcBailout = floatExpr();
+        } else if (w == "radiosity" || w == "photons" || w == "subsurface") {
+            warnOnce("global-" + w, t.loc, "global_settings '" + w + "' is not supported and is ignored");
+            expectSymbol("{", "");
+            skipBlock();
+        } else if (w == "charset") {
+            next();
+        } else if (w == "number_of_waves" || w == "noise_generator" || w == "max_intersections" ||
+                   w == "hf_gray_16" || w == "mm_per_unit") {
+            const Tok n = peekOperator();
+            if (n.kind == TokKind::Number || n.kind == TokKind::Word) floatExpr();
+        } else if (w == "irid_wavelength") {
+            colorExpr();
+            warnOnce("global-irid", t.loc, "'irid_wavelength' is not supported and is ignored");
+        } else {
+            failExpected(t, "a global setting or '}'");
+        }
+    }
+}
+
+void PovParser::addToScene(PovObject o) {
+    scene_.lights.insert(scene_.lights.end(), o.lights.begin(), o.lights.end());
+    if (o.lightOnly) return;
+    o.lights.clear();
+    scene_.objects.push_back(toObject(o));
+}
+
+void PovParser::statement(const Tok& t) {
+    if (t.is(";")) return;
+    if (t.kind != TokKind::Word) failExpected(t, "an object, camera, light_source or directive");
+    const std::string& w = t.text;
+    if (isObjectWord(t) || w == "light_source") {
+        addToScene(object(t));
+    } else if (w == "camera") {
+        if (cameraSeen_) warnOnce("camera-twice", t.loc, "more than one camera: the last one is used (as POV-Ray)");
+        scene_.camera = camera(scene_.camera, t.loc);
+        cameraSeen_ = true;
+    } else if (w == "background") {
+        expectSymbol("{", "after 'background'");
+        scene_.background = toColorFT(colorExpr()).rgb;
+        expectSymbol("}", "after the background colour");
+    } else if (w == "sky_sphere") {
+        expectSymbol("{", "after 'sky_sphere'");
+        std::vector<Pigment> layers;
+        for (;;) {
+            const Tok s = next();
+            if (s.is("}")) break;
+            if (s.isWord("pigment")) layers.push_back(pigment(Pigment{}));
+            else if (s.isWord("emission")) colorExpr();
+            else if (s.isWord("translate") || s.isWord("rotate") || s.isWord("scale") || s.isWord("matrix") ||
+                     s.isWord("transform")) {
+                pushBack(s);
+                transformItem();
+            } else if (s.kind == TokKind::Word && lookup(s.text)) {
+                continue; // a sky_sphere identifier: its pigments are not kept
+            } else {
+                failExpected(s, "'pigment', a transform or '}' in sky_sphere");
+            }
+        }
+        // A solid sky_sphere is exactly a background colour; a pattern is averaged.
+        if (layers.size() > 1 || (!layers.empty() && layers.front().pattern != PatternKind::Solid))
+            warnOnce("sky_sphere", t.loc,
+                     "sky_sphere is approximated by a uniform background of its pigment's average colour");
+        if (!layers.empty()) scene_.background = pigmentAverage(layers.front()).rgb;
+    } else if (w == "global_settings") {
+        globalSettings();
+    } else if (w == "fog" || w == "rainbow" || w == "media" || w == "photons" || w == "radiosity") {
+        warnOnce(w, t.loc, "'" + w + "' is not supported and is ignored");
+        expectSymbol("{", ("after '" + w + "'").c_str());
+        skipBlock();
+    } else if (const Cell c = lookup(w)) {
+        fail(t.loc, std::string("a ") + kindName(c->kind) + " identifier cannot stand alone here" +
+                        (c->kind == Kind::Object ? " (write object { " + w + " })" : ""));
+    } else {
+        std::string message = "unknown keyword '" + w + "'";
+        static const std::vector<std::string> known = {"sphere", "box", "plane", "cylinder", "cone", "disc",
+                                                       "torus", "union", "difference", "intersection", "merge",
+                                                       "object", "camera", "light_source", "background",
+                                                       "sky_sphere", "global_settings", "mesh", "mesh2", "fog"};
+        if (const std::string near = nearestWord(w, known); !near.empty()) message += " (did you mean '" + near + "'?)";
+        fail(t.loc, message);
+    }
+}
+
+// POV-Ray's gamma rule (../shared/POVRAY-NOTES.md): assumed_gamma 1.0, or
+// #version 3.7+ without assumed_gamma, means linear colours. Otherwise the
+// scene's colours are already encoded with gamma g (2.2 when only an older
+// #version says so); drt renders in linear light, so they are decoded with
+// c^g here and the model's assumed_gamma is 1.
+void PovParser::finishScene() {
+    const double gamma = assumedGamma_ ? *assumedGamma_ : (version_ < 3.7 ? 2.2 : 1.0);
+    if (gamma != 1.0) {
+        for (Object& o : scene_.objects) decodeObject(o, gamma);
+        for (Light& l : scene_.lights) l.color = decodeGamma(l.color, gamma);
+        scene_.background = decodeGamma(scene_.background, gamma);
+    }
+    scene_.global.assumedGamma = 1.0;
+    if (!scene_.camera.right) scene_.camera.right = Vec3(1.33, 0, 0);
+    scene_.render.width = options_.imageWidth;
+    scene_.render.height = options_.imageHeight;
+}
+
+} // namespace drt::pov

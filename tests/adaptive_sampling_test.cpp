@@ -1,0 +1,184 @@
+// Adaptive sampling (render/render.cpp, "Adaptive sampling"): the stopping
+// rule, its round ends, determinism, options from the scene and the command
+// line, and the samples-per-pixel image. The bias test against a fixed-sample
+// reference is in statistical/adaptive_test.cpp.
+#include "render/render.h"
+
+#include "lang/load.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+namespace drt {
+namespace {
+
+// A red sphere on a grey floor before a flat sky: large smooth regions and edges.
+const char* kSphereScene = R"(
+camera { location <0, 1.5, -5> look_at <0, 0.8, 0> angle 50 }
+light_source { <-4, 6, -5>, color rgb 1 }
+background { color rgb <0.55, 0.7, 0.9> }
+sphere { <0, 1, 0>, 1 pigment { color rgb <0.8, 0.1, 0.1> } finish { phong 0.6 } }
+plane { y, 0 pigment { checker color rgb 0.2, color rgb 0.8 } }
+)";
+
+Scene parse(const std::string& text) {
+    Diagnostics diagnostics;
+    std::optional<Scene> scene = loadSceneText(text, "adaptive.drt", diagnostics);
+    EXPECT_TRUE(scene) << diagnostics.formatAll();
+    return scene ? *scene : Scene{};
+}
+
+RenderOptions adaptiveOptions(int w, int h, int minSpp, int maxSpp, double error) {
+    RenderOptions o;
+    o.width = w;
+    o.height = h;
+    o.threads = 1;
+    o.adaptive = true;
+    o.minSamplesPerPixel = minSpp;
+    o.maxSamplesPerPixel = maxSpp;
+    o.adaptiveError = error;
+    return o;
+}
+
+TEST(Adaptive, FlatImageStopsEveryPixelAtTheMinimum) {
+    Scene scene; // nothing but the background: every sample is the same colour
+    scene.background = {0.3, 0.5, 0.7};
+    const RenderResult r = render(scene, adaptiveOptions(8, 6, 8, 256, 0.01));
+    for (float n : r.sampleCount.pixels) EXPECT_EQ(n, 8.0f);
+    EXPECT_EQ(r.stats.pixelSamples, 8u * 6u * 8u);
+    EXPECT_EQ(r.stats.minPixelSamples, 8);
+    EXPECT_EQ(r.stats.maxPixelSamples, 8);
+    EXPECT_TRUE(r.stats.effects.adaptive);
+}
+
+TEST(Adaptive, RoundsEndAtTheMinimumThenPowersOfTwoThenTheMaximum) {
+    const Scene scene = parse(kSphereScene);
+    // A target no pixel can meet with noise: every noisy pixel runs to the maximum
+    // through the round ends 10, 16, 32, 64, 100.
+    const RenderResult r = render(scene, adaptiveOptions(24, 18, 10, 100, 1e-9));
+    const std::set<float> allowed{10, 16, 32, 64, 100};
+    std::set<float> seen(r.sampleCount.pixels.begin(), r.sampleCount.pixels.end());
+    for (float n : seen) EXPECT_TRUE(allowed.count(n)) << n;
+    EXPECT_TRUE(seen.count(100)) << "edge pixels must reach the maximum";
+    EXPECT_TRUE(seen.count(10)) << "flat sky pixels must stop at the minimum";
+    EXPECT_EQ(r.stats.maxPixelSamples, 100);
+    EXPECT_EQ(r.stats.minPixelSamples, 10);
+    uint64_t total = 0;
+    for (float n : r.sampleCount.pixels) total += uint64_t(n);
+    EXPECT_EQ(total, r.stats.pixelSamples);
+    EXPECT_EQ(r.stats.cameraRays, r.stats.pixelSamples); // no secondary rays in this scene
+}
+
+TEST(Adaptive, LooserTargetsTakeFewerSamples) {
+    const Scene scene = parse(kSphereScene);
+    const RenderResult tight = render(scene, adaptiveOptions(24, 18, 4, 512, 0.005));
+    const RenderResult loose = render(scene, adaptiveOptions(24, 18, 4, 512, 0.1));
+    EXPECT_LT(loose.stats.pixelSamples, tight.stats.pixelSamples);
+    // And the stopping rule holds wherever a pixel stopped before the maximum.
+    for (int y = 0; y < 18; ++y)
+        for (int x = 0; x < 24; ++x) {
+            if (loose.sampleCount.at(x, y, 0) >= 512) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double mean = loose.color.at(x, y, c), var = loose.variance.at(x, y, c);
+                EXPECT_LE(var, 0.1 * 0.1 * (mean * mean + 0.01) * (1 + 1e-5)) << x << "," << y;
+            }
+        }
+}
+
+TEST(Adaptive, ImageIsBitIdenticalForAnyThreadCountAndTileSize) {
+    const Scene scene = parse(kSphereScene);
+    RenderOptions one = adaptiveOptions(40, 30, 4, 128, 0.02);
+    RenderOptions many = one;
+    many.threads = 3;
+    many.tileSize = 7;
+    const RenderResult a = render(scene, one), b = render(scene, many);
+    EXPECT_EQ(a.color.pixels, b.color.pixels);
+    EXPECT_EQ(a.variance.pixels, b.variance.pixels);
+    EXPECT_EQ(a.sampleCount.pixels, b.sampleCount.pixels);
+    EXPECT_EQ(a.stats.totalRays(), b.stats.totalRays());
+}
+
+TEST(Adaptive, FixedSamplingRecordsItsCountEverywhere) {
+    Scene scene;
+    RenderOptions o;
+    o.width = 5;
+    o.height = 4;
+    o.samplesPerPixel = 3;
+    const RenderResult r = render(scene, o);
+    for (float n : r.sampleCount.pixels) EXPECT_EQ(n, 3.0f);
+    EXPECT_EQ(r.stats.pixelSamples, 60u);
+    EXPECT_FALSE(r.stats.effects.adaptive);
+    EXPECT_TRUE(r.stats.effects.antialiasing);
+}
+
+TEST(Adaptive, InvalidOptionsAreRenderErrors) {
+    const Scene scene;
+    EXPECT_THROW(render(scene, adaptiveOptions(4, 4, 32, 16, 0.02)), RenderError); // max < min
+    EXPECT_THROW(render(scene, adaptiveOptions(4, 4, 0, 16, 0.02)), RenderError);
+    EXPECT_THROW(render(scene, adaptiveOptions(4, 4, 4, 16, 0)), RenderError);
+    EXPECT_THROW(render(scene, adaptiveOptions(4, 4, 4, 16, -1)), RenderError);
+    EXPECT_THROW(render(scene, adaptiveOptions(4, 4, 4, (1 << 24) + 1, 0.02)), RenderError);
+}
+
+TEST(Adaptive, SceneBlockSetsTheOptionsAndTheCommandLineOverridesThem) {
+    const Scene scene = parse("render { samples 4 adaptive { error 0.05 min_samples 8 max_samples 64 } }");
+    RenderOptions o = resolveRenderOptions(scene, {});
+    EXPECT_TRUE(o.adaptive);
+    EXPECT_EQ(o.adaptiveError, 0.05);
+    EXPECT_EQ(o.minSamplesPerPixel, 8);
+    EXPECT_EQ(o.maxSamplesPerPixel, 64);
+    RenderOverrides overrides;
+    overrides.adaptive = false;
+    overrides.maxSamplesPerPixel = 32;
+    o = resolveRenderOptions(scene, overrides);
+    EXPECT_FALSE(o.adaptive);
+    EXPECT_EQ(o.maxSamplesPerPixel, 32);
+
+    const Scene bare = parse("render { adaptive }");
+    o = resolveRenderOptions(bare, {});
+    EXPECT_TRUE(o.adaptive);
+    EXPECT_EQ(o.minSamplesPerPixel, RenderOptions{}.minSamplesPerPixel);
+    EXPECT_FALSE(resolveRenderOptions(Scene{}, {}).adaptive);
+}
+
+TEST(Adaptive, BadSceneValuesAreErrorsWithALocation) {
+    const auto errors = [](const std::string& text) {
+        Diagnostics diagnostics;
+        EXPECT_FALSE(loadSceneText(text, "bad.drt", diagnostics));
+        return diagnostics.formatAll();
+    };
+    EXPECT_NE(errors("render {\n  adaptive { min_samples 64 max_samples 8 }\n}").find("bad.drt:2:3"),
+              std::string::npos);
+    EXPECT_NE(errors("render { adaptive { error 0 } }").find("'error' must be positive"), std::string::npos);
+    EXPECT_NE(errors("render { adaptive { max_samples 0 } }").find("'max_samples'"), std::string::npos);
+    EXPECT_NE(errors("render { adaptive { eror 0.1 } }").find("error"), std::string::npos);
+}
+
+TEST(Adaptive, CommandLineWritesTheSamplesPerPixelImageAndReportsIt) {
+    const std::string dir = test::tempDir();
+    const std::string scene = test::writeFile(dir + "/s.drt", std::string(kSphereScene));
+    const test::CommandResult r =
+        test::runDrt("render '" + scene + "' -o '" + dir + "/out.exr' --width 24 --height 18 --adaptive "
+                     "--adaptive-error 0.05 --min-spp 4 --max-spp 64 --spp-image '" + dir + "/spp.exr'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("adaptive"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("effects: AA, adaptive"), std::string::npos) << r.err;
+    Image counts;
+    ASSERT_EQ(readImage(dir + "/spp.exr", counts), "");
+    ASSERT_EQ(counts.width, 24);
+    const auto [lo, hi] = std::minmax_element(counts.pixels.begin(), counts.pixels.end());
+    EXPECT_EQ(*lo, 4.0f);
+    EXPECT_LE(*hi, 64.0f);
+    EXPECT_GT(*hi, 4.0f);
+
+    const test::CommandResult bad = test::runDrt("render '" + scene + "' -o '" + dir +
+                                                 "/x.exr' --adaptive --min-spp 64 --max-spp 8");
+    EXPECT_EQ(bad.exitCode, 1) << bad.err;
+    EXPECT_NE(bad.err.find("below the minimum"), std::string::npos) << bad.err;
+}
+
+} // namespace
+} // namespace drt
