@@ -28,7 +28,8 @@ std::string describe(const golden::RunSummary& summary) {
 
 const golden::CaseResult* findCase(const golden::RunSummary& summary, const std::string& name) {
     for (const auto& r : summary.cases)
-        if (r.name == name) return &r;
+        if (r.name == name)
+            return &r;
     return nullptr;
 }
 
@@ -43,7 +44,8 @@ golden::RunSummary run(const std::string& folder, bool update = false) {
 
 TEST(GoldenSuite, EveryExampleHasAnExactGoldenOfAtMost128Pixels) {
     for (const auto& entry : fs::directory_iterator(test::sourcePath("examples"))) {
-        if (entry.path().extension() != ".drt") continue;
+        if (entry.path().extension() != ".drt")
+            continue;
         const std::string name = entry.path().stem().string();
         const std::string sidecar = test::sourcePath("tests/golden/" + name + ".golden.json");
         golden::GoldenSettings settings;
@@ -62,24 +64,44 @@ TEST(GoldenSuite, EveryGoldenInTestsGoldenPasses) {
     EXPECT_TRUE(summary.allPassed()) << describe(summary);
     EXPECT_EQ(summary.passed, int(summary.cases.size())) << describe(summary);
     int statistical = 0;
-    for (const auto& r : summary.cases) statistical += r.policy == golden::Policy::Statistical;
+    for (const auto& r : summary.cases)
+        statistical += r.policy == golden::Policy::Statistical;
     EXPECT_GE(statistical, 3) << "the statistical suite has shrunk";
 }
 
 TEST(GoldenSuite, FolderStaysWithinAFewMegabytes) {
     uintmax_t bytes = 0;
     for (const auto& entry : fs::directory_iterator(test::sourcePath("tests/golden")))
-        if (entry.is_regular_file()) bytes += entry.file_size();
+        if (entry.is_regular_file())
+            bytes += entry.file_size();
     EXPECT_LT(bytes, uintmax_t(4) << 20);
+}
+
+TEST(GoldenSuite, TheSidecarInTheManualIsValid) {
+    const std::string manual = test::readFile(test::sourcePath("docs/golden-tests.md"));
+    const size_t open = manual.find("```json\n");
+    ASSERT_NE(open, std::string::npos);
+    const size_t close = manual.find("```", open + 8);
+    ASSERT_NE(close, std::string::npos);
+    const std::string path =
+        test::writeFile(test::tempDir() + "/doc.golden.json", manual.substr(open + 8, close - open - 8));
+    golden::GoldenSettings settings;
+    EXPECT_EQ(golden::readSettings(path, settings), "");
+    EXPECT_EQ(settings.scene, "../../examples/whitted.drt");
+    EXPECT_EQ(settings.samplesPerPixel, 9);
 }
 
 // A tiny scene whose sphere colour is a parameter, so a test can "break" it.
 std::string tinyScene(const std::string& sphereColour, const std::string& light = "1") {
     return "render { width 24 height 16 samples 2 seed 3 }\n"
            "camera { location <0, 1, -4> look_at <0, 0.5, 0> angle 50 }\n"
-           "light_source { <-3, 5, -4>, color rgb " + light + " }\n"
+           "light_source { <-3, 5, -4>, color rgb " +
+           light +
+           " }\n"
            "background { color rgb <0.2, 0.3, 0.5> }\n"
-           "sphere { <0, 0.5, 0>, 0.5 pigment { color rgb " + sphereColour + " } }\n"
+           "sphere { <0, 0.5, 0>, 0.5 pigment { color rgb " +
+           sphereColour +
+           " } }\n"
            "plane { y, 0 pigment { color rgb 0.7 } }\n";
 }
 
@@ -203,7 +225,8 @@ TEST(GoldenRunner, StatisticalPolicyPassesNoiseAndFailsABias) {
     // Other seeds: noise only, passes (alpha 0.01 per seed; these seeds are fixed).
     for (int seed : {4, 5, 6}) {
         test::writeFile(dir + "/shadow.golden.json",
-                        R"({ "policy": "statistical", "reference_spp": 256, "seed": )" + std::to_string(seed) + "}");
+                        R"({ "policy": "statistical", "reference_spp": 256, "seed": )" +
+                            std::to_string(seed) + "}");
         const golden::RunSummary summary = run(dir);
         EXPECT_EQ(summary.passed, 1) << "seed " << seed << ": " << describe(summary);
     }

@@ -60,8 +60,8 @@ Vec3 unitOr(const Vec3& v, const Vec3& fallback) {
 // the triangle. The barycentrics are clamped to the triangle, as the hit lies
 // on it up to float error. A ray (nearly) parallel to the plane keeps
 // Embree's values: det is then too small to divide by.
-void resolveTriangleHit(const Vec3& o, const Vec3& d, const Vec3& p0, const Vec3& p1, const Vec3& p2, double& t,
-                        double& u, double& v) {
+void resolveTriangleHit(const Vec3& o, const Vec3& d, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                        double& t, double& u, double& v) {
     const Vec3 e1 = p1 - p0, e2 = p2 - p0;
     const Vec3 pv = cross(d, e2);
     const double det = dot(e1, pv);

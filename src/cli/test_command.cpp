@@ -15,13 +15,14 @@ namespace {
 
 // The figures a reader needs to judge a failed comparison, on one line.
 std::string failureFigures(const CompareResult& r) {
-    std::string line = fmt::format("RMSE {:.3g}, bias {:+.3g}, max error {:.3g} at ({}, {}), NaN/Inf pixels {}",
-                                   r.rmse, r.meanSignedError, r.maxError, r.maxErrorX, r.maxErrorY,
-                                   r.nonFinitePixels);
+    std::string line =
+        fmt::format("RMSE {:.3g}, bias {:+.3g}, max error {:.3g} at ({}, {}), NaN/Inf pixels {}", r.rmse,
+                    r.meanSignedError, r.maxError, r.maxErrorX, r.maxErrorY, r.nonFinitePixels);
     if (r.statistical) {
         double worst = 0;
         for (double z : r.globalZ)
-            if (std::fabs(z) > std::fabs(worst)) worst = z;
+            if (std::fabs(z) > std::fabs(worst))
+                worst = z;
         line += fmt::format("; global z {:+.2f} (limit {:.2f}), {} of {} tiles fail (limit {:.2f})", worst,
                             r.globalZThreshold, r.failingTiles, r.tileTests, r.tileZThreshold);
     } else {
@@ -49,7 +50,8 @@ int runTest(const TestCommand& command, std::ostream& out, std::ostream& err) {
                            golden::policyName(r.policy), r.seconds, r.message.empty() ? "" : "  ", r.message);
         if (r.outcome == golden::Outcome::Fail && r.comparison)
             out << "         " << failureFigures(*r.comparison) << "\n";
-        if (!r.details.empty()) out << r.details;
+        if (!r.details.empty())
+            out << r.details;
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (command.update)
@@ -57,8 +59,8 @@ int runTest(const TestCommand& command, std::ostream& out, std::ostream& err) {
                            summary.cases.size(), summary.updated, summary.errors, seconds);
     else
         out << fmt::format("drt test {}: {} tests, {} passed, {} failed, {} missing, {} errors in {:.1f} s\n",
-                           command.folder, summary.cases.size(), summary.passed, summary.failed, summary.missing,
-                           summary.errors, seconds);
+                           command.folder, summary.cases.size(), summary.passed, summary.failed,
+                           summary.missing, summary.errors, seconds);
 
     if (!command.reportDir.empty() && !command.update) {
         if (std::string problem = golden::writeReport(command.reportDir, summary); !problem.empty()) {

@@ -33,9 +33,9 @@ const char* policyName(Policy policy); // "exact" / "statistical"
 
 // The sidecar NAME.golden.json. Every field has a default; --update writes them all.
 struct GoldenSettings {
-    std::string scene;      // as written in the sidecar ("" : NAME.drt beside it)
+    std::string scene; // as written in the sidecar ("" : NAME.drt beside it)
     Policy policy = Policy::Exact;
-    std::string format = "exr"; // golden image files: "exr", "png" or "both"
+    std::string format = "exr";                        // golden image files: "exr", "png" or "both"
     std::optional<int> width, height, samplesPerPixel; // unset: the scene's own
     std::optional<uint64_t> seed;
     std::optional<std::string> sampler;
@@ -96,8 +96,8 @@ struct CaseResult {
 };
 
 struct RunOptions {
-    bool update = false;            // rewrite goldens (and variance images) instead of comparing
-    std::vector<std::string> only;  // test names to run; empty: all
+    bool update = false;           // rewrite goldens (and variance images) instead of comparing
+    std::vector<std::string> only; // test names to run; empty: all
     // Called once per finished case, from the thread that ran it (serialise
     // output yourself); may be empty.
     std::function<void(const CaseResult&)> onCaseDone;

@@ -19,11 +19,20 @@ std::string escapeHtml(const std::string& text) {
     std::string out;
     for (char ch : text) {
         switch (ch) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        default: out += ch;
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            out += ch;
         }
     }
     return out;
@@ -51,11 +60,14 @@ std::string figuresTable(const CompareResult& r) {
     row("pixels over the fail threshold", std::to_string(r.failingPixels));
     if (r.statistical) {
         std::string z;
-        for (double g : r.globalZ) z += fmt::format("{}{:+.2f}", z.empty() ? "" : ", ", g);
+        for (double g : r.globalZ)
+            z += fmt::format("{}{:+.2f}", z.empty() ? "" : ", ", g);
         row("global z per channel", fmt::format("{} (reject above {:.2f})", z, r.globalZThreshold));
-        row("failing tiles", fmt::format("{} of {} (|z| > {:.2f})", r.failingTiles, r.tileTests, r.tileZThreshold));
-        row("worst tile", fmt::format("at ({}, {}) channel {}: z {:+.2f}, mean error {:.4g}", r.worstTile.x0,
-                                      r.worstTile.y0, r.worstTile.channel, r.worstTile.z, r.worstTile.meanError));
+        row("failing tiles",
+            fmt::format("{} of {} (|z| > {:.2f})", r.failingTiles, r.tileTests, r.tileZThreshold));
+        row("worst tile",
+            fmt::format("at ({}, {}) channel {}: z {:+.2f}, mean error {:.4g}", r.worstTile.x0,
+                        r.worstTile.y0, r.worstTile.channel, r.worstTile.z, r.worstTile.meanError));
     }
     return "<table>\n" + rows + "</table>\n";
 }
@@ -72,17 +84,21 @@ table { border-collapse: collapse; } th, td { text-align: left; padding: 0.1em 0
 std::string writeReport(const std::string& reportDir, const RunSummary& summary) {
     std::error_code ec;
     fs::create_directories(reportDir, ec);
-    if (!fs::is_directory(reportDir, ec)) return fmt::format("{}: cannot create the report folder", reportDir);
+    if (!fs::is_directory(reportDir, ec))
+        return fmt::format("{}: cannot create the report folder", reportDir);
     const fs::path dir(reportDir);
 
     std::string body;
     int listed = 0;
     for (const CaseResult& r : summary.cases) {
-        if (r.outcome == Outcome::Pass || r.outcome == Outcome::Updated) continue;
+        if (r.outcome == Outcome::Pass || r.outcome == Outcome::Updated)
+            continue;
         ++listed;
-        body += fmt::format("<section id=\"{0}\">\n<h2>{0} <span class=\"{1}\">{1}</span> ({2})</h2>\n<p>{3}</p>\n",
-                            escapeHtml(r.name), outcomeName(r.outcome), policyName(r.policy), escapeHtml(r.message));
-        if (!r.details.empty()) body += "<pre>" + escapeHtml(r.details) + "</pre>\n";
+        body += fmt::format(
+            "<section id=\"{0}\">\n<h2>{0} <span class=\"{1}\">{1}</span> ({2})</h2>\n<p>{3}</p>\n",
+            escapeHtml(r.name), outcomeName(r.outcome), policyName(r.policy), escapeHtml(r.message));
+        if (!r.details.empty())
+            body += "<pre>" + escapeHtml(r.details) + "</pre>\n";
         if (r.candidate.width == 0 || r.golden.width == 0) {
             body += "</section>\n";
             continue;
@@ -101,27 +117,33 @@ std::string writeReport(const std::string& reportDir, const RunSummary& summary)
         if (sameSize) {
             const double scale = r.comparison ? r.comparison->maxError : 0;
             images.emplace_back(r.name + ".diff.png", errorHeatmap(r.candidate, r.golden));
-            figures.emplace_back(r.name + ".diff.png",
-                                 fmt::format("|error|: black 0, pale yellow {:.3g} (square-root ramp), green NaN/Inf", scale));
+            figures.emplace_back(
+                r.name + ".diff.png",
+                fmt::format("|error|: black 0, pale yellow {:.3g} (square-root ramp), green NaN/Inf", scale));
             if (r.policy == Policy::Statistical && r.goldenVariance.width == r.golden.width) {
                 VarianceImages variance;
                 variance.reference = &r.goldenVariance;
-                if (r.candidateVariance.width == r.candidate.width) variance.candidate = &r.candidateVariance;
+                if (r.candidateVariance.width == r.candidate.width)
+                    variance.candidate = &r.candidateVariance;
                 images.emplace_back(r.name + ".zmap.png", zScoreMap(r.candidate, r.golden, variance));
-                figures.emplace_back(r.name + ".zmap.png", "z-score of candidate - golden: blue -4, white 0, red +4");
+                figures.emplace_back(r.name + ".zmap.png",
+                                     "z-score of candidate - golden: blue -4, white 0, red +4");
             }
         }
         for (const auto& [file, image] : images)
-            if (std::string problem = writeImage((dir / file).string(), image); !problem.empty()) return problem;
-        for (const auto& [file, caption] : figures) body += figure(file, caption);
-        if (r.comparison) body += figuresTable(*r.comparison);
+            if (std::string problem = writeImage((dir / file).string(), image); !problem.empty())
+                return problem;
+        for (const auto& [file, caption] : figures)
+            body += figure(file, caption);
+        if (r.comparison)
+            body += figuresTable(*r.comparison);
         body += fmt::format("<p><a href=\"{0}\">{0}</a>: the candidate in linear floats.</p>\n",
                             escapeHtml(r.name + ".candidate.exr"));
         body += "</section>\n";
     }
 
-    const std::string title = fmt::format("drt test: {} passed, {} failed, {} missing, {} errors", summary.passed,
-                                          summary.failed, summary.missing, summary.errors);
+    const std::string title = fmt::format("drt test: {} passed, {} failed, {} missing, {} errors",
+                                          summary.passed, summary.failed, summary.missing, summary.errors);
     const std::string page = fmt::format(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{0}</title>\n"
         "<style>\n{1}\n</style>\n</head>\n<body>\n<h1>{0}</h1>\n{2}{3}</body>\n</html>\n",
@@ -131,10 +153,12 @@ std::string writeReport(const std::string& reportDir, const RunSummary& summary)
     {
         std::ofstream out(temporary);
         out << page;
-        if (!out) return fmt::format("{}: cannot write", index.string());
+        if (!out)
+            return fmt::format("{}: cannot write", index.string());
     }
     fs::rename(temporary, index, ec);
-    if (ec) return fmt::format("{}: cannot write: {}", index.string(), ec.message());
+    if (ec)
+        return fmt::format("{}: cannot write: {}", index.string(), ec.message());
     return "";
 }
 

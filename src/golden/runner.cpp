@@ -24,11 +24,16 @@ namespace drt::golden {
 
 const char* outcomeName(Outcome outcome) {
     switch (outcome) {
-    case Outcome::Pass: return "PASS";
-    case Outcome::Fail: return "FAIL";
-    case Outcome::Missing: return "MISSING";
-    case Outcome::Error: return "ERROR";
-    case Outcome::Updated: return "UPDATED";
+    case Outcome::Pass:
+        return "PASS";
+    case Outcome::Fail:
+        return "FAIL";
+    case Outcome::Missing:
+        return "MISSING";
+    case Outcome::Error:
+        return "ERROR";
+    case Outcome::Updated:
+        return "UPDATED";
     }
     return "?";
 }
@@ -59,7 +64,7 @@ bool exists(const std::string& path) {
 
 // A private scratch folder for format round trips, removed with the object.
 class ScratchFolder {
-public:
+  public:
     ScratchFolder() {
         static std::atomic<int> counter{0};
         std::error_code ec;
@@ -72,7 +77,7 @@ public:
     }
     std::string file(const std::string& name) const { return (path_ / name).string(); }
 
-private:
+  private:
     fs::path path_;
 };
 
@@ -81,13 +86,15 @@ private:
 std::string roundTrip(const Image& image, const std::string& goldenPath, const ScratchFolder& scratch,
                       const std::string& name, Image& stored) {
     const std::string path = scratch.file(name + ".candidate" + fs::path(goldenPath).extension().string());
-    if (std::string problem = writeImage(path, image); !problem.empty()) return problem;
+    if (std::string problem = writeImage(path, image); !problem.empty())
+        return problem;
     return readImage(path, stored);
 }
 
 bool allFinite(const Image& image) {
     for (float v : image.pixels)
-        if (!std::isfinite(v)) return false;
+        if (!std::isfinite(v))
+            return false;
     return true;
 }
 
@@ -107,7 +114,8 @@ struct Prepared {
 bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) {
     if (c.sidecarPath.empty() && !update) {
         result.outcome = Outcome::Missing;
-        result.message = fmt::format("no {}{} (create the golden with drt test --update)", c.name, kSidecarSuffix);
+        result.message =
+            fmt::format("no {}{} (create the golden with drt test --update)", c.name, kSidecarSuffix);
         return false;
     }
     if (!c.sidecarPath.empty()) {
@@ -118,8 +126,9 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
     }
     result.policy = p.settings.policy;
     const std::string scenePath =
-        p.settings.scene.empty() ? c.scenePath
-                                 : (fs::path(c.sidecarPath).parent_path() / p.settings.scene).lexically_normal().string();
+        p.settings.scene.empty()
+            ? c.scenePath
+            : (fs::path(c.sidecarPath).parent_path() / p.settings.scene).lexically_normal().string();
     if (!exists(scenePath)) {
         result.message = fmt::format("{}: no such scene file", scenePath);
         return false;
@@ -183,7 +192,8 @@ void updateCase(const GoldenCase& c, Prepared& p, CaseResult& result) {
     const bool png = s.format != "exr";
     const bool exr = s.format != "png";
     for (const auto& [wanted, path] : {std::pair{exr, c.exrPath}, std::pair{png, c.pngPath}}) {
-        if (!wanted) continue;
+        if (!wanted)
+            continue;
         if (std::string problem = writeImage(path, rendered.color, metadata); !problem.empty()) {
             result.message = problem;
             return;
@@ -193,7 +203,8 @@ void updateCase(const GoldenCase& c, Prepared& p, CaseResult& result) {
     if (s.policy == Policy::Statistical) {
         Metadata varianceMetadata = metadata;
         varianceMetadata.emplace_back("drt:content", "variance of the mean");
-        if (std::string problem = writeImage(c.variancePath, rendered.variance, varianceMetadata); !problem.empty()) {
+        if (std::string problem = writeImage(c.variancePath, rendered.variance, varianceMetadata);
+            !problem.empty()) {
             result.message = problem;
             return;
         }
@@ -206,10 +217,12 @@ void updateCase(const GoldenCase& c, Prepared& p, CaseResult& result) {
         result.message = problem;
         return;
     }
-    if (c.sidecarPath.empty()) written.push_back(fs::path(sidecar).filename().string());
+    if (c.sidecarPath.empty())
+        written.push_back(fs::path(sidecar).filename().string());
     result.outcome = Outcome::Updated;
     std::string files;
-    for (const std::string& f : written) files += (files.empty() ? "" : ", ") + f;
+    for (const std::string& f : written)
+        files += (files.empty() ? "" : ", ") + f;
     result.message = fmt::format("wrote {} ({}x{}, {} spp, seed {})", files, options.width, options.height,
                                  options.samplesPerPixel, options.seed);
 }
@@ -239,7 +252,8 @@ void compareExact(const GoldenCase& c, const Prepared& p, const Image& candidate
     ScratchFolder scratch;
     // Every golden format the sidecar names must match; the first failure is kept.
     for (const std::string& path : {c.exrPath, c.pngPath}) {
-        if ((path == c.exrPath && s.format == "png") || (path == c.pngPath && s.format == "exr")) continue;
+        if ((path == c.exrPath && s.format == "png") || (path == c.pngPath && s.format == "exr"))
+            continue;
         Image golden, stored;
         if (std::string problem = readImage(path, golden); !problem.empty()) {
             result.outcome = Outcome::Error;
@@ -280,8 +294,9 @@ void compareStatistical(const GoldenCase& c, const Prepared& p, RenderResult& re
     // property of the scene, estimated far better by the golden:
     // sigma^2 = Var_golden * N_golden, so Var_candidate >= sigma^2 / N_candidate.
     // (A stratified sampler's true variance is lower still: conservative.)
-    const double scale = double(p.settings.referenceSamplesPerPixel.value_or(64 * p.options.samplesPerPixel)) /
-                         double(p.options.samplesPerPixel);
+    const double scale =
+        double(p.settings.referenceSamplesPerPixel.value_or(64 * p.options.samplesPerPixel)) /
+        double(p.options.samplesPerPixel);
     if (goldenVariance.pixels.size() == rendered.variance.pixels.size())
         for (size_t i = 0; i < goldenVariance.pixels.size(); ++i)
             rendered.variance.pixels[i] =
@@ -310,7 +325,8 @@ CaseResult runCase(const GoldenCase& c, bool update) {
             const bool isExact = p.settings.policy == Policy::Exact;
             const std::string format = p.settings.format;
             const bool haveGolden = (format == "png" || exists(c.exrPath)) &&
-                                    (format == "exr" || exists(c.pngPath)) && (isExact || exists(c.variancePath));
+                                    (format == "exr" || exists(c.pngPath)) &&
+                                    (isExact || exists(c.variancePath));
             if (update) {
                 updateCase(c, p, result);
             } else if (!haveGolden) {
@@ -321,8 +337,10 @@ CaseResult runCase(const GoldenCase& c, bool update) {
                 result.message = fmt::format("no {} (create it with drt test --update)", images);
             } else {
                 RenderResult rendered = render(p.scene, p.options);
-                if (isExact) compareExact(c, p, rendered.color, result);
-                else compareStatistical(c, p, rendered, result);
+                if (isExact)
+                    compareExact(c, p, rendered.color, result);
+                else
+                    compareStatistical(c, p, rendered, result);
             }
         }
     } catch (const std::exception& e) {
@@ -338,20 +356,27 @@ CaseResult runCase(const GoldenCase& c, bool update) {
 std::string discoverCases(const std::string& folder, std::vector<GoldenCase>& cases) {
     cases.clear();
     std::error_code ec;
-    if (!fs::is_directory(folder, ec)) return fmt::format("{}: not a folder", folder);
+    if (!fs::is_directory(folder, ec))
+        return fmt::format("{}: not a folder", folder);
     std::vector<std::string> sidecars, scenes;
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string file = it->path().filename().string();
-        if (!it->is_regular_file(ec)) continue;
-        if (endsWith(file, kSidecarSuffix)) sidecars.push_back(file.substr(0, file.size() - std::strlen(kSidecarSuffix)));
-        else if (endsWith(file, ".drt")) scenes.push_back(file.substr(0, file.size() - 4));
+        if (!it->is_regular_file(ec))
+            continue;
+        if (endsWith(file, kSidecarSuffix))
+            sidecars.push_back(file.substr(0, file.size() - std::strlen(kSidecarSuffix)));
+        else if (endsWith(file, ".drt"))
+            scenes.push_back(file.substr(0, file.size() - 4));
     }
-    if (ec) return fmt::format("{}: cannot list the folder: {}", folder, ec.message());
-    for (const std::string& name : sidecars) cases.push_back(makeCase(folder, name, true));
+    if (ec)
+        return fmt::format("{}: cannot list the folder: {}", folder, ec.message());
+    for (const std::string& name : sidecars)
+        cases.push_back(makeCase(folder, name, true));
     for (const std::string& name : scenes)
         if (std::find(sidecars.begin(), sidecars.end(), name) == sidecars.end())
             cases.push_back(makeCase(folder, name, false));
-    std::sort(cases.begin(), cases.end(), [](const GoldenCase& a, const GoldenCase& b) { return a.name < b.name; });
+    std::sort(cases.begin(), cases.end(),
+              [](const GoldenCase& a, const GoldenCase& b) { return a.name < b.name; });
     return "";
 }
 
@@ -359,10 +384,12 @@ RunSummary runGoldenTests(const std::string& folder, const RunOptions& options, 
     RunSummary summary;
     std::vector<GoldenCase> cases;
     error = discoverCases(folder, cases);
-    if (!error.empty()) return summary;
+    if (!error.empty())
+        return summary;
     if (!options.only.empty()) {
         for (const std::string& name : options.only)
-            if (std::none_of(cases.begin(), cases.end(), [&](const GoldenCase& c) { return c.name == name; })) {
+            if (std::none_of(cases.begin(), cases.end(),
+                             [&](const GoldenCase& c) { return c.name == name; })) {
                 error = fmt::format("{}: no test named '{}'", folder, name);
                 return summary;
             }
@@ -373,15 +400,26 @@ RunSummary runGoldenTests(const std::string& folder, const RunOptions& options, 
     summary.cases.resize(cases.size());
     tbb::parallel_for(size_t(0), cases.size(), [&](size_t i) {
         summary.cases[i] = runCase(cases[i], options.update);
-        if (options.onCaseDone) options.onCaseDone(summary.cases[i]);
+        if (options.onCaseDone)
+            options.onCaseDone(summary.cases[i]);
     });
     for (const CaseResult& r : summary.cases) {
         switch (r.outcome) {
-        case Outcome::Pass: ++summary.passed; break;
-        case Outcome::Fail: ++summary.failed; break;
-        case Outcome::Missing: ++summary.missing; break;
-        case Outcome::Error: ++summary.errors; break;
-        case Outcome::Updated: ++summary.updated; break;
+        case Outcome::Pass:
+            ++summary.passed;
+            break;
+        case Outcome::Fail:
+            ++summary.failed;
+            break;
+        case Outcome::Missing:
+            ++summary.missing;
+            break;
+        case Outcome::Error:
+            ++summary.errors;
+            break;
+        case Outcome::Updated:
+            ++summary.updated;
+            break;
         }
     }
     return summary;

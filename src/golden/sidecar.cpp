@@ -32,20 +32,22 @@ using nlohmann::json;
 
 namespace drt::golden {
 
-const char* policyName(Policy policy) { return policy == Policy::Exact ? "exact" : "statistical"; }
+const char* policyName(Policy policy) {
+    return policy == Policy::Exact ? "exact" : "statistical";
+}
 
 namespace {
 
-const char* const kKeys[] = {"scene",     "policy",       "format", "width", "height",    "spp",
-                             "seed",      "sampler",      "threads", "fail",    "fail_percent",
-                             "alpha",     "tile_size",    "reference_spp", "reference_seed"};
+const char* const kKeys[] = {"scene",        "policy", "format",    "width",         "height",
+                             "spp",          "seed",   "sampler",   "threads",       "fail",
+                             "fail_percent", "alpha",  "tile_size", "reference_spp", "reference_seed"};
 
 // Reads `key` into `out` if present; throws std::runtime_error with the key's
 // name when the value has the wrong type or lies outside [low, high].
-template <typename T>
-void readNumber(const json& object, const char* key, T& out, double low, double high) {
+template <typename T> void readNumber(const json& object, const char* key, T& out, double low, double high) {
     const auto it = object.find(key);
-    if (it == object.end()) return;
+    if (it == object.end())
+        return;
     const bool integral = std::is_integral_v<T>;
     if (!it->is_number() || (integral && !it->is_number_integer()))
         throw std::runtime_error(fmt::format("'{}' must be {}", key, integral ? "an integer" : "a number"));
@@ -57,7 +59,8 @@ void readNumber(const json& object, const char* key, T& out, double low, double 
 
 template <typename T>
 void readOptional(const json& object, const char* key, std::optional<T>& out, double low, double high) {
-    if (!object.contains(key)) return;
+    if (!object.contains(key))
+        return;
     T value{};
     readNumber(object, key, value, low, high);
     out = value;
@@ -65,27 +68,35 @@ void readOptional(const json& object, const char* key, std::optional<T>& out, do
 
 std::string readString(const json& object, const char* key) {
     const json& value = object.at(key);
-    if (!value.is_string()) throw std::runtime_error(fmt::format("'{}' must be a string", key));
+    if (!value.is_string())
+        throw std::runtime_error(fmt::format("'{}' must be a string", key));
     return value.get<std::string>();
 }
 
 void parseSettings(const json& object, GoldenSettings& s) {
-    if (!object.is_object()) throw std::runtime_error("the sidecar must hold one JSON object");
+    if (!object.is_object())
+        throw std::runtime_error("the sidecar must hold one JSON object");
     for (const auto& item : object.items())
-        if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return item.key() == k; }) ==
-            std::end(kKeys))
+        if (std::find_if(std::begin(kKeys), std::end(kKeys),
+                         [&](const char* k) { return item.key() == k; }) == std::end(kKeys))
             throw std::runtime_error(fmt::format("unknown key '{}'", item.key()));
-    if (object.contains("scene")) s.scene = readString(object, "scene");
+    if (object.contains("scene"))
+        s.scene = readString(object, "scene");
     if (object.contains("policy")) {
         const std::string policy = readString(object, "policy");
-        if (policy == "exact") s.policy = Policy::Exact;
-        else if (policy == "statistical") s.policy = Policy::Statistical;
-        else throw std::runtime_error(fmt::format("policy '{}' is neither \"exact\" nor \"statistical\"", policy));
+        if (policy == "exact")
+            s.policy = Policy::Exact;
+        else if (policy == "statistical")
+            s.policy = Policy::Statistical;
+        else
+            throw std::runtime_error(
+                fmt::format("policy '{}' is neither \"exact\" nor \"statistical\"", policy));
     }
     if (object.contains("format")) {
         s.format = readString(object, "format");
         if (s.format != "exr" && s.format != "png" && s.format != "both")
-            throw std::runtime_error(fmt::format("format '{}' is not \"exr\", \"png\" or \"both\"", s.format));
+            throw std::runtime_error(
+                fmt::format("format '{}' is not \"exr\", \"png\" or \"both\"", s.format));
         if (s.policy == Policy::Statistical && s.format != "exr")
             throw std::runtime_error("statistical goldens are stored as EXR (\"format\": \"exr\")");
     }
@@ -118,7 +129,8 @@ void parseSettings(const json& object, GoldenSettings& s) {
 
 std::string readSettings(const std::string& path, GoldenSettings& settings) {
     std::ifstream in(path);
-    if (!in) return fmt::format("{}: cannot read the sidecar", path);
+    if (!in)
+        return fmt::format("{}: cannot read the sidecar", path);
     try {
         const json object = json::parse(in);
         GoldenSettings parsed;
@@ -136,14 +148,20 @@ std::string readSettings(const std::string& path, GoldenSettings& settings) {
 std::string writeSettings(const std::string& path, const GoldenSettings& s) {
     // ordered_json keeps the keys in the order of the table above.
     nlohmann::ordered_json object;
-    if (!s.scene.empty()) object["scene"] = s.scene;
+    if (!s.scene.empty())
+        object["scene"] = s.scene;
     object["policy"] = policyName(s.policy);
     object["format"] = s.format;
-    if (s.width) object["width"] = *s.width;
-    if (s.height) object["height"] = *s.height;
-    if (s.samplesPerPixel) object["spp"] = *s.samplesPerPixel;
-    if (s.seed) object["seed"] = *s.seed;
-    if (s.sampler) object["sampler"] = *s.sampler;
+    if (s.width)
+        object["width"] = *s.width;
+    if (s.height)
+        object["height"] = *s.height;
+    if (s.samplesPerPixel)
+        object["spp"] = *s.samplesPerPixel;
+    if (s.seed)
+        object["seed"] = *s.seed;
+    if (s.sampler)
+        object["sampler"] = *s.sampler;
     object["threads"] = s.threads;
     if (s.policy == Policy::Exact) {
         object["fail"] = s.failThreshold;
@@ -151,14 +169,17 @@ std::string writeSettings(const std::string& path, const GoldenSettings& s) {
     } else {
         object["alpha"] = s.alpha;
         object["tile_size"] = s.tileSize;
-        if (s.referenceSamplesPerPixel) object["reference_spp"] = *s.referenceSamplesPerPixel;
-        if (s.referenceSeed) object["reference_seed"] = *s.referenceSeed;
+        if (s.referenceSamplesPerPixel)
+            object["reference_spp"] = *s.referenceSamplesPerPixel;
+        if (s.referenceSeed)
+            object["reference_seed"] = *s.referenceSeed;
     }
     const std::string temporary = path + ".tmp";
     {
         std::ofstream out(temporary);
         out << object.dump(2) << "\n";
-        if (!out) return fmt::format("{}: cannot write the sidecar", path);
+        if (!out)
+            return fmt::format("{}: cannot write the sidecar", path);
     }
     std::error_code ec;
     fs::rename(temporary, path, ec);

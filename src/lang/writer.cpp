@@ -214,7 +214,7 @@ void SceneWriter::light(const Light& l) {
     }
     // The .drt defaults differ from the model's (POV-Ray's): area_illumination
     // on and stratified sampling; say so whenever the model differs.
-    if (!l.areaIllumination) line(1, "area_illumination off");
+    if (l.area && !l.areaIllumination) line(1, "area_illumination off"); // a no-op without an area
     if (l.area && l.area->sampling != AreaSampling::Stratified)
         line(1, l.area->sampling == AreaSampling::PovGrid ? "area_sampling pov_grid" : "area_sampling solid_angle");
     if (l.inverseSquare) line(1, "inverse_square");
@@ -262,8 +262,7 @@ void SceneWriter::object(const Object& o, int indent) {
     line(indent, head);
     if (const Csg* csg = std::get_if<Csg>(&o.shape)) {
         if (csg->op != Csg::Op::Union)
-            problems_.insert(std::string(csgKeyword(csg->op)) +
-                             " (CSG): .drt has only union; written in POV-Ray syntax");
+            problems_.insert(std::string(csgKeyword(csg->op)) + " (.drt has only union; written in POV-Ray syntax)");
         for (const Object& child : csg->children) {
             Object baked = child;
             baked.transform = child.transform.then(o.transform);
@@ -418,7 +417,9 @@ void SceneWriter::texture(const Texture& t, const std::string& pigmentText, int 
 std::string SceneWriter::pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool& exact) {
     const Transform after = writer::compose(suffix);
     std::vector<Step> own;
-    if (!writer::sameTransform(p.toWorld, after)) {
+    // A solid colour has no pattern space: its transform is never used, so it
+    // is not written.
+    if (p.pattern != PatternKind::Solid && !writer::sameTransform(p.toWorld, after)) {
         own = decompose(p.toWorld.then(after.inverted()));
         exact = exact && writer::sameTransform(writer::compose(suffix, writer::compose(own)), p.toWorld);
     }

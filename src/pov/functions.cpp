@@ -88,7 +88,7 @@ bool PovParser::builtin(const Tok& name, PovValue& out) {
         "sqrt", "tan", "tanh", "select", "bitwise_and", "bitwise_or", "bitwise_xor", "vaxis_rotate", "vcross",
         "vdot", "vlength", "vnormalize", "vrotate", "vturbulence", "concat", "str", "chr", "substr", "strlen",
         "val", "asc", "strupr", "strlwr", "vstr", "dimension_size", "dimensions", "defined", "file_exists",
-        "inside", "trace", "noise3d", "f_noise3d", "strcmp", "sqr", "prod", "sum", "datetime"};
+        "inside", "trace", "min_extent", "max_extent", "noise3d", "f_noise3d", "strcmp", "sqr", "prod", "sum", "datetime"};
     if (!functions.count(w)) return false;
 
     if (w == "defined") {
@@ -99,6 +99,17 @@ bool PovParser::builtin(const Tok& name, PovValue& out) {
         if (id.kind != TokKind::Word) failExpected(id, "an identifier");
         expectSymbol(")", "after the identifier");
         out = PovValue::makeFloat(lookup(id.text) ? 1 : 0);
+        return true;
+    }
+    if (w == "min_extent" || w == "max_extent") {
+        expectSymbol("(", "after the function name");
+        const SourceLoc at = peek().loc;
+        const PovValue v = rvalue();
+        expectSymbol(")", "after the object");
+        if (v.kind != Kind::Object || v.object->lightOnly) fail(at, "'" + w + "' needs an object");
+        Vec3 lo, hi;
+        objectBounds(*v.object, lo, hi);
+        out = PovValue::makeVector(w == "min_extent" ? lo : hi);
         return true;
     }
     if (w == "trace" || w == "inside")

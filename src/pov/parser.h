@@ -114,7 +114,12 @@ private:
         SourceLoc includedFrom; // include frames: the #include directive
         size_t condDepth = 0;   // conds_.size() when the frame started
         std::string dir;        // include frames: folder of the file
+        // Look-ahead read from this frame before a child frame (include, macro
+        // call) started; it is read again when the child ends.
+        std::vector<Tok> savedPushback;
     };
+    void pushFrame(Frame f);
+    void popFrame();
     struct Cond {
         enum class Type { If, While, For, Switch } type = Type::If;
         size_t frame = 0;
@@ -165,6 +170,10 @@ private:
     bool noExpand_ = false;
     friend struct DepthGuard;
 };
+
+// The world-space bounding box of an object (POV-Ray's min_extent / max_extent);
+// unbounded shapes give +-1e10 as POV-Ray's BOUND_HUGE/2 does.
+void objectBounds(const PovObject& o, Vec3& lower, Vec3& upper);
 
 // Applies `t` to a pigment and its sub-pigments (pattern space moves with it).
 void transformPigmentTree(Pigment& p, const Transform& t);

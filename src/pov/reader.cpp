@@ -126,8 +126,26 @@ void PovParser::pushFile(int fileId, SourceLoc includedFrom, const std::string& 
     f.includedFrom = includedFrom;
     f.condDepth = conds_.size();
     f.dir = dir;
-    frames_.push_back(std::move(f));
+    pushFrame(std::move(f));
     scopes_.emplace_back();
+}
+
+void PovParser::pushFrame(Frame f) {
+    if (!frames_.empty()) frames_.back().savedPushback = std::move(pushed_);
+    pushed_.clear();
+    frames_.push_back(std::move(f));
+}
+
+void PovParser::popFrame() {
+    frames_.pop_back();
+    scopes_.pop_back();
+    if (!frames_.empty()) {
+        // pushed_ is a stack: the saved look-ahead was read first, so it goes on top.
+        std::vector<Tok>& saved = frames_.back().savedPushback;
+        saved.insert(saved.begin(), pushed_.begin(), pushed_.end());
+        pushed_ = std::move(saved);
+        frames_.back().savedPushback.clear();
+    }
 }
 
 std::string PovParser::findInclude(const std::string& name, const std::string& fromDir) const {
@@ -168,8 +186,7 @@ void PovParser::endFrame() {
         const Cond& c = conds_.back();
         fail(c.loc, "this directive has no matching #end before the end of the file");
     }
-    frames_.pop_back();
-    scopes_.pop_back();
+    popFrame();
 }
 
 // ------------------------------------------------------------ raw tokens
@@ -235,8 +252,7 @@ Tok PovParser::peekOperator() {
         // A macro's #end returns to the caller: the expression may go on there.
         if (t.kind == TokKind::Directive && t.text == "end" && f.isMacro && conds_.size() == f.condDepth) {
             ++f.pos;
-            frames_.pop_back();
-            scopes_.pop_back();
+            popFrame();
             continue;
         }
         if (t.kind == TokKind::Directive) return t;
@@ -595,8 +611,7 @@ void PovParser::endDirective(const Tok& t) {
     Frame& f = frames_.back();
     if (conds_.size() == f.condDepth) {
         if (f.isMacro) {
-            frames_.pop_back();
-            scopes_.pop_back();
+            popFrame();
             return;
         }
         fail(t.loc, "#end without a matching #if, #while, #for, #switch or #macro");
@@ -698,14 +713,7 @@ void PovParser::invokeMacro(const Tok& t) {
             ++count;
         } while (acceptSymbol(","));
     }
-    if (!pushed_.empty() && !pushed_.back().is(")")) failExpected(pushed_.back(), "')' after the macro arguments");
-    if (pushed_.empty()) {
-        const Tok close = rawNext();
-        if (!close.is(")")) failExpected(close, "')' after the macro arguments");
-    } else {
-        pushed_.pop_back();
-    }
-    if (!pushed_.empty()) fail(t.loc, "internal: look-ahead across a macro call");
+    expectSymbol(")", "after the macro arguments");
     if (count != m->params.size())
         fail(t.loc, fmt::format("macro '{}' takes {} parameter{}, given {}", m->name, m->params.size(),
                                 m->params.size() == 1 ? "" : "s", count));
@@ -715,7 +723,7 @@ void PovParser::invokeMacro(const Tok& t) {
     f.pos = m->bodyStart;
     f.isMacro = true;
     f.condDepth = conds_.size();
-    frames_.push_back(std::move(f));
+    pushFrame(std::move(f));
     scopes_.push_back(std::move(scope));
 }
 

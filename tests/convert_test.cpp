@@ -1,0 +1,96 @@
+// `drt convert` (src/cli/convert_command.cpp): POV-Ray scene -> .drt file that
+// renders the same image; `--report DIR` sorts scenes into clean / warnings /
+// failed and survives scenes that never finish.
+#include "lang/load.h"
+#include "pov/load.h"
+#include "render/render.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace drt {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runDrt;
+
+const char* const kSimplePov = R"(#version 3.7;
+global_settings { assumed_gamma 1.0 }
+camera { location <0, 2, -6> look_at <0, 1, 0> angle 40 right x * image_width / image_height }
+light_source { <-5, 8, -6>, color rgb 1 area_light <2, 0, 0>, <0, 0, 2>, 3, 3 jitter }
+#declare Ball = sphere { 0, 1 pigment { color rgb <0.8, 0.2, 0.1> } finish { phong 0.6 } }
+object { Ball translate <0, 1, 0> }
+plane { y, 0 pigment { checker color rgb 1, color rgb 0.2 scale 0.5 } rotate 10 * y }
+)";
+
+Image renderSmall(const Scene& scene) {
+    RenderOptions options = resolveRenderOptions(scene, {});
+    options.width = 48;
+    options.height = 36;
+    options.samplesPerPixel = 2;
+    return render(scene, options).color;
+}
+
+TEST(Convert, WritesADrtFileThatRendersTheSameImage) {
+    const std::string dir = test::tempDir();
+    const std::string pov = test::writeFile(dir + "/ball.pov", kSimplePov);
+    const auto r = runDrt("convert '" + pov + "' -o '" + dir + "/ball.drt'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string text = test::readFile(dir + "/ball.drt");
+    EXPECT_NE(text.find("// Converted from ball.pov"), std::string::npos) << text;
+    EXPECT_NE(text.find("// ball.pov:6"), std::string::npos) << text; // the object's source line
+
+    Diagnostics povDiags, drtDiags;
+    const std::optional<Scene> original = loadPovSceneFile(pov, povDiags);
+    const std::optional<Scene> converted = loadSceneFile(dir + "/ball.drt", drtDiags);
+    ASSERT_TRUE(original) << povDiags.formatAll();
+    ASSERT_TRUE(converted) << drtDiags.formatAll();
+    EXPECT_TRUE(renderSmall(*original).pixels == renderSmall(*converted).pixels);
+}
+
+TEST(Convert, BadInputIsReportedAndNothingIsWritten) {
+    const std::string dir = test::tempDir();
+    auto missing = runDrt("convert '" + dir + "/none.pov' -o '" + dir + "/none.drt'");
+    EXPECT_EQ(missing.exitCode, 3) << missing.err;
+    EXPECT_NE(missing.err.find("no such file"), std::string::npos) << missing.err;
+
+    const std::string bad = test::writeFile(dir + "/bad.pov", "sphere { <0, 0, 0>, 1\n  pigment { color rgb < }\n}\n");
+    auto syntax = runDrt("convert '" + bad + "' -o '" + dir + "/bad.drt'");
+    EXPECT_EQ(syntax.exitCode, 1);
+    EXPECT_NE(syntax.err.find("bad.pov:2:"), std::string::npos) << syntax.err;
+    EXPECT_FALSE(fs::exists(dir + "/bad.drt"));
+
+    const std::string good = test::writeFile(dir + "/good.pov", kSimplePov);
+    auto unwritable = runDrt("convert '" + good + "' -o '" + dir + "/no/such/folder/good.drt'");
+    EXPECT_EQ(unwritable.exitCode, 3) << unwritable.err;
+    EXPECT_TRUE(fs::is_empty(dir + "/.") || !fs::exists(dir + "/no"));
+
+    EXPECT_EQ(runDrt("convert '" + good + "'").exitCode, 2);              // no -o
+    EXPECT_EQ(runDrt("convert").exitCode, 2);                             // nothing to do
+    EXPECT_EQ(runDrt("convert '" + good + "' --report '" + dir + "'").exitCode, 2); // both
+    EXPECT_EQ(runDrt("convert --report '" + dir + "/none'").exitCode, 3);
+}
+
+TEST(Convert, ReportSortsScenesAndSurvivesOnesThatNeverFinish) {
+    const std::string dir = test::tempDir();
+    test::writeFile(dir + "/a_clean.pov", kSimplePov);
+    test::writeFile(dir + "/b_warning.pov", "sphere { 0, 1 pigment { rgb 1 } normal { bumps 0.5 } }\n");
+    test::writeFile(dir + "/c_error.pov", "sphere { 0, 1 pigment { rgb 1 }\n");
+    test::writeFile(dir + "/sub/d_loop.pov", "#declare I = 0;\n#while (1)\n#declare I = I + 1;\n#end\n");
+    test::writeFile(dir + "/notes.txt", "not a scene");
+    const auto r = runDrt("convert --report '" + dir + "' --timeout 2");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("clean     a_clean.pov\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("warnings  b_warning.pov: 'normal'"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("FAILED    c_error.pov: load: c_error.pov:"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("FAILED    sub/d_loop.pov: timed out after 2 s"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("4 scenes under"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("1 clean (25.0%), 1 with warnings (25.0%), 2 failed (50.0%); 0 crashed, 1 timed out"),
+              std::string::npos)
+        << r.out;
+}
+
+} // namespace
+} // namespace drt

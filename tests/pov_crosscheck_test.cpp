@@ -1,0 +1,253 @@
+// Cross-checks against POV-Ray 3.7 itself (issue 5): POV-Ray's own focal-blur
+// and area-light sample scenes, rendered by `povray` and by drt (through the
+// POV front end and the .drt writer, as `drt convert` does) at 160x120, must
+// agree within thresholds that a wrong camera, lens, light placement or
+// shading term exceeds. Negative controls below show that they do.
+//
+// Label "crosscheck" (its own executable; povray takes a few seconds a scene).
+// With DRT_CROSSCHECK_OUTPUT=DIR the images (drt, POV-Ray, error heatmap) and
+// the figures are also written to DIR (tests/pov_crosscheck/regenerate.sh
+// builds docs/pov-crosscheck.md from them).
+#include "compare/compare.h"
+#include "image/image.h"
+#include "lang/load.h"
+#include "lang/writer.h"
+#include "pov/load.h"
+#include "render/render.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+namespace drt {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kWidth = 160, kHeight = 120;
+const char* const kExamples = "/usr/share/doc/povray/examples";
+
+// ------------------------------------------------------------ thresholds
+// Errors are drt - POV-Ray on linear values, averaged over the channels.
+// Noise (POV-Ray's jittered area lights and adaptive focal blur, drt's
+// samples) is zero-mean and averages out over the image and mostly over a
+// tile; what is left is anti-aliasing along edges, where the two renderers
+// sample differently. A wrong camera or lens moves every edge, a wrong light
+// moves shadows and highlights, a wrong shading term biases whole surfaces:
+// each of them shifts the means below well past these bounds (the negative
+// controls measure by how much).
+struct Thresholds {
+    double meanAbsoluteError = 0.01; // over the image
+    double meanSignedError = 0.003;  // |bias| over the image
+    double tileSignedError = 0.025;  // largest |bias| of an 8x8 tile
+};
+
+struct Figures {
+    double meanAbsoluteError = 0;
+    double meanSignedError = 0;
+    double tileSignedError = 0; // largest |mean signed error| of an 8x8 tile
+    int worstTileX = 0, worstTileY = 0;
+    double psnr = 0;
+    bool within(const Thresholds& t) const {
+        return meanAbsoluteError <= t.meanAbsoluteError && std::fabs(meanSignedError) <= t.meanSignedError &&
+               tileSignedError <= t.tileSignedError;
+    }
+};
+
+std::ostream& operator<<(std::ostream& os, const Figures& f) {
+    return os << "MAE " << f.meanAbsoluteError << ", mean signed error " << f.meanSignedError
+              << ", worst 8x8 tile bias " << f.tileSignedError << " at (" << f.worstTileX << ", " << f.worstTileY
+              << "), PSNR " << f.psnr << " dB";
+}
+
+Figures measure(const Image& drt, const Image& pov) {
+    const CompareResult r = compareImages(drt, pov);
+    Figures f;
+    f.meanAbsoluteError = r.meanAbsoluteError;
+    f.meanSignedError = r.meanSignedError;
+    f.psnr = r.psnr;
+    const int tile = 8;
+    for (int ty = 0; ty + tile <= drt.height; ty += tile)
+        for (int tx = 0; tx + tile <= drt.width; tx += tile) {
+            double sum = 0;
+            for (int y = ty; y < ty + tile; ++y)
+                for (int x = tx; x < tx + tile; ++x)
+                    for (int c = 0; c < 3; ++c) sum += double(drt.at(x, y, c)) - double(pov.at(x, y, c));
+            const double bias = std::fabs(sum / (tile * tile * 3));
+            if (bias > f.tileSignedError) f.tileSignedError = bias, f.worstTileX = tx, f.worstTileY = ty;
+        }
+    return f;
+}
+
+// ------------------------------------------------------------ running the renderers
+
+bool povrayInstalled() { return std::system("command -v povray >/dev/null 2>&1") == 0; }
+
+struct CrossCheckScene {
+    std::string name;                 // e.g. "focalblur"
+    std::string file;                 // under kExamples
+    std::vector<std::string> extras;  // files the scene includes from its own folder
+    int drtSamples;                   // per pixel
+};
+
+const std::vector<CrossCheckScene>& scenes() {
+    static const std::vector<CrossCheckScene> list{
+        {"focalblur", "camera/focalblur.pov", {"camera/camera-context.inc"}, 120},
+        {"arealit1", "lights/arealit1.pov", {}, 4},
+        {"arealit2", "lights/arealit2.pov", {}, 4},
+    };
+    return list;
+}
+
+// A scene copied to a fresh folder, rendered there by POV-Ray.
+struct Prepared {
+    std::string dir;
+    std::string povPath;
+    Image pov;
+};
+
+Prepared prepare(const CrossCheckScene& s) {
+    Prepared p;
+    if (!povrayInstalled()) {
+        ADD_FAILURE() << "`povray` is not installed (the set-up script installs Debian's povray, povray-examples "
+                         "and povray-includes); the POV-Ray cross-checks cannot run";
+        return p;
+    }
+    const fs::path source = fs::path(kExamples) / s.file;
+    if (!fs::exists(source)) {
+        ADD_FAILURE() << source << " is missing: install Debian's povray-examples package";
+        return p;
+    }
+    p.dir = test::tempDir();
+    p.povPath = (fs::path(p.dir) / source.filename()).string();
+    fs::copy_file(source, p.povPath);
+    for (const std::string& extra : s.extras)
+        fs::copy_file(fs::path(kExamples) / extra, fs::path(p.dir) / fs::path(extra).filename());
+    // +A0.3: POV-Ray's adaptive anti-aliasing; -D: no display; +FN: PNG.
+    const std::string command = "cd '" + p.dir + "' && povray +I" + source.filename().string() +
+                                " +Opov.png +W" + std::to_string(kWidth) + " +H" + std::to_string(kHeight) +
+                                " -D +A0.3 +FN >povray.log 2>&1";
+    const int status = std::system(command.c_str());
+    EXPECT_EQ(status, 0) << "povray failed:\n" << test::readFile(p.dir + "/povray.log");
+    const std::string problem = readImage(p.dir + "/pov.png", p.pov);
+    EXPECT_EQ(problem, "");
+    return p;
+}
+
+// The scene as `drt convert` turns it into .drt, loaded back.
+std::optional<Scene> convertedScene(const std::string& povPath) {
+    Diagnostics diags;
+    const std::optional<Scene> scene = loadPovSceneFile(povPath, diags);
+    EXPECT_TRUE(scene) << diags.formatAll();
+    EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
+    if (!scene) return std::nullopt;
+    EXPECT_TRUE(drtInexpressible(*scene).empty());
+    Diagnostics again;
+    std::optional<Scene> reloaded = loadSceneText(writeDrtScene(*scene), "converted.drt", again);
+    EXPECT_TRUE(reloaded) << again.formatAll();
+    return reloaded;
+}
+
+Image renderDrt(const Scene& scene, int samples) {
+    RenderOptions options = resolveRenderOptions(scene, {});
+    options.width = kWidth;
+    options.height = kHeight;
+    options.samplesPerPixel = samples;
+    options.adaptive = false;
+    options.seed = 1;
+    return render(scene, options).color;
+}
+
+// Writes the images and a figures line when DRT_CROSSCHECK_OUTPUT is set.
+void publish(const std::string& name, const Image& drt, const Image& pov, const Figures& f, int samples) {
+    const char* dir = std::getenv("DRT_CROSSCHECK_OUTPUT");
+    if (!dir || !*dir) return;
+    fs::create_directories(dir);
+    const std::string base = (fs::path(dir) / name).string();
+    EXPECT_EQ(writeImage(base + "-drt.png", drt), "");
+    EXPECT_EQ(writeImage(base + "-pov.png", pov), "");
+    // Fixed scale so the heatmaps of all scenes read alike: white is an error of 0.25.
+    EXPECT_EQ(writeImage(base + "-diff.png", errorHeatmap(drt, pov, 0.25)), "");
+    std::ofstream(base + ".figures") << name << " " << samples << " " << f.meanAbsoluteError << " "
+                                     << f.meanSignedError << " " << f.tileSignedError << " " << f.psnr << "\n";
+}
+
+// ------------------------------------------------------------ the cross-checks
+
+class PovCrossCheck : public ::testing::TestWithParam<CrossCheckScene> {};
+
+TEST_P(PovCrossCheck, DrtMatchesPovRay) {
+    const CrossCheckScene& s = GetParam();
+    const Prepared p = prepare(s);
+    if (p.pov.pixels.empty()) return; // the failure is recorded
+    const std::optional<Scene> scene = convertedScene(p.povPath);
+    ASSERT_TRUE(scene);
+    const Image drt = renderDrt(*scene, s.drtSamples);
+    const Figures f = measure(drt, p.pov);
+    publish(s.name, drt, p.pov, f, s.drtSamples);
+    EXPECT_TRUE(f.within(Thresholds{})) << s.name << ": " << f;
+    std::cout << "[ figures  ] " << s.name << ": " << f << "\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(PovRaySamples, PovCrossCheck, ::testing::ValuesIn(scenes()),
+                         [](const auto& info) { return info.param.name; });
+
+// ------------------------------------------------------------ negative controls
+// Each control breaks one thing in the converted scene and checks that the
+// thresholds catch it against the same POV-Ray image.
+
+// The control renders with the scene's own sample count, so noise alone
+// would not make it fail.
+Figures brokenFigures(const CrossCheckScene& s, const std::function<void(Scene&)>& breakIt) {
+    const Prepared p = prepare(s);
+    if (p.pov.pixels.empty()) return {};
+    std::optional<Scene> scene = convertedScene(p.povPath);
+    if (!scene) return {};
+    breakIt(*scene);
+    const Figures f = measure(renderDrt(*scene, s.drtSamples), p.pov);
+    std::cout << "[ control  ] " << s.name << ": " << f << "\n";
+    return f;
+}
+
+TEST(PovCrossCheckControls, AWrongCameraAngleFails) {
+    const Figures f = brokenFigures(scenes()[0], [](Scene& scene) { *scene.camera.angle *= 1.1; });
+    EXPECT_FALSE(f.within(Thresholds{})) << f;
+}
+
+TEST(PovCrossCheckControls, AWrongLensFails) {
+    // POV-Ray's lens radius is aperture/4; aperture/2 would double the blur.
+    const Figures f = brokenFigures(scenes()[0], [](Scene& scene) { scene.camera.aperture *= 2; });
+    EXPECT_FALSE(f.within(Thresholds{})) << f;
+}
+
+TEST(PovCrossCheckControls, AMovedLightFails) {
+    const Figures f = brokenFigures(
+        scenes()[1], [](Scene& scene) { scene.lights.at(1).position += Vec3(4, 0, 0); });
+    EXPECT_FALSE(f.within(Thresholds{})) << f;
+}
+
+TEST(PovCrossCheckControls, AWrongAreaLightSizeFails) {
+    // The left light of arealit2 (4 x 4 units) made 16 x 16.
+    const Figures f = brokenFigures(scenes()[2], [](Scene& scene) {
+        AreaLight& area = *scene.lights.at(0).area;
+        area.axis1 = area.axis1 * 4;
+        area.axis2 = area.axis2 * 4;
+    });
+    EXPECT_FALSE(f.within(Thresholds{})) << f;
+}
+
+TEST(PovCrossCheckControls, AMissingShadingTermFails) {
+    // Drop the highlight (Blinn specular) of every object.
+    const Figures f = brokenFigures(
+        scenes()[1], [](Scene& scene) { for (Object& o : scene.objects) o.texture.finish.specular = 0; });
+    EXPECT_FALSE(f.within(Thresholds{})) << f;
+}
+
+} // namespace
+} // namespace drt
