@@ -56,7 +56,8 @@ TEST(Convert, BadInputIsReportedAndNothingIsWritten) {
     EXPECT_EQ(missing.exitCode, 3) << missing.err;
     EXPECT_NE(missing.err.find("no such file"), std::string::npos) << missing.err;
 
-    const std::string bad = test::writeFile(dir + "/bad.pov", "sphere { <0, 0, 0>, 1\n  pigment { color rgb < }\n}\n");
+    const std::string bad =
+        test::writeFile(dir + "/bad.pov", "sphere { <0, 0, 0>, 1\n  pigment { color rgb < }\n}\n");
     auto syntax = runDrt("convert '" + bad + "' -o '" + dir + "/bad.drt'");
     EXPECT_EQ(syntax.exitCode, 1);
     EXPECT_NE(syntax.err.find("bad.pov:2:"), std::string::npos) << syntax.err;
@@ -65,10 +66,10 @@ TEST(Convert, BadInputIsReportedAndNothingIsWritten) {
     const std::string good = test::writeFile(dir + "/good.pov", kSimplePov);
     auto unwritable = runDrt("convert '" + good + "' -o '" + dir + "/no/such/folder/good.drt'");
     EXPECT_EQ(unwritable.exitCode, 3) << unwritable.err;
-    EXPECT_TRUE(fs::is_empty(dir + "/.") || !fs::exists(dir + "/no"));
+    EXPECT_FALSE(fs::exists(dir + "/no"));
 
-    EXPECT_EQ(runDrt("convert '" + good + "'").exitCode, 2);              // no -o
-    EXPECT_EQ(runDrt("convert").exitCode, 2);                             // nothing to do
+    EXPECT_EQ(runDrt("convert '" + good + "'").exitCode, 2);                        // no -o
+    EXPECT_EQ(runDrt("convert").exitCode, 2);                                       // nothing to do
     EXPECT_EQ(runDrt("convert '" + good + "' --report '" + dir + "'").exitCode, 2); // both
     EXPECT_EQ(runDrt("convert --report '" + dir + "/none'").exitCode, 3);
 }
@@ -87,8 +88,9 @@ TEST(Convert, ReportSortsScenesAndSurvivesOnesThatNeverFinish) {
     EXPECT_NE(r.out.find("FAILED    c_error.pov: load: c_error.pov:"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("FAILED    sub/d_loop.pov: timed out after 2 s"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("4 scenes under"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("1 clean (25.0%), 1 with warnings (25.0%), 2 failed (50.0%); 0 crashed, 1 timed out"),
-              std::string::npos)
+    EXPECT_NE(
+        r.out.find("1 clean (25.0%), 1 with warnings (25.0%), 2 failed (50.0%); 0 crashed, 1 timed out"),
+        std::string::npos)
         << r.out;
 }
 

@@ -33,6 +33,15 @@ const golden::CaseResult* findCase(const golden::RunSummary& summary, const std:
     return nullptr;
 }
 
+// A temporary folder removed at the end of the test.
+struct TempFolder {
+    std::string path = test::tempDir();
+    ~TempFolder() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
 golden::RunSummary run(const std::string& folder, bool update = false) {
     golden::RunOptions options;
     options.update = update;
@@ -83,8 +92,9 @@ TEST(GoldenSuite, TheSidecarInTheManualIsValid) {
     ASSERT_NE(open, std::string::npos);
     const size_t close = manual.find("```", open + 8);
     ASSERT_NE(close, std::string::npos);
+    const TempFolder folder;
     const std::string path =
-        test::writeFile(test::tempDir() + "/doc.golden.json", manual.substr(open + 8, close - open - 8));
+        test::writeFile(folder.path + "/doc.golden.json", manual.substr(open + 8, close - open - 8));
     golden::GoldenSettings settings;
     EXPECT_EQ(golden::readSettings(path, settings), "");
     EXPECT_EQ(settings.scene, "../../examples/whitted.drt");
@@ -106,7 +116,8 @@ std::string tinyScene(const std::string& sphereColour, const std::string& light 
 }
 
 TEST(GoldenRunner, MissingGoldenIsReportedAndNotCreated) {
-    const std::string dir = test::tempDir();
+    const TempFolder folder;
+    const std::string& dir = folder.path;
     test::writeFile(dir + "/ball.drt", tinyScene("<0.9, 0.2, 0.1>"));
     const golden::RunSummary summary = run(dir);
     ASSERT_EQ(summary.cases.size(), 1u);
@@ -124,7 +135,8 @@ TEST(GoldenRunner, MissingGoldenIsReportedAndNotCreated) {
 }
 
 TEST(GoldenRunner, ExactPolicyCatchesAChangedSceneAndUpdateRewrites) {
-    const std::string dir = test::tempDir();
+    const TempFolder folder;
+    const std::string& dir = folder.path;
     test::writeFile(dir + "/ball.drt", tinyScene("<0.9, 0.2, 0.1>"));
     const golden::RunSummary created = run(dir, true);
     ASSERT_EQ(created.updated, 1) << describe(created);
@@ -161,7 +173,8 @@ TEST(GoldenRunner, ExactPolicyCatchesAChangedSceneAndUpdateRewrites) {
 }
 
 TEST(GoldenRunner, ToleranceLetsSmallDifferencesPass) {
-    const std::string dir = test::tempDir();
+    const TempFolder folder;
+    const std::string& dir = folder.path;
     test::writeFile(dir + "/ball.drt", tinyScene("<0.9, 0.2, 0.1>"));
     test::writeFile(dir + "/ball.golden.json", R"({ "fail": 0.05, "fail_percent": 0 })");
     ASSERT_EQ(run(dir, true).updated, 1);
@@ -172,7 +185,8 @@ TEST(GoldenRunner, ToleranceLetsSmallDifferencesPass) {
 }
 
 TEST(GoldenRunner, PngGoldenComparesQuantisedPixels) {
-    const std::string dir = test::tempDir();
+    const TempFolder folder;
+    const std::string& dir = folder.path;
     test::writeFile(dir + "/ball.drt", tinyScene("<0.9, 0.2, 0.1>"));
     test::writeFile(dir + "/ball.golden.json", R"({ "policy": "exact", "format": "png" })");
     const golden::RunSummary created = run(dir, true);
@@ -186,7 +200,8 @@ TEST(GoldenRunner, PngGoldenComparesQuantisedPixels) {
 }
 
 TEST(GoldenRunner, BrokenSidecarOrSceneIsAnError) {
-    const std::string dir = test::tempDir();
+    const TempFolder folder;
+    const std::string& dir = folder.path;
     test::writeFile(dir + "/typo.golden.json", R"({ "scene": "ball.drt", "tolerance": 1 })");
     test::writeFile(dir + "/nojson.golden.json", "{ \"policy\": \"exact\", }");
     test::writeFile(dir + "/noscene.golden.json", R"({ "scene": "../nowhere/gone.drt" })");
@@ -204,7 +219,8 @@ TEST(GoldenRunner, BrokenSidecarOrSceneIsAnError) {
 }
 
 TEST(GoldenRunner, StatisticalPolicyPassesNoiseAndFailsABias) {
-    const std::string dir = test::tempDir();
+    const TempFolder folder;
+    const std::string& dir = folder.path;
     // Soft shadows from an area light: noisy at 8 spp.
     const std::string scene =
         "render { width 32 height 24 samples 8 seed 3 }\n"
@@ -240,7 +256,8 @@ TEST(GoldenRunner, StatisticalPolicyPassesNoiseAndFailsABias) {
 }
 
 TEST(GoldenRunner, TestCommandExitStatuses) {
-    const std::string dir = test::tempDir();
+    const TempFolder folder;
+    const std::string& dir = folder.path;
     test::writeFile(dir + "/ball.drt", tinyScene("<0.9, 0.2, 0.1>"));
     std::ostringstream out, err;
     cli::TestCommand command;
@@ -267,7 +284,8 @@ TEST(GoldenRunner, TestCommandExitStatuses) {
 }
 
 TEST(GoldenRunner, CommandLineRunsTheFolder) {
-    const std::string dir = test::tempDir();
+    const TempFolder folder;
+    const std::string& dir = folder.path;
     test::writeFile(dir + "/ball.drt", tinyScene("<0.9, 0.2, 0.1>"));
     EXPECT_EQ(test::runDrt("test '" + dir + "'").exitCode, 1);
     EXPECT_EQ(test::runDrt("test --update '" + dir + "'").exitCode, 0);

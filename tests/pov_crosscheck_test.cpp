@@ -62,8 +62,8 @@ struct Figures {
 
 std::ostream& operator<<(std::ostream& os, const Figures& f) {
     return os << "MAE " << f.meanAbsoluteError << ", mean signed error " << f.meanSignedError
-              << ", worst 8x8 tile bias " << f.tileSignedError << " at (" << f.worstTileX << ", " << f.worstTileY
-              << "), PSNR " << f.psnr << " dB";
+              << ", worst 8x8 tile bias " << f.tileSignedError << " at (" << f.worstTileX << ", "
+              << f.worstTileY << "), PSNR " << f.psnr << " dB";
 }
 
 Figures measure(const Image& drt, const Image& pov) {
@@ -78,22 +78,26 @@ Figures measure(const Image& drt, const Image& pov) {
             double sum = 0;
             for (int y = ty; y < ty + tile; ++y)
                 for (int x = tx; x < tx + tile; ++x)
-                    for (int c = 0; c < 3; ++c) sum += double(drt.at(x, y, c)) - double(pov.at(x, y, c));
+                    for (int c = 0; c < 3; ++c)
+                        sum += double(drt.at(x, y, c)) - double(pov.at(x, y, c));
             const double bias = std::fabs(sum / (tile * tile * 3));
-            if (bias > f.tileSignedError) f.tileSignedError = bias, f.worstTileX = tx, f.worstTileY = ty;
+            if (bias > f.tileSignedError)
+                f.tileSignedError = bias, f.worstTileX = tx, f.worstTileY = ty;
         }
     return f;
 }
 
 // ------------------------------------------------------------ running the renderers
 
-bool povrayInstalled() { return std::system("command -v povray >/dev/null 2>&1") == 0; }
+bool povrayInstalled() {
+    return std::system("command -v povray >/dev/null 2>&1") == 0;
+}
 
 struct CrossCheckScene {
-    std::string name;                 // e.g. "focalblur"
-    std::string file;                 // under kExamples
-    std::vector<std::string> extras;  // files the scene includes from its own folder
-    int drtSamples;                   // per pixel
+    std::string name;                // e.g. "focalblur"
+    std::string file;                // under kExamples
+    std::vector<std::string> extras; // files the scene includes from its own folder
+    int drtSamples;                  // per pixel
 };
 
 const std::vector<CrossCheckScene>& scenes() {
@@ -115,8 +119,9 @@ struct Prepared {
 Prepared prepare(const CrossCheckScene& s) {
     Prepared p;
     if (!povrayInstalled()) {
-        ADD_FAILURE() << "`povray` is not installed (the set-up script installs Debian's povray, povray-examples "
-                         "and povray-includes); the POV-Ray cross-checks cannot run";
+        ADD_FAILURE()
+            << "`povray` is not installed (the set-up script installs Debian's povray, povray-examples "
+               "and povray-includes); the POV-Ray cross-checks cannot run";
         return p;
     }
     const fs::path source = fs::path(kExamples) / s.file;
@@ -146,7 +151,8 @@ std::optional<Scene> convertedScene(const std::string& povPath) {
     const std::optional<Scene> scene = loadPovSceneFile(povPath, diags);
     EXPECT_TRUE(scene) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-    if (!scene) return std::nullopt;
+    if (!scene)
+        return std::nullopt;
     EXPECT_TRUE(drtInexpressible(*scene).empty());
     Diagnostics again;
     std::optional<Scene> reloaded = loadSceneText(writeDrtScene(*scene), "converted.drt", again);
@@ -167,7 +173,8 @@ Image renderDrt(const Scene& scene, int samples) {
 // Writes the images and a figures line when DRT_CROSSCHECK_OUTPUT is set.
 void publish(const std::string& name, const Image& drt, const Image& pov, const Figures& f, int samples) {
     const char* dir = std::getenv("DRT_CROSSCHECK_OUTPUT");
-    if (!dir || !*dir) return;
+    if (!dir || !*dir)
+        return;
     fs::create_directories(dir);
     const std::string base = (fs::path(dir) / name).string();
     EXPECT_EQ(writeImage(base + "-drt.png", drt), "");
@@ -175,7 +182,8 @@ void publish(const std::string& name, const Image& drt, const Image& pov, const 
     // Fixed scale so the heatmaps of all scenes read alike: white is an error of 0.25.
     EXPECT_EQ(writeImage(base + "-diff.png", errorHeatmap(drt, pov, 0.25)), "");
     std::ofstream(base + ".figures") << name << " " << samples << " " << f.meanAbsoluteError << " "
-                                     << f.meanSignedError << " " << f.tileSignedError << " " << f.psnr << "\n";
+                                     << f.meanSignedError << " " << f.tileSignedError << " " << f.psnr
+                                     << "\n";
 }
 
 // ------------------------------------------------------------ the cross-checks
@@ -185,7 +193,8 @@ class PovCrossCheck : public ::testing::TestWithParam<CrossCheckScene> {};
 TEST_P(PovCrossCheck, DrtMatchesPovRay) {
     const CrossCheckScene& s = GetParam();
     const Prepared p = prepare(s);
-    if (p.pov.pixels.empty()) return; // the failure is recorded
+    if (p.pov.pixels.empty())
+        return; // the failure is recorded
     const std::optional<Scene> scene = convertedScene(p.povPath);
     ASSERT_TRUE(scene);
     const Image drt = renderDrt(*scene, s.drtSamples);
@@ -204,37 +213,42 @@ INSTANTIATE_TEST_SUITE_P(PovRaySamples, PovCrossCheck, ::testing::ValuesIn(scene
 
 // The control renders with the scene's own sample count, so noise alone
 // would not make it fail.
-Figures brokenFigures(const CrossCheckScene& s, const std::function<void(Scene&)>& breakIt) {
+Figures brokenFigures(const CrossCheckScene& s, const std::string& what,
+                      const std::function<void(Scene&)>& breakIt) {
     const Prepared p = prepare(s);
-    if (p.pov.pixels.empty()) return {};
+    if (p.pov.pixels.empty())
+        return {};
     std::optional<Scene> scene = convertedScene(p.povPath);
-    if (!scene) return {};
+    if (!scene)
+        return {};
     breakIt(*scene);
     const Figures f = measure(renderDrt(*scene, s.drtSamples), p.pov);
-    std::cout << "[ control  ] " << s.name << ": " << f << "\n";
+    std::cout << "[ control  ] " << what << " (" << s.name << "): " << f << "\n";
     return f;
 }
 
 TEST(PovCrossCheckControls, AWrongCameraAngleFails) {
-    const Figures f = brokenFigures(scenes()[0], [](Scene& scene) { *scene.camera.angle *= 1.1; });
+    const Figures f = brokenFigures(scenes()[0], "camera angle 10% wider",
+                                    [](Scene& scene) { *scene.camera.angle *= 1.1; });
     EXPECT_FALSE(f.within(Thresholds{})) << f;
 }
 
 TEST(PovCrossCheckControls, AWrongLensFails) {
     // POV-Ray's lens radius is aperture/4; aperture/2 would double the blur.
-    const Figures f = brokenFigures(scenes()[0], [](Scene& scene) { scene.camera.aperture *= 2; });
+    const Figures f = brokenFigures(scenes()[0], "lens radius aperture/2 instead of aperture/4",
+                                    [](Scene& scene) { scene.camera.aperture *= 2; });
     EXPECT_FALSE(f.within(Thresholds{})) << f;
 }
 
 TEST(PovCrossCheckControls, AMovedLightFails) {
-    const Figures f = brokenFigures(
-        scenes()[1], [](Scene& scene) { scene.lights.at(1).position += Vec3(4, 0, 0); });
+    const Figures f = brokenFigures(scenes()[1], "middle light moved 4 units",
+                                    [](Scene& scene) { scene.lights.at(1).position += Vec3(4, 0, 0); });
     EXPECT_FALSE(f.within(Thresholds{})) << f;
 }
 
 TEST(PovCrossCheckControls, AWrongAreaLightSizeFails) {
     // The left light of arealit2 (4 x 4 units) made 16 x 16.
-    const Figures f = brokenFigures(scenes()[2], [](Scene& scene) {
+    const Figures f = brokenFigures(scenes()[2], "4x4 area light made 16x16", [](Scene& scene) {
         AreaLight& area = *scene.lights.at(0).area;
         area.axis1 = area.axis1 * 4;
         area.axis2 = area.axis2 * 4;
@@ -244,8 +258,10 @@ TEST(PovCrossCheckControls, AWrongAreaLightSizeFails) {
 
 TEST(PovCrossCheckControls, AMissingShadingTermFails) {
     // Drop the highlight (Blinn specular) of every object.
-    const Figures f = brokenFigures(
-        scenes()[1], [](Scene& scene) { for (Object& o : scene.objects) o.texture.finish.specular = 0; });
+    const Figures f = brokenFigures(scenes()[1], "specular highlights dropped", [](Scene& scene) {
+        for (Object& o : scene.objects)
+            o.texture.finish.specular = 0;
+    });
     EXPECT_FALSE(f.within(Thresholds{})) << f;
 }
 

@@ -28,6 +28,8 @@ namespace {
 
 // References use a seed no bench render uses (those take seeds 1..K).
 constexpr uint64_t kReferenceSeed = 0x5eed5eedULL;
+// Independent renders a bench reference averages (see makeReference).
+constexpr int kReferenceParts = 8;
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -144,24 +146,43 @@ Reference makeReference(const Scene& scene, RenderOptions options, int spp, cons
             return reference;
         }
     }
-    log << fmt::format("bench: rendering reference {} (sobol, {} spp)...\n", colorPath.string(), spp);
+    log << fmt::format("bench: rendering reference {} (sobol, {} spp as {} renders)...\n", colorPath.string(), spp,
+                       kReferenceParts);
+    // The reference is the mean of kReferenceParts independent sobol renders
+    // (different scrambling seeds), and its variance of the mean comes from
+    // their spread: sum (m_k - m)^2 / (K (K - 1)). One render's per-pixel
+    // sample variance / N would over-state a stratified mean's variance many
+    // times over, and subtracting it from relMSE would over-correct.
     options.sampler = "sobol";
-    options.samplesPerPixel = spp;
-    options.seed = kReferenceSeed;
+    options.samplesPerPixel = std::max(1, spp / kReferenceParts);
     options.adaptive = false;
     const auto start = std::chrono::steady_clock::now();
+    std::vector<Image> parts;
+    for (int k = 0; k < kReferenceParts; ++k) {
+        options.seed = kReferenceSeed + uint64_t(k);
+        try {
+            parts.push_back(render(scene, options).color);
+        } catch (const RenderError& e) {
+            throw BenchError(fmt::format("reference render failed: {}", e.what()), false);
+        }
+    }
     RenderResult result;
-    try {
-        result = render(scene, options);
-    } catch (const RenderError& e) {
-        throw BenchError(fmt::format("reference render failed: {}", e.what()), false);
+    result.color = Image(options.width, options.height, 3);
+    result.variance = Image(options.width, options.height, 3);
+    const double k = kReferenceParts;
+    for (size_t i = 0; i < result.color.pixels.size(); ++i) {
+        double mean = 0, squares = 0;
+        for (const Image& part : parts) mean += part.pixels[i] / k;
+        for (const Image& part : parts) squares += (part.pixels[i] - mean) * (part.pixels[i] - mean);
+        result.color.pixels[i] = float(mean);
+        result.variance.pixels[i] = float(squares / (k * (k - 1)));
     }
     for (Image* image : {&result.color, &result.variance})
         for (float& v : image->pixels)
             if (!std::isfinite(v)) v = 0;
     const Metadata metadata = {{"Software", fmt::format("drt {}", DRT_VERSION)},
                                {"drt:bench_reference", identity},
-                               {"drt:spp", std::to_string(spp)},
+                               {"drt:spp", std::to_string(options.samplesPerPixel * kReferenceParts)},
                                {"drt:seed", std::to_string(kReferenceSeed)}};
     if (std::string problem = writeImage(colorPath.string(), result.color, metadata); !problem.empty())
         throw BenchError(problem, true);
@@ -293,8 +314,9 @@ BenchReport runBench(const BenchOptions& given, std::ostream& log) {
         if (key.empty() && !o.referencePath.empty()) {
             reference = loadGivenReference(o.referencePath, base.width, base.height);
         } else {
-            const std::string identity = fmt::format("{} {} {}x{} spp {} {}", report.sceneName, sceneHash, base.width,
-                                                     base.height, o.referenceSpp, key.empty() ? "as written" : key);
+            const std::string identity =
+                fmt::format("{} {} {}x{} spp {} in {} {}", report.sceneName, sceneHash, base.width, base.height,
+                            o.referenceSpp, kReferenceParts, key.empty() ? "as written" : key);
             const fs::path path = dir / (key.empty() ? "reference.exr" : "reference-" + key + ".exr");
             reference = makeReference(key.empty() ? scene : tweaked, base, o.referenceSpp, identity, path, log);
         }

@@ -8,7 +8,10 @@
 //   relmse      relmse_raw minus the reference's own noise, mean Var(r) / (r^2
 //               + 0.01), since E[(x - r_noisy)^2] = (x - r_true)^2 + Var(r); this
 //               is what the charts show (it may be <= 0 when the candidate is
-//               as good as the reference: such points are left off the charts)
+//               as good as the reference: such points are left off the charts).
+//               A reference the bench renders is the mean of 8 independent
+//               sobol renders and Var(r) comes from their spread, which stays
+//               honest for stratified samples (bench.cpp, makeReference).
 //   bias z      sum of (x - r) over pixels and channels / sqrt(sum of Var(x) +
 //               Var(r)): a global z-score, N(0, 1) for an unbiased method
 //               (NaN below 2 samples per pixel: no variance estimate). The

@@ -24,6 +24,7 @@
 #include <fstream>
 #include <map>
 #include <ostream>
+#include <regex>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -50,7 +51,8 @@ bool isInformational(const std::string& message) {
 // A short name for the kind of a warning: the message up to its first ';'.
 std::string warningKind(const std::string& message) {
     std::string kind = message.substr(0, message.find(';'));
-    if (kind.size() > 90) kind = kind.substr(0, 87) + "...";
+    if (kind.size() > 90)
+        kind = kind.substr(0, 87) + "...";
     return kind;
 }
 
@@ -58,24 +60,27 @@ std::string warningKind(const std::string& message) {
 std::string oneLine(const Diagnostics& diags, const Diagnostic& d) {
     std::string where;
     if (d.loc.valid() && d.loc.file < diags.files().count())
-        where = fmt::format("{}:{}:{}: ", fs::path(diags.files().path(d.loc.file)).filename().string(), d.loc.line,
-                            d.loc.column);
+        where = fmt::format("{}:{}:{}: ", fs::path(diags.files().path(d.loc.file)).filename().string(),
+                            d.loc.line, d.loc.column);
     return where + d.message;
 }
 
 std::string firstError(const Diagnostics& diags) {
     for (const Diagnostic& d : diags.all())
-        if (d.severity == Severity::Error) return oneLine(diags, d);
+        if (d.severity == Severity::Error)
+            return oneLine(diags, d);
     return "unknown error";
 }
 
 // Writes `text` to a temporary file beside `path`, then renames it over `path`.
 std::string writeTextFile(const std::string& path, const std::string& text) {
     const fs::path target(path);
-    const fs::path temp = target.parent_path() / (".~" + target.filename().string() + "." + std::to_string(::getpid()));
+    const fs::path temp =
+        target.parent_path() / (".~" + target.filename().string() + "." + std::to_string(::getpid()));
     {
         std::ofstream out(temp, std::ios::binary);
-        if (!out) return fmt::format("cannot write '{}': {}", path, std::strerror(errno));
+        if (!out)
+            return fmt::format("cannot write '{}': {}", path, std::strerror(errno));
         out << text;
         out.flush();
         if (!out) {
@@ -117,19 +122,21 @@ int convertOne(const ConvertCommand& command, std::ostream& out, std::ostream& e
     options.sourceFiles = &diags.files();
     const std::string text = writeDrtScene(*scene, options);
     const std::vector<std::string> problems = drtInexpressible(*scene);
-    for (const std::string& p : problems) err << fmt::format("drt: {}: warning: .drt cannot express {}\n", command.output, p);
+    for (const std::string& p : problems)
+        err << fmt::format("drt: {}: warning: .drt cannot express {}\n", command.output, p);
 
     // The written text must load back (it always does unless .drt lacks a construct).
     Diagnostics again;
     const std::string dir = fs::path(command.output).parent_path().string();
-    const bool loads = loadSceneText(text, command.output, again, dir.empty() ? "." : dir).has_value() &&
-                       !again.hasErrors();
+    const bool loads =
+        loadSceneText(text, command.output, again, dir.empty() ? "." : dir).has_value() && !again.hasErrors();
     if (std::string problem = writeTextFile(command.output, text); !problem.empty()) {
         err << "drt: " << problem << "\n";
         return kIoError;
     }
     if (!loads) {
-        err << fmt::format("drt: {}: written, but drt cannot load it back: {}\n", command.output, firstError(again));
+        err << fmt::format("drt: {}: written, but drt cannot load it back: {}\n", command.output,
+                           firstError(again));
         return kSceneError;
     }
     out << fmt::format("drt: {} -> {} ({} objects, {} lights, {} warning{})\n", command.scene, command.output,
@@ -146,7 +153,8 @@ ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions&
         Diagnostics diags;
         const std::optional<Scene> scene = loadPovSceneFile(povPath, diags, povOptions(pov));
         for (const Diagnostic& d : diags.all()) {
-            if (d.severity != Severity::Warning) continue;
+            if (d.severity != Severity::Warning)
+                continue;
             (isInformational(d.message) ? check.notes : check.unsupported).push_back(warningKind(d.message));
         }
         if (diags.hasErrors() || !scene) {
@@ -154,7 +162,8 @@ ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions&
             check.reason = "load: " + firstError(diags);
             return check;
         }
-        for (const std::string& p : drtInexpressible(*scene)) check.unsupported.push_back(".drt cannot express " + p);
+        for (const std::string& p : drtInexpressible(*scene))
+            check.unsupported.push_back(".drt cannot express " + p);
         const std::string text = writeDrtScene(*scene);
         Scene toRender = *scene;
         if (check.unsupported.empty()) {
@@ -175,7 +184,8 @@ ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions&
         options.adaptive = false;
         options.threads = 1;
         render(toRender, options);
-        check.outcome = check.unsupported.empty() ? ConversionCheck::Outcome::Clean : ConversionCheck::Outcome::Warnings;
+        check.outcome =
+            check.unsupported.empty() ? ConversionCheck::Outcome::Clean : ConversionCheck::Outcome::Warnings;
     } catch (const std::exception& e) {
         check.outcome = ConversionCheck::Outcome::Failed;
         check.reason = std::string("render: ") + e.what();
@@ -202,8 +212,10 @@ std::string serialize(const ConversionCheck& c) {
         return s.substr(0, 600);
     };
     std::string text = std::to_string(int(c.outcome)) + "\n" + clean(c.reason) + "\n";
-    for (const auto& k : c.unsupported) text += "u " + clean(k) + "\n";
-    for (const auto& k : c.notes) text += "n " + clean(k) + "\n";
+    for (const auto& k : c.unsupported)
+        text += "u " + clean(k) + "\n";
+    for (const auto& k : c.notes)
+        text += "n " + clean(k) + "\n";
     return text.substr(0, 16000); // well under a pipe's buffer
 }
 
@@ -214,10 +226,14 @@ ConversionCheck deserialize(const std::string& text) {
     while (pos < text.size()) {
         const size_t end = std::min(text.find('\n', pos), text.size());
         const std::string line = text.substr(pos, end - pos);
-        if (lineNumber == 0) c.outcome = ConversionCheck::Outcome(std::clamp(std::atoi(line.c_str()), 0, 2));
-        else if (lineNumber == 1) c.reason = line;
-        else if (line.rfind("u ", 0) == 0) c.unsupported.push_back(line.substr(2));
-        else if (line.rfind("n ", 0) == 0) c.notes.push_back(line.substr(2));
+        if (lineNumber == 0)
+            c.outcome = ConversionCheck::Outcome(std::clamp(std::atoi(line.c_str()), 0, 2));
+        else if (lineNumber == 1)
+            c.reason = line;
+        else if (line.rfind("u ", 0) == 0)
+            c.unsupported.push_back(line.substr(2));
+        else if (line.rfind("n ", 0) == 0)
+            c.notes.push_back(line.substr(2));
         ++lineNumber;
         pos = end + 1;
     }
@@ -246,7 +262,8 @@ ConversionCheck checkInChild(const std::string& path, const PovCliOptions& pov, 
         size_t written = 0;
         while (written < text.size()) {
             const ssize_t n = ::write(fds[1], text.data() + written, text.size() - written);
-            if (n <= 0) break;
+            if (n <= 0)
+                break;
             written += size_t(n);
         }
         ::close(fds[1]);
@@ -258,9 +275,12 @@ ConversionCheck checkInChild(const std::string& path, const PovCliOptions& pov, 
     bool timedOut = false;
     while (true) {
         const pid_t done = ::waitpid(pid, &status, WNOHANG);
-        if (done == pid) break;
-        if (done < 0 && errno != EINTR) break;
-        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeoutSeconds) {
+        if (done == pid)
+            break;
+        if (done < 0 && errno != EINTR)
+            break;
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+            timeoutSeconds) {
             ::kill(pid, SIGKILL); // our own child
             ::waitpid(pid, &status, 0);
             timedOut = true;
@@ -271,7 +291,8 @@ ConversionCheck checkInChild(const std::string& path, const PovCliOptions& pov, 
     std::string text;
     char buffer[4096];
     ssize_t n;
-    while ((n = ::read(fds[0], buffer, sizeof buffer)) > 0) text.append(buffer, size_t(n));
+    while ((n = ::read(fds[0], buffer, sizeof buffer)) > 0)
+        text.append(buffer, size_t(n));
     ::close(fds[0]);
     if (timedOut) {
         failed.reason = fmt::format("timed out after {:g} s", timeoutSeconds);
@@ -288,7 +309,9 @@ ConversionCheck checkInChild(const std::string& path, const PovCliOptions& pov, 
     return deserialize(text);
 }
 
-std::string percent(int part, int whole) { return fmt::format("{:.1f}%", whole ? 100.0 * part / whole : 0.0); }
+std::string percent(int part, int whole) {
+    return fmt::format("{:.1f}%", whole ? 100.0 * part / whole : 0.0);
+}
 
 int report(const ConvertCommand& command, std::ostream& out, std::ostream& err) {
     std::error_code ec;
@@ -297,11 +320,15 @@ int report(const ConvertCommand& command, std::ostream& out, std::ostream& err) 
         return kIoError;
     }
     std::vector<fs::path> scenes;
-    for (fs::recursive_directory_iterator it(command.reportDir, fs::directory_options::skip_permission_denied, ec), end;
+    for (fs::recursive_directory_iterator
+             it(command.reportDir, fs::directory_options::skip_permission_denied, ec),
+         end;
          !ec && it != end; it.increment(ec)) {
         std::string ext = it->path().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-        if (ext == ".pov" && it->is_regular_file(ec)) scenes.push_back(it->path());
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+        if (ext == ".pov" && it->is_regular_file(ec))
+            scenes.push_back(it->path());
     }
     std::sort(scenes.begin(), scenes.end());
     out.flush();
@@ -315,24 +342,28 @@ int report(const ConvertCommand& command, std::ostream& out, std::ostream& err) 
         ++counts[int(c.outcome)];
         std::string line;
         switch (c.outcome) {
-        case ConversionCheck::Outcome::Clean: line = "clean     " + name; break;
-        case ConversionCheck::Outcome::Warnings: line = "warnings  " + name + ":"; break;
-        case ConversionCheck::Outcome::Failed: line = "FAILED    " + name + ": " + c.reason; break;
+        case ConversionCheck::Outcome::Clean:
+            line = "clean     " + name;
+            break;
+        case ConversionCheck::Outcome::Warnings:
+            line = "warnings  " + name + ":";
+            break;
+        case ConversionCheck::Outcome::Failed:
+            line = "FAILED    " + name + ": " + c.reason;
+            break;
         }
         if (c.outcome == ConversionCheck::Outcome::Warnings)
-            for (size_t i = 0; i < c.unsupported.size(); ++i) line += (i ? "; " : " ") + c.unsupported[i];
+            for (size_t i = 0; i < c.unsupported.size(); ++i)
+                line += (i ? "; " : " ") + c.unsupported[i];
         if (c.outcome != ConversionCheck::Outcome::Failed)
-            for (const auto& k : c.unsupported) ++unsupportedKinds[k];
+            for (const auto& k : c.unsupported)
+                ++unsupportedKinds[k];
         if (c.outcome == ConversionCheck::Outcome::Failed) {
             crashes += c.reason.rfind("CRASHED", 0) == 0;
             timeouts += c.reason.rfind("timed out", 0) == 0;
             // The kind of failure: the message without its location.
-            std::string kind = c.reason;
-            if (size_t colon = kind.find(".pov:"); colon != std::string::npos) {
-                const size_t after = kind.find(": ", colon + 5);
-                if (after != std::string::npos) kind = kind.substr(0, kind.find(' ') + 1) + kind.substr(after + 2);
-            }
-            ++failureKinds[warningKind(kind)];
+            static const std::regex location(R"(\S+:\d+:\d+: )");
+            ++failureKinds[warningKind(std::regex_replace(c.reason, location, ""))];
         }
         out << line << "\n";
         out.flush();
@@ -340,14 +371,17 @@ int report(const ConvertCommand& command, std::ostream& out, std::ostream& err) 
     const int total = int(scenes.size());
     auto byCount = [](const std::map<std::string, int>& m) {
         std::vector<std::pair<int, std::string>> v;
-        for (const auto& [k, n] : m) v.emplace_back(-n, k);
+        for (const auto& [k, n] : m)
+            v.emplace_back(-n, k);
         std::sort(v.begin(), v.end());
         return v;
     };
     out << "\nUnsupported features (scenes that converted with warnings):\n";
-    for (const auto& [n, k] : byCount(unsupportedKinds)) out << fmt::format("  {:4}  {}\n", -n, k);
+    for (const auto& [n, k] : byCount(unsupportedKinds))
+        out << fmt::format("  {:4}  {}\n", -n, k);
     out << "Failures:\n";
-    for (const auto& [n, k] : byCount(failureKinds)) out << fmt::format("  {:4}  {}\n", -n, k);
+    for (const auto& [n, k] : byCount(failureKinds))
+        out << fmt::format("  {:4}  {}\n", -n, k);
     out << fmt::format("\n{} scenes under {}: {} clean ({}), {} with warnings ({}), {} failed ({}); "
                        "{} crashed, {} timed out (limit {:g} s)\n",
                        total, command.reportDir, counts[0], percent(counts[0], total), counts[1],
@@ -363,8 +397,9 @@ CLI::App* addConvertSubcommand(CLI::App& app, ConvertCommand& c) {
         "convert", "Convert a POV-Ray scene to .drt, or report on every .pov under a folder (--report DIR)");
     convert->add_option("scene", c.scene, "POV-Ray scene (.pov)");
     convert->add_option("-o,--output", c.output, "The .drt file to write");
-    convert->add_option("--report", c.reportDir,
-                        "Convert every .pov under this folder and print clean / with warnings / failed per scene");
+    convert->add_option(
+        "--report", c.reportDir,
+        "Convert every .pov under this folder and print clean / with warnings / failed per scene");
     convert->add_option("--timeout", c.timeoutSeconds, "--report: time limit per scene, in seconds")
         ->check(CLI::PositiveNumber);
     convert->add_option("-L,--include-path", c.pov.includePaths,

@@ -23,23 +23,28 @@ using writer::vector;
 namespace {
 
 std::string colorText(const Color& c) {
-    if (c.r == c.g && c.g == c.b) return "rgb " + number(c.r);
+    if (c.r == c.g && c.g == c.b)
+        return "rgb " + number(c.r);
     return "rgb " + vector(Vec3(c.r, c.g, c.b));
 }
 
 std::string colorText(const ColorFT& c) {
     const std::string rgb = number(c.rgb.r) + ", " + number(c.rgb.g) + ", " + number(c.rgb.b);
-    if (c.filter == 0 && c.transmit == 0) return colorText(c.rgb);
-    if (c.transmit == 0) return "rgbf <" + rgb + ", " + number(c.filter) + ">";
-    if (c.filter == 0) return "rgbt <" + rgb + ", " + number(c.transmit) + ">";
+    if (c.filter == 0 && c.transmit == 0)
+        return colorText(c.rgb);
+    if (c.transmit == 0)
+        return "rgbf <" + rgb + ", " + number(c.filter) + ">";
+    if (c.filter == 0)
+        return "rgbt <" + rgb + ", " + number(c.transmit) + ">";
     return "rgbft <" + rgb + ", " + number(c.filter) + ", " + number(c.transmit) + ">";
 }
 
 // A pigment that is POV-Ray's default (solid black), whatever its transform.
 bool isDefaultPigment(const Pigment& p) {
     const Pigment d;
-    return p.pattern == PatternKind::Solid && p.color == d.color && p.children.empty() && p.colorMap.empty() &&
-           p.gradientAxis == d.gradientAxis && p.brickSize == d.brickSize && p.mortar == d.mortar;
+    return p.pattern == PatternKind::Solid && p.color == d.color && p.children.empty() &&
+           p.colorMap.empty() && p.gradientAxis == d.gradientAxis && p.brickSize == d.brickSize &&
+           p.mortar == d.mortar;
 }
 
 bool isDefaultFinish(const Finish& f) {
@@ -64,36 +69,44 @@ bool isDefaultInterior(const Interior& i) {
 // direction the author most likely wrote (<0, 1, 1> for a 45-degree disc).
 Vec3 unnormalised(const Vec3& n) {
     const double largest = maxComponent(abs(n));
-    if (!(largest > 0)) return n;
+    if (!(largest > 0))
+        return n;
     const Vec3 scaled = n / largest;
     auto rounded = [&](double perUnit) {
         auto r = [&](double v) { return std::round(v * perUnit) / perUnit; };
         return Vec3(r(scaled.x), r(scaled.y), r(scaled.z));
     };
     for (const Vec3& c : {n, rounded(1e10), rounded(1e6), scaled})
-        if (length(c) > 0 && c / length(c) == n) return c;
+        if (length(c) > 0 && c / length(c) == n)
+            return c;
     return n;
 }
 
 const char* csgKeyword(Csg::Op op) {
     switch (op) {
-    case Csg::Op::Union: return "union";
-    case Csg::Op::Merge: return "merge";
-    case Csg::Op::Difference: return "difference";
-    case Csg::Op::Intersection: return "intersection";
+    case Csg::Op::Union:
+        return "union";
+    case Csg::Op::Merge:
+        return "merge";
+    case Csg::Op::Difference:
+        return "difference";
+    case Csg::Op::Intersection:
+        return "intersection";
     }
     return "union";
 }
 
 class SceneWriter {
-public:
+  public:
     explicit SceneWriter(const WriterOptions& options) : options_(options) {}
 
     std::string write(const Scene& scene);
     std::vector<std::string> problems() const { return {problems_.begin(), problems_.end()}; }
 
-private:
-    void line(int indent, const std::string& text) { out_ += std::string(size_t(indent) * 2, ' ') + text + "\n"; }
+  private:
+    void line(int indent, const std::string& text) {
+        out_ += std::string(size_t(indent) * 2, ' ') + text + "\n";
+    }
     void sourceComment(int indent, const SourceLoc& loc);
     void settings(const Scene& scene);
     void camera(const CameraSpec& c);
@@ -116,19 +129,24 @@ private:
 };
 
 std::string SceneWriter::write(const Scene& scene) {
-    if (options_.sourceName.empty()) line(0, "// Written by drt's .drt writer (src/lang/writer.cpp).");
-    else line(0, "// Converted from " + options_.sourceName + " by drt convert.");
+    if (options_.sourceName.empty())
+        line(0, "// Written by drt's .drt writer (src/lang/writer.cpp).");
+    else
+        line(0, "// Converted from " + options_.sourceName + " by drt convert.");
     line(0, "// The .drt language: docs/language.md.");
     out_ += "\n";
     settings(scene);
     camera(scene.camera);
-    for (const Light& l : scene.lights) light(l);
-    for (const Object& o : scene.objects) topLevelObject(o);
+    for (const Light& l : scene.lights)
+        light(l);
+    for (const Object& o : scene.objects)
+        topLevelObject(o);
     return out_;
 }
 
 void SceneWriter::sourceComment(int indent, const SourceLoc& loc) {
-    if (!options_.sourceFiles || !loc.valid() || loc.file >= options_.sourceFiles->count()) return;
+    if (!options_.sourceFiles || !loc.valid() || loc.file >= options_.sourceFiles->count())
+        return;
     const std::string name = std::filesystem::path(options_.sourceFiles->path(loc.file)).filename().string();
     line(indent, "// " + name + ":" + std::to_string(loc.line));
 }
@@ -136,35 +154,51 @@ void SceneWriter::sourceComment(int indent, const SourceLoc& loc) {
 void SceneWriter::settings(const Scene& scene) {
     const RenderSettings& r = scene.render;
     std::string items;
-    if (r.width) items += " width " + std::to_string(*r.width);
-    if (r.height) items += " height " + std::to_string(*r.height);
-    if (r.samplesPerPixel) items += " samples " + std::to_string(*r.samplesPerPixel);
+    if (r.width)
+        items += " width " + std::to_string(*r.width);
+    if (r.height)
+        items += " height " + std::to_string(*r.height);
+    if (r.samplesPerPixel)
+        items += " samples " + std::to_string(*r.samplesPerPixel);
     if (r.seed) {
         items += " seed " + std::to_string(*r.seed);
-        if (*r.seed > (uint64_t(1) << 53)) problems_.insert("a seed above 2^53 (the .drt parser reads it as a double)");
+        if (*r.seed > (uint64_t(1) << 53))
+            problems_.insert("a seed above 2^53 (the .drt parser reads it as a double)");
     }
-    if (r.sampler) items += " sampler \"" + *r.sampler + "\"";
-    if (r.filter) items += " filter \"" + *r.filter + "\"";
+    if (r.sampler)
+        items += " sampler \"" + *r.sampler + "\"";
+    if (r.filter)
+        items += " filter \"" + *r.filter + "\"";
     if (r.adaptive.value_or(false)) {
         std::string adaptive;
-        if (r.adaptiveError) adaptive += " error " + number(*r.adaptiveError);
-        if (r.minSamplesPerPixel) adaptive += " min_samples " + std::to_string(*r.minSamplesPerPixel);
-        if (r.maxSamplesPerPixel) adaptive += " max_samples " + std::to_string(*r.maxSamplesPerPixel);
+        if (r.adaptiveError)
+            adaptive += " error " + number(*r.adaptiveError);
+        if (r.minSamplesPerPixel)
+            adaptive += " min_samples " + std::to_string(*r.minSamplesPerPixel);
+        if (r.maxSamplesPerPixel)
+            adaptive += " max_samples " + std::to_string(*r.maxSamplesPerPixel);
         items += adaptive.empty() ? " adaptive" : " adaptive {" + adaptive + " }";
     } else if (r.adaptiveError || r.minSamplesPerPixel || r.maxSamplesPerPixel) {
         problems_.insert("adaptive sampling limits without adaptive sampling");
     }
-    if (!items.empty()) line(0, "render {" + items + " }");
+    if (!items.empty())
+        line(0, "render {" + items + " }");
 
     const GlobalSettings& g = scene.global;
     const GlobalSettings d;
     items.clear();
-    if (g.maxTraceLevel != d.maxTraceLevel) items += " max_trace_level " + std::to_string(g.maxTraceLevel);
-    if (!(g.ambientLight == d.ambientLight)) items += " ambient_light " + colorText(g.ambientLight);
-    if (g.assumedGamma != d.assumedGamma) items += " assumed_gamma " + number(g.assumedGamma);
-    if (g.adcBailout != d.adcBailout) items += " adc_bailout " + number(g.adcBailout);
-    if (!items.empty()) line(0, "global_settings {" + items + " }");
-    if (!isBlack(scene.background)) line(0, "background { color " + colorText(scene.background) + " }");
+    if (g.maxTraceLevel != d.maxTraceLevel)
+        items += " max_trace_level " + std::to_string(g.maxTraceLevel);
+    if (!(g.ambientLight == d.ambientLight))
+        items += " ambient_light " + colorText(g.ambientLight);
+    if (g.assumedGamma != d.assumedGamma)
+        items += " assumed_gamma " + number(g.assumedGamma);
+    if (g.adcBailout != d.adcBailout)
+        items += " adc_bailout " + number(g.adcBailout);
+    if (!items.empty())
+        line(0, "global_settings {" + items + " }");
+    if (!isBlack(scene.background))
+        line(0, "background { color " + colorText(scene.background) + " }");
     out_ += "\n";
 }
 
@@ -172,17 +206,28 @@ void SceneWriter::camera(const CameraSpec& c) {
     const CameraSpec d;
     line(0, "camera {");
     line(1, "location " + vector(c.location));
-    if (!(c.direction == d.direction)) line(1, "direction " + vector(c.direction));
-    if (!(c.up == d.up)) line(1, "up " + vector(c.up));
-    if (c.right) line(1, "right " + vector(*c.right));
-    if (!(c.sky == d.sky)) line(1, "sky " + vector(c.sky));
-    if (c.lookAt) line(1, "look_at " + vector(*c.lookAt));
-    if (c.angle) line(1, "angle " + number(*c.angle));
-    if (c.aperture != d.aperture) line(1, "aperture " + number(c.aperture));
-    if (c.focalPoint) line(1, "focal_point " + vector(*c.focalPoint));
-    if (c.focalDistance) line(1, "focal_distance " + number(*c.focalDistance));
-    if (c.shutterOpen != d.shutterOpen) line(1, "shutter_open " + number(c.shutterOpen));
-    if (c.shutterClose != d.shutterClose) line(1, "shutter_close " + number(c.shutterClose));
+    if (!(c.direction == d.direction))
+        line(1, "direction " + vector(c.direction));
+    if (!(c.up == d.up))
+        line(1, "up " + vector(c.up));
+    if (c.right)
+        line(1, "right " + vector(*c.right));
+    if (!(c.sky == d.sky))
+        line(1, "sky " + vector(c.sky));
+    if (c.lookAt)
+        line(1, "look_at " + vector(*c.lookAt));
+    if (c.angle)
+        line(1, "angle " + number(*c.angle));
+    if (c.aperture != d.aperture)
+        line(1, "aperture " + number(c.aperture));
+    if (c.focalPoint)
+        line(1, "focal_point " + vector(*c.focalPoint));
+    if (c.focalDistance)
+        line(1, "focal_distance " + number(*c.focalDistance));
+    if (c.shutterOpen != d.shutterOpen)
+        line(1, "shutter_open " + number(c.shutterOpen));
+    if (c.shutterClose != d.shutterClose)
+        line(1, "shutter_close " + number(c.shutterClose));
     line(0, "}");
     out_ += "\n";
 }
@@ -192,32 +237,48 @@ void SceneWriter::light(const Light& l) {
     sourceComment(0, l.loc);
     line(0, "light_source {");
     line(1, vector(l.position) + ", color " + colorText(l.color));
-    if (l.spotlight) line(1, "spotlight");
-    if (!(l.pointAt == d.pointAt)) line(1, "point_at " + vector(l.pointAt));
+    if (l.spotlight)
+        line(1, "spotlight");
+    if (!(l.pointAt == d.pointAt))
+        line(1, "point_at " + vector(l.pointAt));
     std::string items;
-    if (l.radius != d.radius) items += " radius " + number(l.radius);
-    if (l.falloff != d.falloff) items += " falloff " + number(l.falloff);
-    if (l.tightness != d.tightness) items += " tightness " + number(l.tightness);
-    if (l.fadeDistance != d.fadeDistance) items += " fade_distance " + number(l.fadeDistance);
-    if (l.fadePower != d.fadePower) items += " fade_power " + number(l.fadePower);
-    if (!items.empty()) line(1, items.substr(1));
-    if (l.shadowless) line(1, "shadowless");
+    if (l.radius != d.radius)
+        items += " radius " + number(l.radius);
+    if (l.falloff != d.falloff)
+        items += " falloff " + number(l.falloff);
+    if (l.tightness != d.tightness)
+        items += " tightness " + number(l.tightness);
+    if (l.fadeDistance != d.fadeDistance)
+        items += " fade_distance " + number(l.fadeDistance);
+    if (l.fadePower != d.fadePower)
+        items += " fade_power " + number(l.fadePower);
+    if (!items.empty())
+        line(1, items.substr(1));
+    if (l.shadowless)
+        line(1, "shadowless");
     if (l.area) {
         const AreaLight& a = *l.area;
-        std::string area = "area_light " + vector(a.axis1) + ", " + vector(a.axis2) + ", " + std::to_string(a.size1) +
-                           ", " + std::to_string(a.size2);
-        if (a.jitter) area += " jitter";
-        if (a.adaptive >= 0) area += " adaptive " + std::to_string(a.adaptive);
-        if (a.circular) area += " circular";
-        if (a.orient) area += " orient";
+        std::string area = "area_light " + vector(a.axis1) + ", " + vector(a.axis2) + ", " +
+                           std::to_string(a.size1) + ", " + std::to_string(a.size2);
+        if (a.jitter)
+            area += " jitter";
+        if (a.adaptive >= 0)
+            area += " adaptive " + std::to_string(a.adaptive);
+        if (a.circular)
+            area += " circular";
+        if (a.orient)
+            area += " orient";
         line(1, area);
     }
     // The .drt defaults differ from the model's (POV-Ray's): area_illumination
     // on and stratified sampling; say so whenever the model differs.
-    if (l.area && !l.areaIllumination) line(1, "area_illumination off"); // a no-op without an area
+    if (l.area && !l.areaIllumination)
+        line(1, "area_illumination off"); // a no-op without an area
     if (l.area && l.area->sampling != AreaSampling::Stratified)
-        line(1, l.area->sampling == AreaSampling::PovGrid ? "area_sampling pov_grid" : "area_sampling solid_angle");
-    if (l.inverseSquare) line(1, "inverse_square");
+        line(1, l.area->sampling == AreaSampling::PovGrid ? "area_sampling pov_grid"
+                                                          : "area_sampling solid_angle");
+    if (l.inverseSquare)
+        line(1, "inverse_square");
     line(0, "}");
 }
 
@@ -232,19 +293,22 @@ void SceneWriter::topLevelObject(const Object& o) {
 
 // The .drt parser stores a union as its members, each with the union's
 // transforms after its own; the renderer treats both forms alike.
-void SceneWriter::flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow, bool hollow,
-                               const std::optional<Motion>& motion) {
+void SceneWriter::flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow,
+                               bool hollow, const std::optional<Motion>& motion) {
     Object leaf = o;
     leaf.transform = o.transform.then(parent);
     leaf.inverse = o.inverse != inverse;
     leaf.noShadow = o.noShadow || noShadow;
     leaf.hollow = o.hollow || hollow;
     if (motion) {
-        if (leaf.motion) problems_.insert("motion on both a union and one of its members");
-        else leaf.motion = motion;
+        if (leaf.motion)
+            problems_.insert("motion on both a union and one of its members");
+        else
+            leaf.motion = motion;
     }
     if (const Csg* csg = std::get_if<Csg>(&o.shape); csg && csg->op == Csg::Op::Union) {
-        if (leaf.motion && !parent.isIdentity()) problems_.insert("motion inside a transformed union");
+        if (leaf.motion && !parent.isIdentity())
+            problems_.insert("motion inside a transformed union");
         for (const Object& child : csg->children)
             flattenUnion(child, leaf.transform, leaf.inverse, leaf.noShadow, leaf.hollow, leaf.motion);
         return;
@@ -256,22 +320,29 @@ void SceneWriter::flattenUnion(const Object& o, const Transform& parent, bool in
 // Writes one object. Non-union CSG is written with its transforms baked into
 // its members (the pigments are already in world space).
 void SceneWriter::object(const Object& o, int indent) {
-    if (indent == 0) sourceComment(indent, o.loc);
+    if (indent == 0)
+        sourceComment(indent, o.loc);
     const std::string head = shapeHead(o, indent);
-    if (head.empty()) return;
+    if (head.empty())
+        return;
     line(indent, head);
     if (const Csg* csg = std::get_if<Csg>(&o.shape)) {
         if (csg->op != Csg::Op::Union)
-            problems_.insert(std::string(csgKeyword(csg->op)) + " (.drt has only union; written in POV-Ray syntax)");
+            problems_.insert(std::string(csgKeyword(csg->op)) +
+                             " (.drt has only union; written in POV-Ray syntax)");
         for (const Object& child : csg->children) {
             Object baked = child;
             baked.transform = child.transform.then(o.transform);
             object(baked, indent + 1);
         }
-        if (o.inverse) line(indent + 1, "inverse");
-        if (o.noShadow) line(indent + 1, "no_shadow");
-        if (o.hollow) line(indent + 1, "hollow");
-        if (o.motion) line(indent + 1, motionText(*o.motion));
+        if (o.inverse)
+            line(indent + 1, "inverse");
+        if (o.noShadow)
+            line(indent + 1, "no_shadow");
+        if (o.hollow)
+            line(indent + 1, "hollow");
+        if (o.motion)
+            line(indent + 1, motionText(*o.motion));
         line(indent, "}");
         return;
     }
@@ -287,26 +358,39 @@ void SceneWriter::object(const Object& o, int indent) {
     const std::string before = untextured ? "" : pigmentBody(t.pigment, steps, exactBefore);
     const std::string after = untextured || steps.empty() ? before : pigmentBody(t.pigment, {}, exactAfter);
     const bool readableBefore = before.find(" matrix") == std::string::npos;
-    const bool textureBefore =
-        untextured || steps.empty() || (exactBefore && (readableBefore || !exactAfter)) || (!exactBefore && !exactAfter);
-    if (textureBefore && !untextured) texture(t, before, indent + 1);
-    if (!steps.empty()) line(indent + 1, formatSteps(steps).substr(1));
-    if (!textureBefore) texture(t, after, indent + 1);
-    if (!isDefaultInterior(o.interior)) line(indent + 1, "interior {" + interiorBody(o.interior) + " }");
+    const bool textureBefore = untextured || steps.empty() ||
+                               (exactBefore && (readableBefore || !exactAfter)) ||
+                               (!exactBefore && !exactAfter);
+    if (textureBefore && !untextured)
+        texture(t, before, indent + 1);
+    if (!steps.empty())
+        line(indent + 1, formatSteps(steps).substr(1));
+    if (!textureBefore)
+        texture(t, after, indent + 1);
+    if (!isDefaultInterior(o.interior))
+        line(indent + 1, "interior {" + interiorBody(o.interior) + " }");
     std::string flags;
-    if (o.noShadow) flags += " no_shadow";
-    if (o.hollow) flags += " hollow";
-    if (o.inverse) flags += " inverse";
-    if (!flags.empty()) line(indent + 1, flags.substr(1));
-    if (o.motion) line(indent + 1, motionText(*o.motion));
+    if (o.noShadow)
+        flags += " no_shadow";
+    if (o.hollow)
+        flags += " hollow";
+    if (o.inverse)
+        flags += " inverse";
+    if (!flags.empty())
+        line(indent + 1, flags.substr(1));
+    if (o.motion)
+        line(indent + 1, motionText(*o.motion));
     line(indent, "}");
 }
 
 std::string SceneWriter::motionText(const Motion& m) {
     std::string text = "motion {";
-    if (!(m.translate == Vec3(0))) text += " translate " + vector(m.translate);
-    if (!(m.rotate == Vec3(0))) text += " rotate " + vector(m.rotate);
-    if (!(m.scale == Vec3(1))) text += " scale " + vector(m.scale);
+    if (!(m.translate == Vec3(0)))
+        text += " translate " + vector(m.translate);
+    if (!(m.rotate == Vec3(0)))
+        text += " rotate " + vector(m.rotate);
+    if (!(m.scale == Vec3(1)))
+        text += " scale " + vector(m.scale);
     return text + " }";
 }
 
@@ -315,7 +399,9 @@ std::string SceneWriter::shapeHead(const Object& o, int indent) {
     struct Visitor {
         SceneWriter& w;
         int indent;
-        std::string operator()(const Sphere& s) const { return "sphere { " + vector(s.center) + ", " + number(s.radius); }
+        std::string operator()(const Sphere& s) const {
+            return "sphere { " + vector(s.center) + ", " + number(s.radius);
+        }
         std::string operator()(const Plane& p) const {
             // The parser divides both the normal and the distance by the normal's length.
             const Vec3 n = unnormalised(p.normal);
@@ -329,7 +415,9 @@ std::string SceneWriter::shapeHead(const Object& o, int indent) {
                 }
             return "plane { " + vector(n) + ", " + number(d);
         }
-        std::string operator()(const Box& b) const { return "box { " + vector(b.corner1) + ", " + vector(b.corner2); }
+        std::string operator()(const Box& b) const {
+            return "box { " + vector(b.corner1) + ", " + vector(b.corner2);
+        }
         std::string operator()(const Cylinder& c) const {
             return "cylinder { " + vector(c.base) + ", " + vector(c.cap) + ", " + number(c.radius) +
                    (c.open ? " open" : "");
@@ -339,8 +427,8 @@ std::string SceneWriter::shapeHead(const Object& o, int indent) {
                    number(c.capRadius) + (c.open ? " open" : "");
         }
         std::string operator()(const Disc& d) const {
-            return "disc { " + vector(d.center) + ", " + vector(unnormalised(d.normal)) + ", " + number(d.radius) +
-                   (d.holeRadius != 0 ? ", " + number(d.holeRadius) : "");
+            return "disc { " + vector(d.center) + ", " + vector(unnormalised(d.normal)) + ", " +
+                   number(d.radius) + (d.holeRadius != 0 ? ", " + number(d.holeRadius) : "");
         }
         std::string operator()(const Torus& t) const {
             return "torus { " + number(t.majorRadius) + ", " + number(t.minorRadius);
@@ -371,7 +459,8 @@ std::string SceneWriter::meshText(const Mesh& m, int indent) {
     const bool hasNormals = !m.normals.empty() && m.normalIndices.size() == m.triangles.size();
     auto triangleBody = [&](size_t t, bool& smooth) {
         const auto& tri = m.triangles[t];
-        const Vec3 a = m.vertices[size_t(tri[0])], b = m.vertices[size_t(tri[1])], c = m.vertices[size_t(tri[2])];
+        const Vec3 a = m.vertices[size_t(tri[0])], b = m.vertices[size_t(tri[1])],
+                   c = m.vertices[size_t(tri[2])];
         smooth = false;
         Vec3 n[3];
         if (hasNormals) {
@@ -381,9 +470,10 @@ std::string SceneWriter::meshText(const Mesh& m, int indent) {
                 smooth = smooth || !(n[k] == face);
             }
         }
-        if (!smooth) return vector(a) + ", " + vector(b) + ", " + vector(c);
-        return vector(a) + ", " + vector(unnormalised(n[0])) + ", " + vector(b) + ", " + vector(unnormalised(n[1])) +
-               ", " + vector(c) + ", " + vector(unnormalised(n[2]));
+        if (!smooth)
+            return vector(a) + ", " + vector(b) + ", " + vector(c);
+        return vector(a) + ", " + vector(unnormalised(n[0])) + ", " + vector(b) + ", " +
+               vector(unnormalised(n[1])) + ", " + vector(c) + ", " + vector(unnormalised(n[2]));
     };
     bool smooth = false;
     if (m.triangles.size() == 1) {
@@ -437,70 +527,114 @@ std::string SceneWriter::pigmentBody(const Pigment& p, const std::vector<Step>& 
     };
     auto list = [&](const char* keyword, size_t count) {
         text += std::string(" ") + keyword;
-        if (p.children.size() != count) problems_.insert(std::string(keyword) + " with a sub-pigment count other than " +
-                                                         std::to_string(count));
-        for (size_t i = 0; i < p.children.size() && i < count; ++i) text += (i ? ", " : " ") + subPigment(p.children[i]);
+        if (p.children.size() != count)
+            problems_.insert(std::string(keyword) + " with a sub-pigment count other than " +
+                             std::to_string(count));
+        for (size_t i = 0; i < p.children.size() && i < count; ++i)
+            text += (i ? ", " : " ") + subPigment(p.children[i]);
     };
     auto colorMap = [&] {
-        if (!p.children.empty()) problems_.insert("a pigment_map (sub-pigments of a colour-map pattern)");
+        if (!p.children.empty())
+            problems_.insert("a pigment_map (sub-pigments of a colour-map pattern)");
         std::vector<ColorMapEntry> map = p.colorMap;
-        if (map.empty()) map = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // the renderer's empty-map ramp
+        if (map.empty())
+            map = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // the renderer's empty-map ramp
         text += " color_map {";
-        for (const ColorMapEntry& e : map) text += " [" + number(e.value) + " " + colorText(e.color) + "]";
+        for (const ColorMapEntry& e : map)
+            text += " [" + number(e.value) + " " + colorText(e.color) + "]";
         text += " }";
     };
     switch (p.pattern) {
-    case PatternKind::Solid: text += " color " + colorText(p.color); break;
-    case PatternKind::Checker: list("checker", 2); break;
-    case PatternKind::Hexagon: list("hexagon", 3); break;
-    case PatternKind::Brick: list("brick", 2); break;
-    case PatternKind::Gradient: text += " gradient " + vector(p.gradientAxis); colorMap(); break;
-    case PatternKind::Radial: text += " radial"; colorMap(); break;
-    case PatternKind::Onion: text += " onion"; colorMap(); break;
+    case PatternKind::Solid:
+        text += " color " + colorText(p.color);
+        break;
+    case PatternKind::Checker:
+        list("checker", 2);
+        break;
+    case PatternKind::Hexagon:
+        list("hexagon", 3);
+        break;
+    case PatternKind::Brick:
+        list("brick", 2);
+        break;
+    case PatternKind::Gradient:
+        text += " gradient " + vector(p.gradientAxis);
+        colorMap();
+        break;
+    case PatternKind::Radial:
+        text += " radial";
+        colorMap();
+        break;
+    case PatternKind::Onion:
+        text += " onion";
+        colorMap();
+        break;
     }
     const Pigment d;
-    if (!(p.brickSize == d.brickSize)) text += " brick_size " + vector(p.brickSize);
-    if (p.mortar != d.mortar) text += " mortar " + number(p.mortar);
+    if (!(p.brickSize == d.brickSize))
+        text += " brick_size " + vector(p.brickSize);
+    if (p.mortar != d.mortar)
+        text += " mortar " + number(p.mortar);
     return text + formatSteps(own);
 }
 
 std::string SceneWriter::finishBody(const Finish& f) {
     const Finish d;
     std::string text;
-    if (!(f.ambient == d.ambient)) text += " ambient " + colorText(f.ambient);
-    if (!(f.emission == d.emission)) text += " emission " + colorText(f.emission);
-    if (f.diffuse != d.diffuse) text += " diffuse " + number(f.diffuse);
-    if (f.brilliance != d.brilliance) text += " brilliance " + number(f.brilliance);
-    if (f.phong != d.phong) text += " phong " + number(f.phong);
-    if (f.phongSize != d.phongSize) text += " phong_size " + number(f.phongSize);
-    if (f.specular != d.specular) text += " specular " + number(f.specular);
-    if (f.roughness != d.roughness) text += " roughness " + number(f.roughness);
-    if (f.metallic != d.metallic) text += " metallic " + number(f.metallic);
-    const bool plainReflection = f.reflectionMin == f.reflectionMax && f.reflectionFresnel == d.reflectionFresnel &&
-                                 f.reflectionFalloff == d.reflectionFalloff &&
-                                 f.reflectionMetallic == d.reflectionMetallic;
+    if (!(f.ambient == d.ambient))
+        text += " ambient " + colorText(f.ambient);
+    if (!(f.emission == d.emission))
+        text += " emission " + colorText(f.emission);
+    if (f.diffuse != d.diffuse)
+        text += " diffuse " + number(f.diffuse);
+    if (f.brilliance != d.brilliance)
+        text += " brilliance " + number(f.brilliance);
+    if (f.phong != d.phong)
+        text += " phong " + number(f.phong);
+    if (f.phongSize != d.phongSize)
+        text += " phong_size " + number(f.phongSize);
+    if (f.specular != d.specular)
+        text += " specular " + number(f.specular);
+    if (f.roughness != d.roughness)
+        text += " roughness " + number(f.roughness);
+    if (f.metallic != d.metallic)
+        text += " metallic " + number(f.metallic);
+    const bool plainReflection =
+        f.reflectionMin == f.reflectionMax && f.reflectionFresnel == d.reflectionFresnel &&
+        f.reflectionFalloff == d.reflectionFalloff && f.reflectionMetallic == d.reflectionMetallic;
     if (plainReflection) {
-        if (!isBlack(f.reflectionMax)) text += " reflection " + colorText(f.reflectionMax);
+        if (!isBlack(f.reflectionMax))
+            text += " reflection " + colorText(f.reflectionMax);
     } else {
         text += " reflection { " + colorText(f.reflectionMin) + ", " + colorText(f.reflectionMax);
-        if (f.reflectionFresnel) text += " fresnel on";
-        if (f.reflectionFalloff != d.reflectionFalloff) text += " falloff " + number(f.reflectionFalloff);
-        if (f.reflectionMetallic != d.reflectionMetallic) text += " metallic " + number(f.reflectionMetallic);
+        if (f.reflectionFresnel)
+            text += " fresnel on";
+        if (f.reflectionFalloff != d.reflectionFalloff)
+            text += " falloff " + number(f.reflectionFalloff);
+        if (f.reflectionMetallic != d.reflectionMetallic)
+            text += " metallic " + number(f.reflectionMetallic);
         text += " }";
     }
-    if (f.conserveEnergy) text += " conserve_energy";
-    if (f.reflectionBlur != d.reflectionBlur) text += " reflection_blur " + number(f.reflectionBlur);
-    if (f.refractionBlur != d.refractionBlur) text += " refraction_blur " + number(f.refractionBlur);
+    if (f.conserveEnergy)
+        text += " conserve_energy";
+    if (f.reflectionBlur != d.reflectionBlur)
+        text += " reflection_blur " + number(f.reflectionBlur);
+    if (f.refractionBlur != d.refractionBlur)
+        text += " refraction_blur " + number(f.refractionBlur);
     return text;
 }
 
 std::string SceneWriter::interiorBody(const Interior& i) {
     const Interior d;
     std::string text;
-    if (i.ior != d.ior) text += " ior " + number(i.ior);
-    if (i.fadeDistance != d.fadeDistance) text += " fade_distance " + number(i.fadeDistance);
-    if (i.fadePower != d.fadePower) text += " fade_power " + number(i.fadePower);
-    if (!(i.fadeColor == d.fadeColor)) text += " fade_color " + colorText(i.fadeColor);
+    if (i.ior != d.ior)
+        text += " ior " + number(i.ior);
+    if (i.fadeDistance != d.fadeDistance)
+        text += " fade_distance " + number(i.fadeDistance);
+    if (i.fadePower != d.fadePower)
+        text += " fade_power " + number(i.fadePower);
+    if (!(i.fadeColor == d.fadeColor))
+        text += " fade_color " + colorText(i.fadeColor);
     return text;
 }
 

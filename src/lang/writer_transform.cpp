@@ -17,8 +17,10 @@
 namespace drt::writer {
 
 std::string number(double v) {
-    if (!std::isfinite(v)) return "0"; // the scene model never holds these; keep the text loadable
-    if (v == 0) return "0";            // also turns -0 into 0 (equal under ==)
+    if (!std::isfinite(v))
+        return "0"; // the scene model never holds these; keep the text loadable
+    if (v == 0)
+        return "0"; // also turns -0 into 0 (equal under ==)
     char buffer[64];
     const auto result = std::to_chars(buffer, buffer + sizeof buffer, v); // shortest round-trip form
     return std::string(buffer, result.ptr);
@@ -32,17 +34,22 @@ std::string vector(const Vec3& v) {
 
 Transform Step::transform() const {
     switch (kind) {
-    case Kind::Translate: return Transform::translate(v);
-    case Kind::Rotate: return Transform::rotate(v);
-    case Kind::Scale: return Transform::scale(v);
-    case Kind::Matrix: return Transform::fromPovMatrix(m).value_or(Transform{});
+    case Kind::Translate:
+        return Transform::translate(v);
+    case Kind::Rotate:
+        return Transform::rotate(v);
+    case Kind::Scale:
+        return Transform::scale(v);
+    case Kind::Matrix:
+        return Transform::fromPovMatrix(m).value_or(Transform{});
     }
     return {};
 }
 
 Transform compose(const std::vector<Step>& steps, const Transform& start) {
     Transform t = start;
-    for (const Step& s : steps) t = t.then(s.transform());
+    for (const Step& s : steps)
+        t = t.then(s.transform());
     return t;
 }
 
@@ -60,12 +67,14 @@ Step matrixStep(const Transform& t) {
     const Mat4& m = t.matrix();
     // POV-Ray's row-vector order: entry (row, col) of its matrix is m[col][row].
     for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 3; ++col) s.m[size_t(row * 3 + col)] = m.m[col][row];
+        for (int col = 0; col < 3; ++col)
+            s.m[size_t(row * 3 + col)] = m.m[col][row];
     return s;
 }
 
 double determinant(const Mat3& a) {
-    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
            a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
 }
 
@@ -85,7 +94,8 @@ Vec3 eulerDegrees(const Mat3& r) {
 // Rounds to a multiple of 1/perUnit: written values such as 30 or 1.3 come
 // back from atan2 and sqrt a few ulps off; rounding recovers them.
 double roundTo(double v, double perUnit) {
-    if (perUnit == 0 || std::fabs(v) > 1e5) return v;
+    if (perUnit == 0 || std::fabs(v) > 1e5)
+        return v;
     const double r = std::round(v * perUnit) / perUnit;
     return r == 0 ? 0.0 : r;
 }
@@ -99,13 +109,17 @@ enum class Order { ScaleFirst, RotateFirst }; // L = R S, or L = S R
 bool splitLinear(const Mat3& l, Order order, Vec3& scale, Mat3& rotation) {
     for (int i = 0; i < 3; ++i) {
         double sum = 0;
-        for (int j = 0; j < 3; ++j) sum += order == Order::ScaleFirst ? l[j][i] * l[j][i] : l[i][j] * l[i][j];
+        for (int j = 0; j < 3; ++j)
+            sum += order == Order::ScaleFirst ? l[j][i] * l[j][i] : l[i][j] * l[i][j];
         scale[i] = std::sqrt(sum);
-        if (!(scale[i] > 0) || !std::isfinite(scale[i])) return false;
+        if (!(scale[i] > 0) || !std::isfinite(scale[i]))
+            return false;
     }
-    if (determinant(l) < 0) scale.x = -scale.x;
+    if (determinant(l) < 0)
+        scale.x = -scale.x;
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) rotation[i][j] = l[i][j] / (order == Order::ScaleFirst ? scale[j] : scale[i]);
+        for (int j = 0; j < 3; ++j)
+            rotation[i][j] = l[i][j] / (order == Order::ScaleFirst ? scale[j] : scale[i]);
     return true;
 }
 
@@ -119,30 +133,37 @@ Step makeStep(Step::Kind kind, const Vec3& v) {
 } // namespace
 
 std::vector<Step> decompose(const Transform& t) {
-    if (t.isIdentity() && t.inverseMatrix() == Mat4::identity()) return {};
+    if (t.isIdentity() && t.inverseMatrix() == Mat4::identity())
+        return {};
     const Mat4& m = t.matrix();
     const Mat4& inv = t.inverseMatrix();
     Mat3 linear;
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) linear[i][j] = m.m[i][j];
-    const Vec3 last(m.m[0][3], m.m[1][3], m.m[2][3]);       // translation applied last
+        for (int j = 0; j < 3; ++j)
+            linear[i][j] = m.m[i][j];
+    const Vec3 last(m.m[0][3], m.m[1][3], m.m[2][3]);           // translation applied last
     const Vec3 first(-inv.m[0][3], -inv.m[1][3], -inv.m[2][3]); // translation applied first: L^-1 * last
 
     std::vector<std::vector<Step>> candidates;
     for (Order order : {Order::ScaleFirst, Order::RotateFirst}) {
         Vec3 scale;
         Mat3 rotation;
-        if (!splitLinear(linear, order, scale, rotation)) continue;
+        if (!splitLinear(linear, order, scale, rotation))
+            continue;
         const Vec3 angles = eulerDegrees(rotation);
         for (double perUnit : {1e10, 1e6, 0.0}) {
             std::vector<Step> linearSteps;
             const Vec3 s = roundTo(scale, perUnit), a = roundTo(angles, perUnit);
             const bool hasScale = !(s == Vec3(1)), hasRotation = !(a == Vec3(0));
-            if (order == Order::ScaleFirst && hasScale) linearSteps.push_back(makeStep(Step::Kind::Scale, s));
-            if (hasRotation) linearSteps.push_back(makeStep(Step::Kind::Rotate, a));
-            if (order == Order::RotateFirst && hasScale) linearSteps.push_back(makeStep(Step::Kind::Scale, s));
+            if (order == Order::ScaleFirst && hasScale)
+                linearSteps.push_back(makeStep(Step::Kind::Scale, s));
+            if (hasRotation)
+                linearSteps.push_back(makeStep(Step::Kind::Rotate, a));
+            if (order == Order::RotateFirst && hasScale)
+                linearSteps.push_back(makeStep(Step::Kind::Scale, s));
             std::vector<Step> translateLast = linearSteps;
-            if (!(last == Vec3(0))) translateLast.push_back(makeStep(Step::Kind::Translate, last));
+            if (!(last == Vec3(0)))
+                translateLast.push_back(makeStep(Step::Kind::Translate, last));
             candidates.push_back(translateLast);
             const Vec3 t0 = roundTo(first, perUnit);
             if (!(t0 == Vec3(0)) && !linearSteps.empty()) {
@@ -160,12 +181,16 @@ std::vector<Step> decompose(const Transform& t) {
     const std::vector<Step>* matrixOnly = nullptr;
     for (const auto& c : candidates) {
         const Transform composed = compose(c);
-        if (sameTransform(composed, t) && (!exact || formatSteps(c).size() < formatSteps(*exact).size())) exact = &c;
-        if (!matrixOnly && composed.matrix() == m) matrixOnly = &c;
+        if (sameTransform(composed, t) && (!exact || formatSteps(c).size() < formatSteps(*exact).size()))
+            exact = &c;
+        if (!matrixOnly && composed.matrix() == m)
+            matrixOnly = &c;
     }
-    if (exact) return *exact;
+    if (exact)
+        return *exact;
     const std::vector<Step> asMatrix{matrixStep(t)};
-    if (sameTransform(compose(asMatrix), t) || !matrixOnly) return asMatrix;
+    if (sameTransform(compose(asMatrix), t) || !matrixOnly)
+        return asMatrix;
     return *matrixOnly;
 }
 
@@ -173,14 +198,19 @@ std::string formatSteps(const std::vector<Step>& steps) {
     std::string out;
     for (const Step& s : steps) {
         switch (s.kind) {
-        case Step::Kind::Translate: out += " translate " + vector(s.v); break;
-        case Step::Kind::Rotate: out += " rotate " + vector(s.v); break;
+        case Step::Kind::Translate:
+            out += " translate " + vector(s.v);
+            break;
+        case Step::Kind::Rotate:
+            out += " rotate " + vector(s.v);
+            break;
         case Step::Kind::Scale:
             out += " scale " + (s.v.x == s.v.y && s.v.y == s.v.z ? number(s.v.x) : vector(s.v));
             break;
         case Step::Kind::Matrix:
             out += " matrix <";
-            for (size_t i = 0; i < s.m.size(); ++i) out += (i ? ", " : "") + number(s.m[i]);
+            for (size_t i = 0; i < s.m.size(); ++i)
+                out += (i ? ", " : "") + number(s.m[i]);
             out += ">";
             break;
         }

@@ -380,7 +380,7 @@ PovObject PovParser::object(const Tok& keyword) {
         }
     } else if (w == "object") {
         const Tok t = next();
-        const Cell c = t.kind == TokKind::Word ? use(t.text) : nullptr;
+        const Cell c = t.kind == TokKind::Word ? useIndexed(t) : nullptr;
         if (c && c->kind == Kind::Object) {
             po = *c->object;
             po.object.loc = keyword.loc;
@@ -429,7 +429,7 @@ PovObject PovParser::object(const Tok& keyword) {
             tex.finish = finish(tex.finish);
             setTexture(po, tex);
         } else if (m == "normal") {
-            normalBlock();
+            normalBlock(t.loc);
         } else if (m == "interior") {
             setInterior(po, interior(o.interior));
         } else if (m == "material") {

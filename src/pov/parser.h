@@ -48,6 +48,10 @@ public:
     Cell lookup(const std::string& name) const;
     // lookup() for a use of the identifier: reports the warnings its declaration deferred.
     Cell use(const std::string& name);
+    // use() for an identifier just read, following `[i]...` indices into an array.
+    Cell useIndexed(const Tok& name);
+    // The element of array `cell` named by the `[i]...` that follow.
+    Cell indexArray(Cell cell, const Tok& name);
     void declare(const std::string& name, const PovValue& value, bool local);
     bool isMacro(const std::string& name) const;
 
@@ -79,7 +83,7 @@ public:
     Finish finish(const Finish& base);     // after 'finish'
     Interior interior(const Interior& base);
     PovMaterial material(const PovMaterial& base);
-    void normalBlock(); // after 'normal': parsed and ignored
+    void normalBlock(SourceLoc keyword); // after 'normal': parsed and ignored
     std::vector<ColorMapEntry> colorMap(); // after 'color_map'
     // A transform keyword (translate rotate scale matrix transform) at the current token, or nothing.
     std::optional<Transform> transformItem();

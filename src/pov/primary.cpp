@@ -89,27 +89,7 @@ PovValue PovParser::primary() {
     }
     if (t.kind != TokKind::Word) failExpected(t, "an expression");
 
-    if (const Cell c = use(t.text)) {
-        if (c->kind == Kind::Array && peek().is("[")) {
-            Cell cell = c;
-            while (cell->kind == Kind::Array && peek().is("[")) {
-                const PovArray& a = *cell->array;
-                size_t index = 0;
-                for (size_t d = 0; d < a.sizes.size(); ++d) {
-                    const Tok open = expectSymbol("[", "for an array index");
-                    const int i = static_cast<int>(floatExpr());
-                    expectSymbol("]", "after an array index");
-                    if (i < 0 || i >= a.sizes[d])
-                        fail(open.loc, fmt::format("array index {} out of range 0..{} for '{}'", i, a.sizes[d] - 1, t.text));
-                    index = index * size_t(a.sizes[d]) + size_t(i);
-                }
-                if (!a.items[index]) fail(t.loc, "array element of '" + t.text + "' used before it was given a value");
-                cell = a.items[index];
-            }
-            return postfix(*cell, t.loc);
-        }
-        return postfix(*c, t.loc);
-    }
+    if (const Cell c = useIndexed(t)) return postfix(*c, t.loc);
 
     const std::string& w = t.text;
     if (w == "rgb" || w == "rgbf" || w == "rgbt" || w == "rgbft" || w == "srgb" || w == "srgbf" || w == "srgbt" ||
@@ -142,6 +122,30 @@ PovValue PovParser::primary() {
     if (const std::string near = nearestWord(w, keywordsForSuggestions()); !near.empty())
         message += " (did you mean '" + near + "'?)";
     fail(t.loc, message);
+}
+
+Cell PovParser::indexArray(Cell cell, const Tok& t) {
+    while (cell->kind == Kind::Array && peekOperator().is("[")) {
+        const PovArray& a = *cell->array;
+        size_t index = 0;
+        for (size_t d = 0; d < a.sizes.size(); ++d) {
+            const Tok open = expectSymbol("[", "for an array index");
+            const int i = static_cast<int>(floatExpr());
+            expectSymbol("]", "after an array index");
+            if (i < 0 || i >= a.sizes[d])
+                fail(open.loc, fmt::format("array index {} out of range 0..{} for '{}'", i, a.sizes[d] - 1, t.text));
+            index = index * size_t(a.sizes[d]) + size_t(i);
+        }
+        if (!a.items[index]) fail(t.loc, "array element of '" + t.text + "' used before it was given a value");
+        cell = a.items[index];
+    }
+    return cell;
+}
+
+Cell PovParser::useIndexed(const Tok& t) {
+    Cell c = use(t.text);
+    if (c && c->kind == Kind::Array) c = indexArray(c, t);
+    return c;
 }
 
 PovValue PovParser::arrayLiteral(SourceLoc loc) {
@@ -229,7 +233,7 @@ PovValue PovParser::rvalue() {
         }
         if (w == "normal") {
             next();
-            normalBlock();
+            normalBlock(t.loc);
             v.kind = Kind::Normal;
             return v;
         }

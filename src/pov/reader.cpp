@@ -162,7 +162,9 @@ std::string PovParser::findInclude(const std::string& name, const std::string& f
 
 void PovParser::includeDirective(const Tok& t) {
     const Tok at = peek();
-    const std::string name = stringExpr();
+    // A plain string is taken as is: looking past it could end the current file
+    // before the include starts, losing it from the include chain.
+    const std::string name = at.kind == TokKind::String ? next().text : stringExpr();
     std::string fromDir = ".";
     for (auto it = frames_.rbegin(); it != frames_.rend(); ++it)
         if (!it->isMacro) {

@@ -92,7 +92,7 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
         next();
         if (t.kind != TokKind::Word) failExpected(t, "a camera item or '}'");
         const std::string& w = t.text;
-        const Cell id = use(w);
+        const Cell id = useIndexed(t);
         if (id && id->kind == Kind::Camera) {
             c = *id->camera;
             aperture = c.aperture * 2;
@@ -133,7 +133,7 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
                      "focal blur 'confidence'/'variance' (POV-Ray's adaptive stop) are not used: drt takes "
                      "blur_samples samples per pixel");
         } else if (w == "normal") {
-            normalBlock();
+            normalBlock(t.loc);
         } else if (w == "bokeh") {
             warnOnce("bokeh", t.loc, "'bokeh' is not supported; the lens is a uniform disc");
             expectSymbol("{", "");

@@ -136,7 +136,7 @@ std::optional<Transform> PovParser::transformItem() {
 Transform PovParser::transformBlock() {
     const Tok t = next();
     if (t.kind == TokKind::Word) {
-        const Cell c = use(t.text);
+        const Cell c = useIndexed(t);
         if (c && c->kind == Kind::Transform) return *c->transform;
         failExpected(t, "'{' or a transform identifier after 'transform'");
     }
@@ -153,7 +153,7 @@ Transform PovParser::transformBlock() {
             continue;
         }
         const Tok id = next();
-        const Cell c = id.kind == TokKind::Word ? use(id.text) : nullptr;
+        const Cell c = id.kind == TokKind::Word ? useIndexed(id) : nullptr;
         if (c && c->kind == Kind::Transform) {
             result = result.then(*c->transform);
             continue;
@@ -166,7 +166,7 @@ Transform PovParser::transformBlock() {
 std::vector<ColorMapEntry> PovParser::colorMap() {
     const Tok open = next();
     if (open.kind == TokKind::Word) {
-        const Cell c = use(open.text);
+        const Cell c = useIndexed(open);
         if (c && c->kind == Kind::ColorMap) return *c->colorMap;
         failExpected(open, "'{' or a color_map identifier");
     }
@@ -174,7 +174,7 @@ std::vector<ColorMapEntry> PovParser::colorMap() {
     std::vector<ColorMapEntry> map;
     if (peek().kind == TokKind::Word) {
         const Tok id = next();
-        const Cell c = use(id.text);
+        const Cell c = useIndexed(id);
         if (!c || c->kind != Kind::ColorMap) failExpected(id, "'[' or a color_map identifier");
         map = *c->colorMap;
     }
@@ -240,7 +240,18 @@ Pigment PovParser::pigment(const Pigment& base) {
         }
         if (t.kind != TokKind::Word && !t.is("<") && t.kind != TokKind::Number) failExpected(t, "a pigment item or '}'");
         const std::string w = t.text;
-        const Cell c = t.kind == TokKind::Word ? use(w) : nullptr;
+        Cell c = t.kind == TokKind::Word ? use(w) : nullptr;
+        if (c && c->kind == Kind::Array) {
+            // An array element: a pigment, a colour map or a colour.
+            next();
+            c = indexArray(c, t);
+            const Transform keep = p.toWorld;
+            if (c->kind == Kind::Pigment) p = *c->pigment;
+            else if (c->kind == Kind::ColorMap) p.colorMap = *c->colorMap;
+            else if (c->isNumeric()) p = solid(toColorFT(toColor(*c, t.loc))), p.toWorld = keep;
+            else fail(t.loc, std::string("a ") + kindName(c->kind) + " cannot be used in a pigment");
+            continue;
+        }
         if (c && c->kind == Kind::Pigment) {
             next();
             p = *c->pigment;
@@ -357,7 +368,7 @@ Finish PovParser::finish(const Finish& base) {
         if (t.is("}")) return f;
         if (t.kind != TokKind::Word) failExpected(t, "a finish item or '}'");
         const std::string& w = t.text;
-        const Cell c = use(w);
+        const Cell c = useIndexed(t);
         if (c && c->kind == Kind::Finish) {
             f = *c->finish;
             continue;
@@ -440,7 +451,7 @@ Interior PovParser::interior(const Interior& base) {
         const Tok t = next();
         if (t.is("}")) return in;
         if (t.kind != TokKind::Word) failExpected(t, "an interior item or '}'");
-        const Cell c = use(t.text);
+        const Cell c = useIndexed(t);
         if (c && c->kind == Kind::Interior) {
             in = *c->interior;
             continue;
@@ -463,9 +474,9 @@ Interior PovParser::interior(const Interior& base) {
     }
 }
 
-void PovParser::normalBlock() {
-    const Tok open = expectSymbol("{", "after 'normal'");
-    warnOnce("normal", open.loc, "'normal' (surface perturbation) is not supported and is ignored");
+void PovParser::normalBlock(SourceLoc keyword) {
+    expectSymbol("{", "after 'normal'");
+    warnOnce("normal", keyword, "'normal' (surface perturbation) is not supported and is ignored");
     skipBlock();
 }
 
@@ -476,7 +487,7 @@ Texture PovParser::texture(const Texture& base) {
         const Tok t = next();
         if (t.is("}")) return tex;
         if (t.kind != TokKind::Word) failExpected(t, "a texture item or '}'");
-        const Cell c = use(t.text);
+        const Cell c = useIndexed(t);
         if (c && c->kind == Kind::Texture) {
             tex = *c->texture;
             continue;
@@ -484,7 +495,7 @@ Texture PovParser::texture(const Texture& base) {
         const std::string& w = t.text;
         if (w == "pigment") tex.pigment = pigment(tex.pigment);
         else if (w == "finish") tex.finish = finish(tex.finish);
-        else if (w == "normal") normalBlock();
+        else if (w == "normal") normalBlock(t.loc);
         else if (w == "translate" || w == "rotate" || w == "scale" || w == "matrix" || w == "transform") {
             pushBack(t);
             transformPigmentTree(tex.pigment, *transformItem());
@@ -524,7 +535,7 @@ PovMaterial PovParser::material(const PovMaterial& base) {
         const Tok t = next();
         if (t.is("}")) return m;
         if (t.kind != TokKind::Word) failExpected(t, "a material item or '}'");
-        const Cell c = use(t.text);
+        const Cell c = useIndexed(t);
         if (c && c->kind == Kind::Material) {
             m = *c->material;
             continue;
