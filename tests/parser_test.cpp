@@ -544,3 +544,39 @@ TEST(Parser, FormattedErrorHasFileLineColumnSourceAndCaret) {
 
 } // namespace
 } // namespace drt
+
+// merge, difference and intersection stay one object holding its members in
+// its own space; pigments map to world space like everywhere in the model.
+TEST(Parser, SolidCsgKeepsItsMembers) {
+    drt::Diagnostics diags;
+    auto scene = drt::loadSceneText(R"(
+        difference {
+          box { <-1, -1, -1>, <1, 1, 1> }
+          sphere { <0, 1, 0>, 0.5 translate x }
+          pigment { checker color rgb 1, color rgb 0 }
+          translate y * 2
+        }
+        intersection { sphere { 0, 1 } plane { y, 0 } }
+        merge { sphere { 0, 1 } sphere { x, 1 } }
+    )", "csg.drt", diags);
+    ASSERT_TRUE(scene) << diags.formatAll();
+    ASSERT_EQ(scene->objects.size(), 3u);
+    const auto& difference = std::get<drt::Csg>(scene->objects[0].shape);
+    EXPECT_EQ(difference.op, drt::Csg::Op::Difference);
+    ASSERT_EQ(difference.children.size(), 2u);
+    // The member's own transform stays relative to the CSG...
+    EXPECT_EQ(difference.children[1].transform.point({0, 0, 0}), drt::Vec3(1, 0, 0));
+    // ...the CSG carries the transform to world space...
+    EXPECT_EQ(scene->objects[0].transform.point({0, 0, 0}), drt::Vec3(0, 2, 0));
+    // ...and the inherited pigment follows the CSG to world space.
+    EXPECT_EQ(difference.children[0].texture.pigment.toWorld.point({0, 0, 0}), drt::Vec3(0, 2, 0));
+    EXPECT_EQ(std::get<drt::Csg>(scene->objects[1].shape).op, drt::Csg::Op::Intersection);
+    EXPECT_EQ(std::get<drt::Csg>(scene->objects[2].shape).op, drt::Csg::Op::Merge);
+}
+
+TEST(Parser, EmptyDifferenceIsAnError) {
+    drt::Diagnostics diags;
+    EXPECT_FALSE(drt::loadSceneText("difference { translate x }", "empty.drt", diags));
+    EXPECT_NE(diags.formatAll().find("empty.drt:1:1: error: difference has no objects"), std::string::npos)
+        << diags.formatAll();
+}

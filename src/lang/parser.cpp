@@ -30,7 +30,8 @@ std::string kindName(const Value& v) {
 static const std::vector<std::string>& topLevelWords() {
     static const std::vector<std::string> words{
         "camera", "light_source", "background", "global_settings", "render", "sphere", "plane", "box", "cylinder",
-        "cone",   "disc",         "torus",      "triangle",        "smooth_triangle", "mesh", "union", "object"};
+        "cone",   "disc",         "torus",      "triangle",        "smooth_triangle", "mesh", "union", "merge",
+        "difference", "intersection", "object"};
     return words;
 }
 

@@ -130,6 +130,7 @@ private:
     void addObjectToScene(ParsedObject po);
     void flatten(ParsedObject& po, const Transform& parent, const std::optional<Motion>& parentMotion,
                  bool noShadow, bool hollow);
+    std::vector<Object> csgChildren(ParsedObject& po, const Transform& csgToWorld);
     double positiveRadius(const char* what);
 
     // --------------------------------------------------- parser_textures.cpp

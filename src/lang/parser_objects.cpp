@@ -10,7 +10,8 @@ namespace drt {
 static const std::vector<std::string>& objectWords() {
     static const std::vector<std::string> words{"sphere", "plane",    "box",             "cylinder", "cone",
                                                 "disc",   "torus",    "triangle",        "smooth_triangle",
-                                                "mesh",   "union",    "object"};
+                                                "mesh",   "union",    "merge",           "difference",
+                                                "intersection", "object"};
     return words;
 }
 
@@ -28,6 +29,12 @@ bool Parser::atObjectWord() const {
 }
 
 static bool isCsg(const ParsedObject& po) { return std::holds_alternative<Csg>(po.object.shape); }
+// merge, difference and intersection stay one object with its children (true
+// CSG in the accelerator); a union is flattened into its members.
+static bool isSolidCsg(const ParsedObject& po) {
+    const Csg* csg = std::get_if<Csg>(&po.object.shape);
+    return csg && csg->op != Csg::Op::Union;
+}
 
 double Parser::positiveRadius(const char* what) {
     const SourceLoc loc = current_.loc;
@@ -179,8 +186,13 @@ void Parser::shapeBody(const Token& keyword, ParsedObject& po) {
         }
         if (m.triangles.empty()) error(keyword.loc, "mesh has no triangles");
         shape = m;
-    } else { // union
-        shape = Csg{};
+    } else { // union, merge, difference, intersection
+        Csg csg;
+        csg.op = w == "merge"        ? Csg::Op::Merge
+                 : w == "difference" ? Csg::Op::Difference
+                 : w == "intersection" ? Csg::Op::Intersection
+                                       : Csg::Op::Union;
+        shape = std::move(csg);
     }
 }
 
@@ -247,7 +259,7 @@ void Parser::objectModifiers(ParsedObject& po, const Token& keyword) {
         }
         failExpected(("an object modifier or '}' to close '" + keyword.text + "'").c_str());
     }
-    if (isCsg(po) && po.children.empty()) error(keyword.loc, "union has no objects");
+    if (isCsg(po) && po.children.empty()) error(keyword.loc, keyword.text + " has no objects");
 }
 
 bool Parser::objectModifier(ParsedObject& po) {
@@ -390,6 +402,16 @@ void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optio
     noShadow = noShadow || o.noShadow;
     hollow = hollow || o.hollow;
     const Transform toWorld = o.transform.then(parent);
+    if (isSolidCsg(po)) {
+        if (motion) error(o.loc, "'motion' on merge, difference or intersection is not supported");
+        std::get<Csg>(o.shape).children = csgChildren(po, toWorld);
+        o.transform = toWorld;
+        transformPigment(o.texture.pigment, parent);
+        o.noShadow = noShadow;
+        o.hollow = hollow;
+        scene_.objects.push_back(std::move(o));
+        return;
+    }
     if (isCsg(po)) {
         for (ParsedObject& child : po.children) flatten(child, toWorld, motion, noShadow, hollow);
         return;
@@ -400,6 +422,21 @@ void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optio
     o.noShadow = noShadow;
     o.hollow = hollow;
     scene_.objects.push_back(std::move(o));
+}
+
+// The children of a merge, difference or intersection as scene objects: each
+// keeps its transform relative to the CSG (the accelerator composes them),
+// while pigments map all the way to world space like every pigment in the model.
+std::vector<Object> Parser::csgChildren(ParsedObject& po, const Transform& csgToWorld) {
+    std::vector<Object> children;
+    for (ParsedObject& child : po.children) {
+        Object o = std::move(child.object);
+        if (o.motion) error(o.loc, "'motion' inside merge, difference or intersection is not supported");
+        transformPigment(o.texture.pigment, csgToWorld);
+        if (isCsg(child)) std::get<Csg>(o.shape).children = csgChildren(child, o.transform.then(csgToWorld));
+        children.push_back(std::move(o));
+    }
+    return children;
 }
 
 } // namespace drt

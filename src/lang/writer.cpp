@@ -19,50 +19,9 @@ using writer::formatSteps;
 using writer::number;
 using writer::Step;
 using writer::vector;
+using namespace writer; // texture text (writer_texture.cpp)
 
 namespace {
-
-std::string colorText(const Color& c) {
-    if (c.r == c.g && c.g == c.b)
-        return "rgb " + number(c.r);
-    return "rgb " + vector(Vec3(c.r, c.g, c.b));
-}
-
-std::string colorText(const ColorFT& c) {
-    const std::string rgb = number(c.rgb.r) + ", " + number(c.rgb.g) + ", " + number(c.rgb.b);
-    if (c.filter == 0 && c.transmit == 0)
-        return colorText(c.rgb);
-    if (c.transmit == 0)
-        return "rgbf <" + rgb + ", " + number(c.filter) + ">";
-    if (c.filter == 0)
-        return "rgbt <" + rgb + ", " + number(c.transmit) + ">";
-    return "rgbft <" + rgb + ", " + number(c.filter) + ", " + number(c.transmit) + ">";
-}
-
-// A pigment that is POV-Ray's default (solid black), whatever its transform.
-bool isDefaultPigment(const Pigment& p) {
-    const Pigment d;
-    return p.pattern == PatternKind::Solid && p.color == d.color && p.children.empty() &&
-           p.colorMap.empty() && p.gradientAxis == d.gradientAxis && p.brickSize == d.brickSize &&
-           p.mortar == d.mortar;
-}
-
-bool isDefaultFinish(const Finish& f) {
-    const Finish d;
-    return f.ambient == d.ambient && f.emission == d.emission && f.diffuse == d.diffuse &&
-           f.brilliance == d.brilliance && f.phong == d.phong && f.phongSize == d.phongSize &&
-           f.specular == d.specular && f.roughness == d.roughness && f.metallic == d.metallic &&
-           f.reflectionMin == d.reflectionMin && f.reflectionMax == d.reflectionMax &&
-           f.reflectionFresnel == d.reflectionFresnel && f.reflectionFalloff == d.reflectionFalloff &&
-           f.reflectionMetallic == d.reflectionMetallic && f.conserveEnergy == d.conserveEnergy &&
-           f.reflectionBlur == d.reflectionBlur && f.refractionBlur == d.refractionBlur;
-}
-
-bool isDefaultInterior(const Interior& i) {
-    const Interior d;
-    return i.ior == d.ior && i.fadeDistance == d.fadeDistance && i.fadePower == d.fadePower &&
-           i.fadeColor == d.fadeColor;
-}
 
 // The parser normalises plane, disc and smooth-triangle normals. A unit
 // vector rarely normalises to itself to the last bit, so look for the short
@@ -118,9 +77,6 @@ class SceneWriter {
     std::string shapeHead(const Object& o, int indent);
     std::string meshText(const Mesh& m, int indent);
     void texture(const Texture& t, const std::string& pigment, int indent);
-    std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool& exact);
-    std::string finishBody(const Finish& f);
-    std::string interiorBody(const Interior& i);
     static std::string motionText(const Motion& m);
 
     WriterOptions options_;
@@ -327,9 +283,6 @@ void SceneWriter::object(const Object& o, int indent) {
         return;
     line(indent, head);
     if (const Csg* csg = std::get_if<Csg>(&o.shape)) {
-        if (csg->op != Csg::Op::Union)
-            problems_.insert(std::string(csgKeyword(csg->op)) +
-                             " (.drt has only union; written in POV-Ray syntax)");
         for (const Object& child : csg->children) {
             Object baked = child;
             baked.transform = child.transform.then(o.transform);
@@ -355,8 +308,9 @@ void SceneWriter::object(const Object& o, int indent) {
     const bool untextured = isDefaultPigment(t.pigment) && isDefaultFinish(t.finish) &&
                             writer::sameTransform(t.pigment.toWorld, writer::compose(steps));
     bool exactBefore = true, exactAfter = true;
-    const std::string before = untextured ? "" : pigmentBody(t.pigment, steps, exactBefore);
-    const std::string after = untextured || steps.empty() ? before : pigmentBody(t.pigment, {}, exactAfter);
+    const std::string before = untextured ? "" : pigmentBody(t.pigment, steps, exactBefore, problems_);
+    const std::string after =
+        untextured || steps.empty() ? before : pigmentBody(t.pigment, {}, exactAfter, problems_);
     const bool readableBefore = before.find(" matrix") == std::string::npos;
     const bool textureBefore = untextured || steps.empty() ||
                                (exactBefore && (readableBefore || !exactAfter)) ||
@@ -499,143 +453,6 @@ void SceneWriter::texture(const Texture& t, const std::string& pigmentText, int 
     line(indent + 1, pigment);
     line(indent + 1, "finish {" + finishBody(t.finish) + " }");
     line(indent, "}");
-}
-
-// The inside of `pigment { ... }` for `p`, given the transform items the
-// enclosing text applies after it (`suffix`). Its own items are chosen so
-// that own-then-suffix composes to p.toWorld.
-std::string SceneWriter::pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool& exact) {
-    const Transform after = writer::compose(suffix);
-    std::vector<Step> own;
-    // A solid colour has no pattern space: its transform is never used, so it
-    // is not written.
-    if (p.pattern != PatternKind::Solid && !writer::sameTransform(p.toWorld, after)) {
-        own = decompose(p.toWorld.then(after.inverted()));
-        exact = exact && writer::sameTransform(writer::compose(suffix, writer::compose(own)), p.toWorld);
-    }
-    std::vector<Step> childSuffix = own;
-    childSuffix.insert(childSuffix.end(), suffix.begin(), suffix.end());
-
-    std::string text;
-    auto subPigment = [&](const Pigment& child) {
-        const std::string body = pigmentBody(child, childSuffix, exact);
-        if (child.pattern == PatternKind::Solid && body.find(" matrix") == std::string::npos &&
-            body.find(" translate") == std::string::npos && body.find(" rotate") == std::string::npos &&
-            body.find(" scale") == std::string::npos)
-            return body.substr(1); // just the colour
-        return "pigment {" + body + " }";
-    };
-    auto list = [&](const char* keyword, size_t count) {
-        text += std::string(" ") + keyword;
-        if (p.children.size() != count)
-            problems_.insert(std::string(keyword) + " with a sub-pigment count other than " +
-                             std::to_string(count));
-        for (size_t i = 0; i < p.children.size() && i < count; ++i)
-            text += (i ? ", " : " ") + subPigment(p.children[i]);
-    };
-    auto colorMap = [&] {
-        if (!p.children.empty())
-            problems_.insert("a pigment_map (sub-pigments of a colour-map pattern)");
-        std::vector<ColorMapEntry> map = p.colorMap;
-        if (map.empty())
-            map = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // the renderer's empty-map ramp
-        text += " color_map {";
-        for (const ColorMapEntry& e : map)
-            text += " [" + number(e.value) + " " + colorText(e.color) + "]";
-        text += " }";
-    };
-    switch (p.pattern) {
-    case PatternKind::Solid:
-        text += " color " + colorText(p.color);
-        break;
-    case PatternKind::Checker:
-        list("checker", 2);
-        break;
-    case PatternKind::Hexagon:
-        list("hexagon", 3);
-        break;
-    case PatternKind::Brick:
-        list("brick", 2);
-        break;
-    case PatternKind::Gradient:
-        text += " gradient " + vector(p.gradientAxis);
-        colorMap();
-        break;
-    case PatternKind::Radial:
-        text += " radial";
-        colorMap();
-        break;
-    case PatternKind::Onion:
-        text += " onion";
-        colorMap();
-        break;
-    }
-    const Pigment d;
-    if (!(p.brickSize == d.brickSize))
-        text += " brick_size " + vector(p.brickSize);
-    if (p.mortar != d.mortar)
-        text += " mortar " + number(p.mortar);
-    return text + formatSteps(own);
-}
-
-std::string SceneWriter::finishBody(const Finish& f) {
-    const Finish d;
-    std::string text;
-    if (!(f.ambient == d.ambient))
-        text += " ambient " + colorText(f.ambient);
-    if (!(f.emission == d.emission))
-        text += " emission " + colorText(f.emission);
-    if (f.diffuse != d.diffuse)
-        text += " diffuse " + number(f.diffuse);
-    if (f.brilliance != d.brilliance)
-        text += " brilliance " + number(f.brilliance);
-    if (f.phong != d.phong)
-        text += " phong " + number(f.phong);
-    if (f.phongSize != d.phongSize)
-        text += " phong_size " + number(f.phongSize);
-    if (f.specular != d.specular)
-        text += " specular " + number(f.specular);
-    if (f.roughness != d.roughness)
-        text += " roughness " + number(f.roughness);
-    if (f.metallic != d.metallic)
-        text += " metallic " + number(f.metallic);
-    const bool plainReflection =
-        f.reflectionMin == f.reflectionMax && f.reflectionFresnel == d.reflectionFresnel &&
-        f.reflectionFalloff == d.reflectionFalloff && f.reflectionMetallic == d.reflectionMetallic;
-    if (plainReflection) {
-        if (!isBlack(f.reflectionMax))
-            text += " reflection " + colorText(f.reflectionMax);
-    } else {
-        text += " reflection { " + colorText(f.reflectionMin) + ", " + colorText(f.reflectionMax);
-        if (f.reflectionFresnel)
-            text += " fresnel on";
-        if (f.reflectionFalloff != d.reflectionFalloff)
-            text += " falloff " + number(f.reflectionFalloff);
-        if (f.reflectionMetallic != d.reflectionMetallic)
-            text += " metallic " + number(f.reflectionMetallic);
-        text += " }";
-    }
-    if (f.conserveEnergy)
-        text += " conserve_energy";
-    if (f.reflectionBlur != d.reflectionBlur)
-        text += " reflection_blur " + number(f.reflectionBlur);
-    if (f.refractionBlur != d.refractionBlur)
-        text += " refraction_blur " + number(f.refractionBlur);
-    return text;
-}
-
-std::string SceneWriter::interiorBody(const Interior& i) {
-    const Interior d;
-    std::string text;
-    if (i.ior != d.ior)
-        text += " ior " + number(i.ior);
-    if (i.fadeDistance != d.fadeDistance)
-        text += " fade_distance " + number(i.fadeDistance);
-    if (i.fadePower != d.fadePower)
-        text += " fade_power " + number(i.fadePower);
-    if (!(i.fadeColor == d.fadeColor))
-        text += " fade_color " + colorText(i.fadeColor);
-    return text;
 }
 
 } // namespace

@@ -1,11 +1,14 @@
-// Private to the .drt writer (writer.cpp, writer_transform.cpp): number
+// Private to the .drt writer (writer.cpp, writer_transform.cpp,
+// writer_texture.cpp): number
 // formatting and the search for a readable transform sequence.
 #pragma once
 
 #include "core/transform.h"
 #include "core/vec.h"
+#include "scene/scene.h"
 
 #include <array>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,5 +40,20 @@ std::vector<Step> decompose(const Transform& t);
 
 // " translate <...> rotate <...>": each step preceded by a space.
 std::string formatSteps(const std::vector<Step>& steps);
+
+// ------------------------------------------------------------ writer_texture.cpp
+
+std::string colorText(const Color& c);   // "rgb 0.5" or "rgb <r, g, b>"
+std::string colorText(const ColorFT& c); // rgb / rgbf / rgbt / rgbft as needed
+bool isDefaultPigment(const Pigment& p); // solid black, whatever its transform
+bool isDefaultFinish(const Finish& f);
+bool isDefaultInterior(const Interior& i);
+// The inside of `pigment { ... }`, given the transform items the enclosing
+// text applies after it; clears `exact` if the pattern transform cannot be
+// rebuilt to the last bit, and adds to `problems` what .drt cannot express.
+std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool& exact,
+                        std::set<std::string>& problems);
+std::string finishBody(const Finish& f);     // the non-default items, each after a space
+std::string interiorBody(const Interior& i); // the same
 
 } // namespace drt::writer

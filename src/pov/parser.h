@@ -14,6 +14,9 @@
 
 namespace drt::pov {
 
+// Includes plus macro calls nested at once: stops runaway recursion.
+inline constexpr size_t kMaxFrames = 400;
+
 // Thrown after an error has been reported: POV-Ray stops at the first error.
 struct PovAbort {};
 
