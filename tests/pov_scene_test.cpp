@@ -320,6 +320,19 @@ TEST(PovScene, ArrayElementsAsTexturesAndPigments) {
     EXPECT_EQ(s.objects[2].texture.pigment.color.rgb, Color(0.5));
 }
 
+TEST(PovScene, DefaultTextureAppliesToLaterObjectsWithoutOne) {
+    const Scene s = loadOk("sphere { 0, 1 }\n#default { finish { ambient 0.3 } pigment { rgb y } }\n"
+                           "sphere { 0, 1 }\nsphere { 0, 1 pigment { rgb x } }\n"
+                           "union { sphere { 0, 1 } pigment { rgb z } }");
+    ASSERT_EQ(s.objects.size(), 4u);
+    EXPECT_EQ(s.objects[0].texture.finish.ambient, Color(0.1));
+    EXPECT_EQ(s.objects[1].texture.finish.ambient, Color(0.3));
+    EXPECT_EQ(s.objects[1].texture.pigment.color.rgb, Color(0, 1, 0));
+    EXPECT_EQ(s.objects[2].texture.pigment.color.rgb, Color(1, 0, 0));
+    EXPECT_EQ(s.objects[2].texture.finish.ambient, Color(0.3));
+    EXPECT_EQ(std::get<Csg>(s.objects[3].shape).children[0].texture.pigment.color.rgb, Color(0, 0, 1));
+}
+
 // ---------------------------------------------------------------- command line
 
 TEST(PovCli, RenderAndCheckAPovScene) {

@@ -16,6 +16,12 @@ using namespace accel;
 
 Accelerator::Accelerator(const Scene& scene) : impl_(std::make_unique<Impl>()) { buildScene(scene, *impl_); }
 
+Accelerator::Accelerator(const Scene& scene, double onlyTime) : impl_(std::make_unique<Impl>()) {
+    // Embree clamps ray times to [0, 1]; so does fillRay.
+    impl_->onlyTime = std::fmin(1.0, std::fmax(0.0, onlyTime));
+    buildScene(scene, *impl_);
+}
+
 Accelerator::~Accelerator() = default;
 
 namespace {
@@ -32,10 +38,12 @@ float floatAtMost(double v) {
     return double(f) > v ? std::nextafter(f, -INFINITY) : f;
 }
 
-void fillRay(const Ray& ray, RTCRay& r, unsigned mask) {
-    r.org_x = float(ray.origin.x);
-    r.org_y = float(ray.origin.y);
-    r.org_z = float(ray.origin.z);
+// The origin is moved into the top level's frame in double, then rounded.
+void fillRay(const Ray& ray, const AcceleratorState& state, RTCRay& r, unsigned mask) {
+    const Vec3 origin = state.shifted ? ray.origin - state.frameOrigin : ray.origin;
+    r.org_x = float(origin.x);
+    r.org_y = float(origin.y);
+    r.org_z = float(origin.z);
     r.tnear = std::fmax(0.0f, floatAtLeast(ray.tMin));
     r.dir_x = float(ray.direction.x);
     r.dir_y = float(ray.direction.y);
@@ -90,7 +98,7 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rayhit;
-    fillRay(ray, rayhit.ray, 0xFFFFFFFFu);
+    fillRay(ray, *impl_, rayhit.ray, 0xFFFFFFFFu);
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -100,19 +108,21 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
 
     // Find the level the hit geometry lives in and the ray in that level's space.
     const Level* level = &impl_->top;
-    std::optional<Transform> motion;
+    std::optional<Transform> motion; // level space -> world, if the top level's is not world
     if (rayhit.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
         const Instance& instance = impl_->instances[impl_->top.geometries[rayhit.hit.instID[0]].index];
         level = instance.level.get();
-        motion = instance.motion.at(rayhit.ray.time);
+        motion = instance.toWorld(rayhit.ray.time);
     }
-    const Vec3 o = motion ? motion->inversePoint(ray.origin) : ray.origin;
+    const bool shiftedTop = !motion && impl_->shifted;
+    const Vec3 o = motion ? motion->inversePoint(ray.origin) : shiftedTop ? ray.origin - impl_->frameOrigin : ray.origin;
     const Vec3 d = motion ? motion->inverseVector(ray.direction) : ray.direction;
     const Vec3 towardOrigin = unitOr(-d, {0, 1, 0}); // normal of last resort
 
     const GeometryRef& ref = level->geometries[rayhit.hit.geomID];
     const double embreeT = rayhit.ray.tfar;
     Vec3 point, geometric, shading;
+    double extent = 0; // of the object hit, in level space; 0 if unbounded
     if (ref.kind == GeometryKind::Analytic) {
         const Primitive& p = level->primitives[rayhit.hit.primID];
         SurfaceCrossing c;
@@ -126,6 +136,7 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         geometric = shading = unitOr(c.normal, towardOrigin);
         hit.object = c.object;
         hit.primitive = 0;
+        extent = p.bounded ? maxComponent(p.upper - p.lower) : 0;
     } else {
         const MeshRecord& mesh = level->meshes[ref.index];
         const auto& tri = mesh.triangles[rayhit.hit.primID];
@@ -149,16 +160,19 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         }
         hit.object = mesh.object;
         hit.primitive = rayhit.hit.primID;
+        extent = mesh.extent;
     }
     if (motion) {
         hit.point = motion->point(point);
         hit.geometricNormal = unitOr(motion->normal(geometric), towardOrigin);
         hit.shadingNormal = unitOr(motion->normal(shading), hit.geometricNormal);
     } else {
-        hit.point = point;
+        hit.point = shiftedTop ? point + impl_->frameOrigin : point;
         hit.geometricNormal = geometric;
         hit.shadingNormal = shading;
     }
+    hit.frameOrigin = impl_->shifted ? impl_->frameOrigin : Vec3{};
+    hit.frameUnit = extent > 0 ? frameUnitFor(extent) : impl_->sceneUnit;
     return true;
 }
 
@@ -166,7 +180,7 @@ bool Accelerator::occluded(const Ray& ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay r;
-    fillRay(ray, r, kShadowMask);
+    fillRay(ray, *impl_, r, kShadowMask);
     rtcOccluded1(impl_->top.scene, &context, &r);
     impl_->device.throwIfFailed("tracing a shadow ray");
     return r.tfar < 0;
@@ -175,20 +189,27 @@ bool Accelerator::occluded(const Ray& ray) const {
 // Waechter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection"
 // (Ray Tracing Gems, ch. 6): move each float coordinate of the point by
 // int(256 n_i) units in the last place, in the direction of n_i, so the offset
-// grows with the coordinate's magnitude; coordinates within 1/32 of zero, where
-// ulps become tiny, move by the absolute amount n_i / 65536 instead. n is the
-// geometric normal turned to the side the new ray leaves on.
+// grows with the coordinate's magnitude; coordinates within u/32 of zero, where
+// ulps become tiny, move by the absolute amount u n_i / 65536 instead. Their
+// u = 1 assumes objects of unit size; u = Hit::frameUnit scales it to the
+// object hit (so a 1e-4 object is not pushed 15% of its size away), and the
+// coordinates are Embree's (world minus Hit::frameOrigin), whose float
+// rounding is what the offset must beat. n is the geometric normal turned to
+// the side the new ray leaves on.
 Vec3 Accelerator::offsetOrigin(const Hit& hit, const Vec3& direction) {
-    constexpr float kNearZero = 1.0f / 32.0f;
-    constexpr float kAbsoluteScale = 1.0f / 65536.0f;
+    const double unit = hit.frameUnit > 0 && hit.frameUnit <= 1 ? hit.frameUnit : 1.0;
+    const float nearZero = float(unit / 32.0);
+    const float absoluteScale = float(unit / 65536.0);
     constexpr float kUlpScale = 256.0f;
+    const bool shifted = hit.frameOrigin.x != 0 || hit.frameOrigin.y != 0 || hit.frameOrigin.z != 0;
+    const Vec3 point = shifted ? hit.point - hit.frameOrigin : hit.point;
     const Vec3 n = dot(hit.geometricNormal, direction) < 0 ? -hit.geometricNormal : hit.geometricNormal;
     Vec3 out;
     for (int i = 0; i < 3; ++i) {
-        const float p = float(hit.point[i]);
+        const float p = float(point[i]);
         const float ni = float(n[i]);
-        if (std::fabs(p) < kNearZero) {
-            out[i] = p + kAbsoluteScale * ni;
+        if (std::fabs(p) < nearZero) {
+            out[i] = p + absoluteScale * ni;
             continue;
         }
         // For positive floats a larger bit pattern is a larger value; for
@@ -197,7 +218,9 @@ Vec3 Accelerator::offsetOrigin(const Hit& hit, const Vec3& direction) {
         const int32_t bits = std::bit_cast<int32_t>(p);
         out[i] = std::bit_cast<float>(bits + (p < 0 ? -ulps : ulps));
     }
-    return out;
+    // A float plus the frame origin is exact in double unless the float is
+    // below the origin's ulp (then it is rounded to that ulp, ~1e-16 |origin|).
+    return shifted ? out + hit.frameOrigin : out;
 }
 
 bool Accelerator::hasMotion() const { return !impl_->instances.empty(); }

@@ -23,6 +23,11 @@
 // exactly along the ray (inside/outside classification of every analytic
 // leaf, `inverse` honoured); meshes inside them are not supported yet.
 //
+// Frame: a scene whose centre is farther from the origin than its size is
+// traced in coordinates re-centred on its bounds (Hit::frameOrigin): geometry
+// and ray origins are shifted in double before Embree rounds them to float, so
+// a scene at 1e5 traces like one at the origin.
+//
 // Planes get finite bounds of +-1e18 (Embree drops bounds beyond ~1.8e18).
 #pragma once
 
@@ -49,12 +54,23 @@ struct Hit {
     Vec3 shadingNormal;    // world space, unit, same side as geometricNormal (interpolated for meshes)
     const Object* object = nullptr;
     uint32_t primitive = 0; // triangle index within a mesh, else 0
+    // Where offsetOrigin works, set by Accelerator::intersect (the defaults are
+    // plain world space): Embree traces float coordinates relative to
+    // frameOrigin, and frameUnit (a power of two, at most 1) is the size of the
+    // object hit, which scales offsetOrigin's absolute offset near zero.
+    Vec3 frameOrigin;
+    double frameUnit = 1;
 };
 
 class Accelerator {
 public:
     // Throws RenderError (render/render.h) on Embree errors or invalid geometry.
     explicit Accelerator(const Scene& scene);
+    // For rays that all have time `onlyTime` (a zero-length shutter): moving
+    // objects are placed at that time in double precision (MotionPath::at) and
+    // built as static geometry, so the image is the static scene's at that
+    // time bit for bit. Rays with another time see the objects at onlyTime.
+    Accelerator(const Scene& scene, double onlyTime);
     ~Accelerator();
     Accelerator(const Accelerator&) = delete;
     Accelerator& operator=(const Accelerator&) = delete;
@@ -66,7 +82,8 @@ public:
 
     // A ray origin just off the surface at `hit`, on the side `direction` points
     // to, robust at every scale (integer-ULP offset along the geometric normal,
-    // Waechter and Binder, Ray Tracing Gems ch. 6).
+    // Waechter and Binder, Ray Tracing Gems ch. 6, in Embree's frame, with the
+    // near-zero absolute offset scaled to the object: Hit::frameUnit).
     static Vec3 offsetOrigin(const Hit& hit, const Vec3& direction);
 
     // True if some object has Motion (the scene was built with time steps).

@@ -49,6 +49,19 @@ bool isAnalytic(const Shape& shape) {
 struct Builder {
     AcceleratorState& impl;
 
+    // World (or world at time 0) -> level space: the frame shift, if any.
+    Transform toLevel(const Transform& toWorld) const {
+        return impl.shifted ? toWorld.then(Transform::translate(-impl.frameOrigin)) : toWorld;
+    }
+
+    MotionPath motionOf(const Object& object) {
+        try {
+            return MotionPath(*object.motion);
+        } catch (const std::invalid_argument& e) {
+            fail(object, e.what());
+        }
+    }
+
     void extendWorldBounds(const Vec3& lo, const Vec3& hi) {
         impl.lower = impl.bounded ? min(impl.lower, lo) : lo;
         impl.upper = impl.bounded ? max(impl.upper, hi) : hi;
@@ -156,6 +169,7 @@ struct Builder {
             hi = max(hi, v);
         }
         bounds.add(lo, hi);
+        record.extent = maxComponent(hi - lo);
         attachMesh(impl.device.get(), level, std::move(record), noShadow);
         impl.device.throwIfFailed("adding a mesh");
     }
@@ -211,26 +225,26 @@ struct Builder {
         impl.device.throwIfFailed("building the scene");
     }
 
+    // A moving object at the one time every ray has, in double precision:
+    // static geometry placed by the motion at that time.
+    void addObjectAtTime(Level& level, LevelBounds& bounds, const Object& object, double time) {
+        addObject(level, bounds, object, toLevel(motionOf(object).at(time)), false, false);
+    }
+
     void addMovingObject(const Object& object) {
-        MotionPath motion = [&] {
-            try {
-                return MotionPath(*object.motion);
-            } catch (const std::invalid_argument& e) {
-                fail(object, e.what());
-            }
-        }();
-        auto level = std::make_unique<Level>();
+        Instance moving{std::make_unique<Level>(), motionOf(object), impl.shifted, impl.frameOrigin};
+        Level* level = moving.level.get();
         level->scene = newScene();
         LevelBounds bounds;
-        addObject(*level, bounds, object, Transform(), false, false);
+        addObject(*level, bounds, object, toLevel(Transform()), false, false);
         finishLevel(*level);
         RTCGeometry instance = rtcNewGeometry(impl.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
         impl.device.throwIfFailed("creating an instance");
         rtcSetGeometryInstancedScene(instance, level->scene);
-        const int steps = motion.timeStepCount();
+        const int steps = moving.motion.timeStepCount();
         rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(steps));
         for (int i = 0; i < steps; ++i) {
-            const RTCQuaternionDecomposition step = motion.timeStep(i);
+            const RTCQuaternionDecomposition step = moving.motion.timeStep(i, impl.frameOrigin);
             rtcSetGeometryTransformQuaternion(instance, static_cast<unsigned>(i), &step);
         }
         // Shadow rays skip a no_shadow object at the instance.
@@ -243,28 +257,63 @@ struct Builder {
             // The swept bounds, sampled at nine times over the shutter.
             for (int k = 0; k <= 8; ++k) {
                 Vec3 lo = bounds.lower, hi = bounds.upper;
-                transformBounds(motion.at(k / 8.0), lo, hi);
+                transformBounds(moving.toWorld(k / 8.0), lo, hi);
                 extendWorldBounds(lo, hi);
             }
         }
         if (impl.top.geometries.size() <= id) impl.top.geometries.resize(id + 1);
         impl.top.geometries[id] = {GeometryKind::Instance, impl.instances.size()};
-        impl.instances.push_back({std::move(level), std::move(motion)});
+        impl.instances.push_back(std::move(moving));
     }
 };
 
 } // namespace
 
-void buildScene(const Scene& scene, AcceleratorState& impl) {
+namespace {
+
+void buildLevels(const Scene& scene, AcceleratorState& impl) {
     Builder builder{impl};
     impl.top.scene = builder.newScene();
     Builder::LevelBounds bounds;
+    const Transform worldToTop = builder.toLevel(Transform());
     for (const Object& object : scene.objects) {
-        if (object.motion) builder.addMovingObject(object);
-        else builder.addObject(impl.top, bounds, object, Transform(), false, false);
+        if (!object.motion) builder.addObject(impl.top, bounds, object, worldToTop, false, false);
+        else if (impl.onlyTime) builder.addObjectAtTime(impl.top, bounds, object, *impl.onlyTime);
+        else builder.addMovingObject(object);
     }
-    if (bounds.any) builder.extendWorldBounds(bounds.lower, bounds.upper);
+    if (bounds.any) {
+        const Vec3 shift = impl.shifted ? impl.frameOrigin : Vec3{};
+        builder.extendWorldBounds(bounds.lower + shift, bounds.upper + shift);
+    }
     builder.finishLevel(impl.top);
+}
+
+} // namespace
+
+void buildScene(const Scene& scene, AcceleratorState& impl) {
+    buildLevels(scene, impl);
+    if (!impl.bounded) return;
+    // Float coordinates lose absolute precision with distance from the origin:
+    // a scene whose centre is farther away than its size is built again,
+    // re-centred (accel.h "Frame"). Nearer scenes would gain at most a factor
+    // of about 3 in precision and keep world coordinates.
+    const Vec3 centre = 0.5 * (impl.lower + impl.upper);
+    const double size = maxComponent(impl.upper - impl.lower);
+    impl.sceneUnit = frameUnitFor(size);
+    if (!(maxComponent(abs(centre)) > size)) return;
+    impl.top.release();
+    impl.instances.clear();
+    impl.bounded = false;
+    impl.shifted = true;
+    impl.frameOrigin = centre;
+    buildLevels(scene, impl);
+}
+
+double frameUnitFor(double extent) {
+    if (!(extent > 0) || !std::isfinite(extent) || extent >= 1) return 1;
+    int exponent = 0;
+    std::frexp(extent, &exponent); // extent = m 2^exponent, m in [0.5, 1)
+    return std::ldexp(1.0, exponent);
 }
 
 } // namespace drt::accel

@@ -5,6 +5,8 @@
 #include "accel/accel.h"
 #include "accel/built_scene.h"
 
+#include <optional>
+
 namespace drt {
 
 namespace accel {
@@ -14,7 +16,16 @@ struct AcceleratorState {
     std::vector<Instance> instances; // moving objects, by GeometryRef::index
     bool bounded = false;
     Vec3 lower, upper; // world bounds of everything finite
+    // Embree's top-level frame: world minus frameOrigin (accel.h "Frame").
+    bool shifted = false;
+    Vec3 frameOrigin;
+    double sceneUnit = 1; // frameUnit for unbounded objects
+    std::optional<double> onlyTime; // motion baked at this time (Accelerator(scene, onlyTime))
 };
+
+// Hit::frameUnit for an object of this size: the smallest power of two at
+// least `extent`, at most 1 (1 for no or an infinite extent).
+double frameUnitFor(double extent);
 
 // Fills state from the scene and commits every Embree scene. Throws RenderError.
 void buildScene(const Scene& scene, AcceleratorState& state);

@@ -2,9 +2,10 @@
 // keeps beside Embree's scenes to turn an Embree hit into a drt Hit.
 //
 // Spaces: "level space" is the space an Embree scene's geometry lives in. For
-// the top-level scene it is world space; for a moving object it is world space
-// at time 0 (Object::transform applied), and the instance's motion transform
-// maps it to world space at the ray's time.
+// the top-level scene it is world space minus the frame origin (accel.h
+// "Frame"; zero for most scenes); for a moving object it is world space at time
+// 0 (Object::transform applied) minus the frame origin, and the instance's
+// transform maps it to the top level at the ray's time.
 #pragma once
 
 #include "accel/motion.h"
@@ -87,6 +88,7 @@ struct MeshRecord {
     std::vector<Vec3> normals;                 // level space, may be empty
     std::vector<std::array<int, 3>> normalIndices;
     bool inverse = false;
+    double extent = 0; // largest side of the level-space bounds
 };
 
 enum class GeometryKind { Analytic, Mesh, Instance };
@@ -102,11 +104,18 @@ struct Level {
     std::vector<MeshRecord> meshes;
     std::vector<GeometryRef> geometries; // by Embree geometry id
     ~Level();
+    void release(); // back to empty, the Embree scene released
 };
 
 struct Instance {
     std::unique_ptr<Level> level;
     MotionPath motion;
+    bool shifted = false;
+    Vec3 frameOrigin; // level space = world at time 0 minus this, if shifted
+    // Level space -> world at time t.
+    Transform toWorld(double t) const {
+        return shifted ? Transform::translate(frameOrigin).then(motion.at(t)) : motion.at(t);
+    }
 };
 
 // Nearest crossing of a primitive with t in (tMin, tMax); the ray is in

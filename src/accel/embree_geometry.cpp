@@ -47,8 +47,14 @@ void EmbreeDevice::throwIfFailed(const char* what) const {
     throw RenderError("Embree error (" + message_ + ") while " + what);
 }
 
-Level::~Level() {
+Level::~Level() { release(); }
+
+void Level::release() {
     if (scene) rtcReleaseScene(scene);
+    scene = nullptr;
+    primitives.clear();
+    meshes.clear();
+    geometries.clear();
 }
 
 // ---------------------------------------------------------------- user geometry

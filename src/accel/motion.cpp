@@ -54,17 +54,29 @@ int MotionPath::timeStepCount() const {
     return 1 + std::max(1, static_cast<int>(std::ceil(angleDegrees_ / 120.0)));
 }
 
-RTCQuaternionDecomposition MotionPath::timeStep(int index) const {
+RTCQuaternionDecomposition MotionPath::timeStep(int index, const Vec3& frameOrigin) const {
     const double t = static_cast<double>(index) / (timeStepCount() - 1);
     RTCQuaternionDecomposition d;
     rtcInitQuaternionDecomposition(&d);
     // Embree's decomposition is translation * rotation * (scale, skew, shift).
-    rtcQuaternionDecompositionSetScale(&d, float(lerp(1, scale_.x, t)), float(lerp(1, scale_.y, t)),
-                                       float(lerp(1, scale_.z, t)));
+    const Vec3 scale{lerp(1, scale_.x, t), lerp(1, scale_.y, t), lerp(1, scale_.z, t)};
+    rtcQuaternionDecompositionSetScale(&d, float(scale.x), float(scale.y), float(scale.z));
     const Quaternion q = axisAngle(axis_, t * angleDegrees_);
     rtcQuaternionDecompositionSetQuaternion(&d, float(q.w), float(q.x), float(q.y), float(q.z));
-    rtcQuaternionDecompositionSetTranslation(&d, float(t * translate_.x), float(t * translate_.y),
-                                             float(t * translate_.z));
+    Vec3 translation = t * translate_;
+    if (angleDegrees_ == 0) {
+        // x -> Sc x + (Sc f + t T - f): the constant is linear in t, so Embree's
+        // interpolation between steps is exact, and it is small (computed in
+        // double) even when f is large.
+        translation = translation + scale * frameOrigin - frameOrigin;
+    } else {
+        // R Sc f is not linear in t: pivot through Embree's shift instead
+        // (rounded to float, as far from the origin as the object is).
+        const Vec3 shift = scale * frameOrigin;
+        rtcQuaternionDecompositionSetShift(&d, float(shift.x), float(shift.y), float(shift.z));
+        translation = translation - frameOrigin;
+    }
+    rtcQuaternionDecompositionSetTranslation(&d, float(translation.x), float(translation.y), float(translation.z));
     return d;
 }
 

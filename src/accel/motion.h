@@ -32,7 +32,10 @@ public:
     // Embree instance time steps: enough that each step turns less than 180
     // degrees, because Embree slerps along the shorter arc between steps.
     int timeStepCount() const;
-    RTCQuaternionDecomposition timeStep(int index) const;
+    // With a frame origin f (accel.h "Frame"), the step maps level space
+    // (world at time 0 minus f) to the top level (world minus f):
+    //   x -> R Sc (x + f) + t T - f.
+    RTCQuaternionDecomposition timeStep(int index, const Vec3& frameOrigin = {}) const;
 
 private:
     Vec3 scale_{1, 1, 1};

@@ -85,9 +85,18 @@ void PovParser::directive(const Tok& t) {
         messageDirective(t);
     else if (d == "version") versionDirective(t);
     else if (d == "default") {
-        warnOnce("#default", t.loc, "#default is not supported; its block is ignored");
+        // #default { texture {..} | pigment {..} | finish {..} | normal {..} }: the
+        // texture of objects created after it that have none of their own.
         expectSymbol("{", "after #default");
-        skipBlock();
+        for (;;) {
+            const Tok item = next();
+            if (item.is("}")) break;
+            if (item.isWord("texture")) defaultTexture_ = texture(defaultTexture_);
+            else if (item.isWord("pigment")) defaultTexture_.pigment = pigment(defaultTexture_.pigment);
+            else if (item.isWord("finish")) defaultTexture_.finish = finish(defaultTexture_.finish);
+            else if (item.isWord("normal")) normalBlock(item.loc);
+            else failExpected(item, "'texture', 'pigment', 'finish', 'normal' or '}' in #default");
+        }
     } else if (d == "fopen" || d == "fclose" || d == "read" || d == "write") {
         fail(t.loc, "#" + d + " (file input/output) is not supported");
     } else {

@@ -139,6 +139,7 @@ PovObject PovParser::object(const Tok& keyword) {
     const std::string& w = keyword.text;
     PovObject po;
     po.object.loc = keyword.loc;
+    po.object.texture = defaultTexture_;
     if (w == "light_source") {
         po.lightOnly = true;
         po.lights.push_back(lightSource(keyword.loc));
@@ -419,13 +420,13 @@ PovObject PovParser::object(const Tok& keyword) {
                 texture(Texture{});
                 continue;
             }
-            setTexture(po, texture(po.textured ? o.texture : Texture{}));
+            setTexture(po, texture(po.textured ? o.texture : defaultTexture_));
         } else if (m == "pigment") {
-            Texture tex = po.textured ? o.texture : Texture{};
+            Texture tex = po.textured ? o.texture : defaultTexture_;
             tex.pigment = pigment(tex.pigment);
             setTexture(po, tex);
         } else if (m == "finish") {
-            Texture tex = po.textured ? o.texture : Texture{};
+            Texture tex = po.textured ? o.texture : defaultTexture_;
             tex.finish = finish(tex.finish);
             setTexture(po, tex);
         } else if (m == "normal") {

@@ -110,6 +110,7 @@ public:
     std::optional<double> assumedGamma_;
     double version_ = 3.7;
     bool versionSeen_ = false;
+    Texture defaultTexture_; // #default { texture / pigment / finish }
     std::vector<uint32_t> randomStreams_; // seed(n) returns an index into this
 
 private:

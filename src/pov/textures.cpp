@@ -400,7 +400,11 @@ Finish PovParser::finish(const Finish& base) {
             if (acceptSymbol("{")) {
                 Color a = colorOrFloat();
                 Color b = a;
-                if (acceptSymbol(",")) b = colorOrFloat();
+                acceptSymbol(","); // `{ min, max }` or `{ min max }`
+                const Tok n = peek();
+                if (!(n.is("}") || n.isWord("fresnel") || n.isWord("falloff") || n.isWord("exponent") ||
+                      n.isWord("metallic")))
+                    b = colorOrFloat();
                 f.reflectionMin = a;
                 f.reflectionMax = b;
                 for (;;) {

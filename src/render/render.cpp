@@ -42,6 +42,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <variant>
 #include <chrono>
 #include <mutex>
@@ -196,7 +197,12 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
 
     RenderResult result;
     const auto buildStart = std::chrono::steady_clock::now();
-    const Accelerator accel(scene);
+    // A zero-length shutter gives every ray the same time: the accelerator
+    // then places moving objects at that time in double precision, so the
+    // image is the static scene's at that time bit for bit (issue 3).
+    const auto accelerator = camera.hasShutter() ? std::make_unique<Accelerator>(scene)
+                                                 : std::make_unique<Accelerator>(scene, camera.shutterOpen);
+    const Accelerator& accel = *accelerator;
     result.stats.buildSeconds = secondsSince(buildStart);
 
     const Integrator integrator(scene, accel);
