@@ -95,13 +95,18 @@ TEST(Cli, MissingSceneIsAnIoError) {
     EXPECT_EQ(runDrt("check " + quoted(dir + "/nothere.drt")).exitCode, 3);
 }
 
-TEST(Cli, PovSceneIsNotSupportedYet) {
+TEST(Cli, PovSceneRendersAndItsErrorsShowTheLocation) {
     const std::string dir = test::tempDir();
-    const std::string scene = test::writeFile(dir + "/scene.pov", "sphere { <0,0,0>, 1 }\n");
-    const auto r = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.png"));
+    const std::string scene = test::writeFile(dir + "/scene.pov",
+        "camera { location <0,0,-3> look_at 0 }\nlight_source { <0,5,-5> color rgb 1 }\nsphere { <0,0,0>, 1 pigment { rgb 1 } }\n");
+    auto r = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.png") + " --width 16 --height 12 --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir + "/out.png"));
+    const std::string broken = test::writeFile(dir + "/broken.pov", "sphere { <0,0,0> 1 }\nsphere { <0,0,0>, }\n");
+    r = runDrt("render " + quoted(broken) + " -o " + quoted(dir + "/broken.png"));
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.err.find("POV-Ray scenes are not supported yet"), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(dir + "/out.png"));
+    EXPECT_NE(r.err.find("broken.pov:2:"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/broken.png"));
 }
 
 TEST(Cli, SyntaxErrorShowsLocationAndCaretAndWritesNothing) {

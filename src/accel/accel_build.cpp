@@ -79,11 +79,12 @@ struct Builder {
         }
     };
 
-    CsgNode csgNode(const Object& object, const Transform& parentToLevel) {
-        if (object.motion) fail(object, "motion on an object inside a CSG is not supported yet");
+    // `placed`, if given, replaces object.transform (a motion baked in).
+    CsgNode csgNode(const Object& object, const Transform& parentToLevel, const Transform* placed = nullptr) {
+        if (object.motion && !placed) fail(object, "motion on an object inside a CSG is not supported yet");
         CsgNode node;
         node.inverse = object.inverse;
-        const Transform toLevel = object.transform.then(parentToLevel);
+        const Transform toLevel = (placed ? *placed : object.transform).then(parentToLevel);
         if (const auto* csg = std::get_if<Csg>(&object.shape)) {
             if (csg->children.empty()) fail(object, "CSG with no children");
             node.leaf = false;
@@ -174,9 +175,10 @@ struct Builder {
         impl.device.throwIfFailed("adding a mesh");
     }
 
+    // `placed`, if given, replaces object.transform (a motion baked in).
     void addObject(Level& level, LevelBounds& bounds, const Object& object, const Transform& parentToLevel,
-                   bool parentInverse, bool parentNoShadow) {
-        const Transform toLevel = object.transform.then(parentToLevel);
+                   bool parentInverse, bool parentNoShadow, const Transform* placed = nullptr) {
+        const Transform toLevel = (placed ? *placed : object.transform).then(parentToLevel);
         const bool inverse = object.inverse != parentInverse;
         const bool noShadow = object.noShadow || parentNoShadow;
         if (const auto* csg = std::get_if<Csg>(&object.shape)) {
@@ -191,7 +193,7 @@ struct Builder {
             p.object = &object;
             p.noShadow = noShadow;
             // The tree's root carries the inherited inversion; leaves keep their own.
-            p.csg = std::make_unique<CsgNode>(csgNode(object, parentToLevel));
+            p.csg = std::make_unique<CsgNode>(csgNode(object, parentToLevel, placed));
             p.csg->inverse = inverse;
             p.bounded = csgBounds(*p.csg, p.lower, p.upper);
             addPrimitive(level, bounds, std::move(p));
@@ -226,9 +228,12 @@ struct Builder {
     }
 
     // A moving object at the one time every ray has, in double precision:
-    // static geometry placed by the motion at that time.
+    // static geometry placed by the motion at that time. Composed as a static
+    // object whose transform is object.transform.then(motion at time) would be,
+    // so the two build bit for bit the same.
     void addObjectAtTime(Level& level, LevelBounds& bounds, const Object& object, double time) {
-        addObject(level, bounds, object, toLevel(motionOf(object).at(time)), false, false);
+        const Transform placed = object.transform.then(motionOf(object).at(time));
+        addObject(level, bounds, object, toLevel(Transform()), false, false, &placed);
     }
 
     void addMovingObject(const Object& object) {

@@ -1,6 +1,7 @@
 #include "render/integrator.h"
 
 #include "render/directions.h"
+#include "render/noise.h"
 #include "render/pigment.h"
 #include "render/shading.h"
 #include "sampling/warp.h"
@@ -70,6 +71,10 @@ void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampl
     const bool entering = dot(incoming, hit.geometricNormal) < 0;
     Vec3 normal = entering ? hit.shadingNormal : -hit.shadingNormal;
     if (dot(normal, incoming) >= 0) normal = entering ? hit.geometricNormal : -hit.geometricNormal;
+    if (object.texture.normal) { // bump pattern; kept only while it still faces the viewer
+        const Vec3 bumped = perturbNormal(*object.texture.normal, hit.point, normal);
+        if (dot(bumped, incoming) < 0) normal = bumped;
+    }
 
     Color weight = pending.weight;
     if (!entering) // the ray crossed the object's interior

@@ -1,5 +1,7 @@
 #include "render/pigment.h"
 
+#include "render/noise.h"
+
 #include <cmath>
 
 namespace drt {
@@ -104,7 +106,10 @@ ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value) {
 
 ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
     if (pigment.pattern == PatternKind::Solid) return pigment.color;
-    const Vec3 p = pigment.toWorld.inversePoint(worldPoint);
+    const Vec3 unwarped = pigment.toWorld.inversePoint(worldPoint);
+    if (isNoisePattern(pigment.pattern))
+        return lookupColorMap(pigment.colorMap, noisePatternValue(pigment.pattern, pigment.turbulence, unwarped));
+    const Vec3 p = unwarped + turbulenceOffset(pigment.turbulence, unwarped);
     switch (pigment.pattern) {
     case PatternKind::Solid: return pigment.color;
     case PatternKind::Checker: return child(pigment, checkerIndex(p), worldPoint);
@@ -113,6 +118,7 @@ ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
     case PatternKind::Gradient: return lookupColorMap(pigment.colorMap, gradientValue(p, pigment.gradientAxis));
     case PatternKind::Radial: return lookupColorMap(pigment.colorMap, radialValue(p));
     case PatternKind::Onion: return lookupColorMap(pigment.colorMap, onionValue(p));
+    default: break;
     }
     return pigment.color;
 }

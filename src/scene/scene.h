@@ -28,6 +28,30 @@ enum class PatternKind {
     Gradient, // colour map along `gradientAxis`
     Radial,   // colour map around y
     Onion,    // colour map by distance from the origin
+    // Noise patterns (render/noise.h): drt's own gradient noise, shaped like
+    // POV-Ray's documented patterns but not value-for-value equal to them.
+    Bozo,     // colour map of plain noise (POV-Ray's bozo and spotted)
+    Granite,  // sum of |noise| octaves at doubling frequency
+    Marble,   // triangle wave along x, turbulence added
+    Wood,     // concentric cylinders around the z axis
+    Agate,    // sine of z plus strong built-in turbulence
+    Leopard,  // squared sum of sines: regular spots
+    Crackle,  // cellular: distance to the nearest feature point
+    Wrinkles, // bump patterns, usable as pigments too
+    Dents,
+    Bumps,
+    Ripples,  // concentric waves around fixed centres
+    Waves,
+};
+
+// POV-Ray turbulence: the pattern is evaluated at p + amount * T(p), with T a
+// sum of `octaves` vector-noise octaves whose weight scales by `omega` and
+// frequency by `lambda` each octave. No effect while amount is zero.
+struct Turbulence {
+    Vec3 amount{0, 0, 0};
+    int octaves = 6;
+    double omega = 0.5;
+    double lambda = 2.0;
 };
 
 struct ColorMapEntry {
@@ -43,6 +67,7 @@ struct Pigment {
     Vec3 gradientAxis{0, 1, 0};
     Vec3 brickSize{8, 3, 4.5};
     double mortar = 0.5;
+    Turbulence turbulence; // noise and colour-map patterns
     // Pattern space -> world space, including the transforms of the object the
     // pigment belongs to that came after it. Evaluate at toWorld.inversePoint(p).
     Transform toWorld;
@@ -72,10 +97,32 @@ struct Finish {
     double refractionBlur = 0;
 };
 
+// A bump pattern (POV-Ray `normal { bumps 0.4 scale 0.2 }`): the shading
+// normal is tilted by `amount` times the gradient of the pattern's scalar field.
+struct Normal {
+    PatternKind pattern = PatternKind::Bumps;
+    double amount = 0.5;
+    Turbulence turbulence;
+    Transform toWorld; // as Pigment::toWorld
+};
+
 struct Texture {
     Pigment pigment;
     Finish finish;
+    std::optional<Normal> normal; // none: the surface's own normal
 };
+
+// Applies a transform to every pattern space of a texture (pigment tree and normal).
+inline void transformTextureSpaces(Texture& texture, const Transform& t) {
+    struct Walk {
+        static void pigment(Pigment& p, const Transform& t) {
+            p.toWorld = p.toWorld.then(t);
+            for (Pigment& child : p.children) pigment(child, t);
+        }
+    };
+    Walk::pigment(texture.pigment, t);
+    if (texture.normal) texture.normal->toWorld = texture.normal->toWorld.then(t);
+}
 
 struct Interior {
     double ior = 1;
