@@ -225,16 +225,16 @@ TEST(PovScene, FinishInteriorAndColourMaps) {
     EXPECT_EQ(o.interior.fadePower, 3);
 }
 
-TEST(PovScene, NoisePatternIsApproximatedByItsMapAverageOnce) {
+TEST(PovScene, UnmodelledNoisePatternIsApproximatedByItsMapAverageOnce) {
     Diagnostics diags;
-    const auto s = load("sphere { 0, 1 pigment { granite color_map { [0 rgb 0] [1 rgb 1] } } }\n"
-                        "sphere { 0, 1 pigment { granite color_map { [0 rgb 0] [1 rgb 1] } } }",
+    const auto s = load("sphere { 0, 1 pigment { cells color_map { [0 rgb 0] [1 rgb 1] } } }\n"
+                        "sphere { 0, 1 pigment { cells color_map { [0 rgb 0] [1 rgb 1] } } }",
                         diags);
     ASSERT_TRUE(s);
     const Pigment& p = s->objects[0].texture.pigment;
     EXPECT_EQ(p.pattern, PatternKind::Solid);
     EXPECT_NEAR(p.color.rgb.r, 0.5, 1e-12);
-    EXPECT_EQ(warningsContaining(diags, "'granite' is approximated"), 1);
+    EXPECT_EQ(warningsContaining(diags, "'cells' is approximated"), 1);
 }
 
 TEST(PovScene, GammaRules) {
@@ -254,8 +254,8 @@ TEST(PovScene, GammaRules) {
 
 TEST(PovScene, UnsupportedFeaturesWarnOncePerKindWithLocation) {
     Diagnostics diags;
-    const auto s = load("fog { distance 10 }\nsphere { 0, 1 normal { bumps 0.5 } }\nfog { distance 3 }\n"
-                        "sphere { 0, 1 normal { dents 1 } }",
+    const auto s = load("fog { distance 10 }\nsphere { 0, 1 normal { quilted 0.5 } }\nfog { distance 3 }\n"
+                        "sphere { 0, 1 normal { facets 1 } }",
                         diags);
     ASSERT_TRUE(s);
     EXPECT_EQ(s->objects.size(), 2u);
@@ -275,10 +275,10 @@ TEST(PovScene, UnsupportedFeaturesWarnOncePerKindWithLocation) {
 
 TEST(PovScene, UnusedDeclarationsDoNotWarnButUsesDo) {
     Diagnostics quiet;
-    ASSERT_TRUE(load("#declare T = texture { pigment { bozo } normal { bumps 1 } }\nsphere { 0, 1 }", quiet));
+    ASSERT_TRUE(load("#declare T = texture { pigment { cells } normal { quilted 1 } }\nsphere { 0, 1 }", quiet));
     EXPECT_EQ(quiet.warningCount(), 0) << quiet.formatAll();
     Diagnostics used;
-    ASSERT_TRUE(load("#declare T = texture { pigment { bozo } normal { bumps 1 } }\nsphere { 0, 1 texture { T } }",
+    ASSERT_TRUE(load("#declare T = texture { pigment { cells } normal { quilted 1 } }\nsphere { 0, 1 texture { T } }",
                      used));
     EXPECT_EQ(used.warningCount(), 2) << used.formatAll();
 }

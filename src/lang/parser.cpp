@@ -29,7 +29,7 @@ std::string kindName(const Value& v) {
 
 static const std::vector<std::string>& topLevelWords() {
     static const std::vector<std::string> words{
-        "camera", "light_source", "background", "global_settings", "render", "sphere", "plane", "box", "cylinder",
+        "camera", "light_source", "background", "sky_sphere", "fog", "global_settings", "render", "sphere", "plane", "box", "cylinder",
         "cone",   "disc",         "torus",      "triangle",        "smooth_triangle", "mesh", "union", "merge",
         "difference", "intersection", "object"};
     return words;
@@ -205,7 +205,7 @@ void Parser::synchronize() {
         if (check(TokenKind::Identifier)) {
             const std::string& w = current_.text;
             if (w == "camera" || w == "light_source" || w == "global_settings" || w == "background" ||
-                w == "render")
+                w == "render" || w == "sky_sphere" || w == "fog")
                 break;
             if (braceDepth_ <= 0 && isTopLevelWord(w)) break;
         }
@@ -255,6 +255,8 @@ void Parser::statement() {
     if (word == "camera") return camera();
     if (word == "light_source") return lightSource();
     if (word == "background") return background();
+    if (word == "sky_sphere") return skySphere();
+    if (word == "fog") return fog();
     if (word == "global_settings") return globalSettings();
     if (word == "render") return renderBlock();
     if (atObjectWord()) return addObjectToScene(object());

@@ -109,6 +109,8 @@ private:
     void lightSource();
     void areaLight(Light& light);
     void background();
+    void skySphere();
+    void fog();
     void globalSettings();
     void renderBlock();
     void adaptiveBlock(const SourceLoc& keyword);
@@ -140,6 +142,8 @@ private:
     Pigment pigmentOrColor();
     void colorMap(Pigment& p);
     Finish finish();
+    Normal normal();
+    bool turbulenceItem(Turbulence& turbulence);
     void reflectionBlock(Finish& f);
     Interior interior();
 

@@ -17,7 +17,7 @@ static const std::vector<std::string>& objectWords() {
 
 static const std::vector<std::string>& modifierWords() {
     static const std::vector<std::string> words{"translate", "rotate", "scale",  "matrix",    "texture",
-                                                "pigment",   "finish", "interior", "no_shadow", "hollow",
+                                                "pigment",   "finish", "normal", "interior", "no_shadow", "hollow",
                                                 "inverse",   "motion", "open"};
     return words;
 }
@@ -281,6 +281,10 @@ bool Parser::objectModifier(ParsedObject& po) {
         Texture t = o.texture;
         t.finish = finish();
         setTexture(po, t);
+    } else if (w == "normal") {
+        Texture t = o.texture;
+        t.normal = normal();
+        setTexture(po, t);
     } else if (w == "interior") {
         o.interior = interior();
         for (ParsedObject& child : po.children) child.object.interior = o.interior;
@@ -345,7 +349,7 @@ void Parser::applyTransform(ParsedObject& po, const Transform& t, const SourceLo
         }
     }
     o.transform = o.transform.then(t);
-    transformPigment(o.texture.pigment, t);
+    transformTextureSpaces(o.texture, t);
 }
 
 static void inheritTexture(ParsedObject& po, const Texture& texture) {
@@ -353,7 +357,7 @@ static void inheritTexture(ParsedObject& po, const Texture& texture) {
     po.object.texture = texture;
     if (po.children.empty()) return;
     Texture local = texture; // in this CSG's own space
-    transformPigment(local.pigment, po.object.transform.inverted());
+    transformTextureSpaces(local, po.object.transform.inverted());
     for (ParsedObject& child : po.children) inheritTexture(child, local);
 }
 
@@ -367,7 +371,7 @@ void Parser::setTexture(ParsedObject& po, const Texture& texture) {
 void Parser::addChild(ParsedObject& parent, ParsedObject child) {
     if (parent.textured) {
         Texture local = parent.object.texture;
-        transformPigment(local.pigment, parent.object.transform.inverted());
+        transformTextureSpaces(local, parent.object.transform.inverted());
         inheritTexture(child, local);
     }
     parent.children.push_back(std::move(child));
@@ -406,7 +410,7 @@ void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optio
         if (motion) error(o.loc, "'motion' on merge, difference or intersection is not supported");
         std::get<Csg>(o.shape).children = csgChildren(po, toWorld);
         o.transform = toWorld;
-        transformPigment(o.texture.pigment, parent);
+        transformTextureSpaces(o.texture, parent);
         o.noShadow = noShadow;
         o.hollow = hollow;
         scene_.objects.push_back(std::move(o));
@@ -417,7 +421,7 @@ void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optio
         return;
     }
     o.transform = toWorld;
-    transformPigment(o.texture.pigment, parent);
+    transformTextureSpaces(o.texture, parent);
     o.motion = motion;
     o.noShadow = noShadow;
     o.hollow = hollow;
@@ -432,7 +436,7 @@ std::vector<Object> Parser::csgChildren(ParsedObject& po, const Transform& csgTo
     for (ParsedObject& child : po.children) {
         Object o = std::move(child.object);
         if (o.motion) error(o.loc, "'motion' inside merge, difference or intersection is not supported");
-        transformPigment(o.texture.pigment, csgToWorld);
+        transformTextureSpaces(o.texture, csgToWorld);
         if (isCsg(child)) std::get<Csg>(o.shape).children = csgChildren(child, o.transform.then(csgToWorld));
         children.push_back(std::move(o));
     }

@@ -210,6 +210,63 @@ void Parser::background() {
     expect(TokenKind::RightBrace, "'}' after the background colour");
 }
 
+// sky-sphere = "sky_sphere" "{" { pigment } "}"
+void Parser::skySphere() {
+    const Token keyword = current_;
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'sky_sphere'");
+    std::vector<Pigment> layers;
+    while (!match(TokenKind::RightBrace)) {
+        if (!checkWord("pigment")) failExpected("'pigment' or '}' in sky_sphere");
+        layers.push_back(pigment());
+    }
+    if (layers.empty()) error(keyword.loc, "sky_sphere needs at least one pigment");
+    scene_.sky = std::move(layers);
+}
+
+// fog = "fog" "{" { "distance" float | colour | "fog_type" int | "fog_offset" float
+//                 | "fog_alt" float | "up" vector } "}"
+void Parser::fog() {
+    static const std::vector<std::string> known{"distance", "color", "fog_type", "fog_offset", "fog_alt", "up"};
+    const Token keyword = current_;
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'fog'");
+    Fog f;
+    bool hasDistance = false;
+    while (!match(TokenKind::RightBrace)) {
+        if (!check(TokenKind::Identifier)) failExpected("a fog keyword or '}'");
+        if (checkWord("color") || atColorWord()) {
+            f.color = colorExpr();
+            continue;
+        }
+        const Token word = current_;
+        const std::string& w = word.text;
+        advance();
+        const SourceLoc loc = current_.loc;
+        if (w == "distance") {
+            f.distance = floatExpr("the fog distance");
+            hasDistance = true;
+            if (!(f.distance > 0)) error(loc, "fog 'distance' must be positive");
+        } else if (w == "fog_type") {
+            const int type = intExpr("the fog type");
+            if (type != 1 && type != 2) error(loc, "'fog_type' must be 1 (constant) or 2 (ground)");
+            f.type = type == 2 ? Fog::Type::Ground : Fog::Type::Constant;
+        } else if (w == "fog_offset") {
+            f.offset = floatExpr("the fog offset");
+        } else if (w == "fog_alt") {
+            f.altitude = floatExpr("the fog altitude");
+            if (!(f.altitude > 0)) error(loc, "'fog_alt' must be positive");
+        } else if (w == "up") {
+            f.up = vectorExpr();
+            requireNonZero(f.up, loc, "the fog 'up'");
+        } else {
+            failUnknown(word, known);
+        }
+    }
+    if (!hasDistance) error(keyword.loc, "fog needs a 'distance'");
+    scene_.fogs.push_back(f);
+}
+
 // global-settings = "global_settings" "{" { global-item } "}"
 void Parser::globalSettings() {
     static const std::vector<std::string> known{"max_trace_level", "ambient_light", "assumed_gamma", "adc_bailout"};

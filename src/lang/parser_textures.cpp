@@ -3,6 +3,7 @@
 #include "lang/parser.h"
 
 #include <algorithm>
+#include <map>
 
 namespace drt {
 
@@ -19,7 +20,22 @@ static Pigment solid(const ColorFT& c) {
 
 static Pigment solidRgb(double r, double g, double b) { return solid(ColorFT{Color(r, g, b), 0, 0}); }
 
-// texture = "texture" "{" [ texture-name ] { pigment | finish | transform } "}"
+// The noise patterns (render/noise.h), usable both as pigments and as normals.
+static std::optional<PatternKind> noisePatternKind(const std::string& w) {
+    static const std::map<std::string, PatternKind> kinds = {
+        {"bozo", PatternKind::Bozo},         {"granite", PatternKind::Granite},   {"marble", PatternKind::Marble},
+        {"wood", PatternKind::Wood},         {"agate", PatternKind::Agate},       {"leopard", PatternKind::Leopard},
+        {"crackle", PatternKind::Crackle},   {"wrinkles", PatternKind::Wrinkles}, {"dents", PatternKind::Dents},
+        {"bumps", PatternKind::Bumps},       {"ripples", PatternKind::Ripples},   {"waves", PatternKind::Waves}};
+    const auto it = kinds.find(w);
+    if (it == kinds.end()) return std::nullopt;
+    return it->second;
+}
+
+static const std::vector<std::string> kNoiseWords{"bozo",    "granite",  "marble", "wood",  "agate",   "leopard",
+                                                  "crackle", "wrinkles", "dents",  "bumps", "ripples", "waves"};
+
+// texture = "texture" "{" [ texture-name ] { pigment | finish | normal | transform } "}"
 Texture Parser::texture() {
     const Token keyword = current_;
     advance();
@@ -36,15 +52,17 @@ Texture Parser::texture() {
     }
     while (!match(TokenKind::RightBrace)) {
         if (std::optional<Transform> tr = transformItem()) {
-            transformPigment(t.pigment, *tr);
+            transformTextureSpaces(t, *tr);
         } else if (checkWord("pigment")) {
             t.pigment = pigment();
         } else if (checkWord("finish")) {
             t.finish = finish();
+        } else if (checkWord("normal")) {
+            t.normal = normal();
         } else if (check(TokenKind::Identifier)) {
-            failUnknown(current_, {"pigment", "finish", "translate", "rotate", "scale", "matrix"});
+            failUnknown(current_, {"pigment", "finish", "normal", "translate", "rotate", "scale", "matrix"});
         } else {
-            failExpected("'pigment', 'finish', a transform or '}' in texture");
+            failExpected("'pigment', 'finish', 'normal', a transform or '}' in texture");
         }
     }
     return t;
@@ -68,8 +86,12 @@ Pigment Parser::pigment() {
         if (check(TokenKind::Identifier)) {
             if (const Value* v = lookup(current_.text))
                 fail(current_.loc, "'" + current_.text + "' is " + kindName(*v) + ", not a pigment or colour");
-            failUnknown(current_, {"color", "rgb", "checker", "hexagon", "brick", "brick_size", "mortar", "gradient",
-                                   "radial", "onion", "color_map", "translate", "rotate", "scale", "matrix"});
+            std::vector<std::string> known{"color",    "rgb",       "checker", "hexagon",   "brick",
+                                           "brick_size", "mortar", "gradient", "radial",  "onion",
+                                           "color_map", "turbulence", "octaves", "omega", "lambda",
+                                           "translate", "rotate",   "scale",   "matrix"};
+            known.insert(known.end(), kNoiseWords.begin(), kNoiseWords.end());
+            failUnknown(current_, known);
         }
         failExpected("a colour, a pattern or '}' in pigment");
     }
@@ -78,7 +100,7 @@ Pigment Parser::pigment() {
 
 // pigment-item = colour | "checker" [ list ] | "hexagon" [ list ] | "brick" [ list ]
 //              | "brick_size" vector | "mortar" float | "gradient" vector | "radial" | "onion"
-//              | colour-map | transform
+//              | noise-pattern | turbulence-item | colour-map | transform
 bool Parser::pigmentItem(Pigment& p) {
     const SourceLoc loc = current_.loc;
     if (std::optional<Transform> t = transformItem()) {
@@ -149,6 +171,12 @@ bool Parser::pigmentItem(Pigment& p) {
                 p.colorMap = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // POV-Ray's grey ramp
             }
         }
+    } else if (const std::optional<PatternKind> kind = noisePatternKind(w)) {
+        advance();
+        p.pattern = *kind;
+        p.children.clear();
+        if (p.colorMap.empty()) p.colorMap = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // grey ramp
+    } else if (turbulenceItem(p.turbulence)) {
     } else if (w == "color_map" || w == "colour_map") {
         colorMap(p);
     } else {
@@ -190,6 +218,55 @@ void Parser::colorMap(Pigment& p) {
     }
     if (entries.empty()) error(keyword.loc, "color_map has no entries");
     else p.colorMap = std::move(entries);
+}
+
+// turbulence-item = "turbulence" (vector | float) | "octaves" int | "omega" float | "lambda" float
+// Returns false, consuming nothing, at any other token.
+bool Parser::turbulenceItem(Turbulence& t) {
+    if (!check(TokenKind::Identifier)) return false;
+    const std::string w = current_.text;
+    if (w != "turbulence" && w != "octaves" && w != "omega" && w != "lambda") return false;
+    advance();
+    const SourceLoc loc = current_.loc;
+    if (w == "turbulence") {
+        t.amount = vectorExpr("the turbulence amount");
+        if (t.amount.x < 0 || t.amount.y < 0 || t.amount.z < 0) error(loc, "'turbulence' must not be negative");
+    } else if (w == "octaves") {
+        t.octaves = intExpr("the number of octaves");
+        if (t.octaves < 1 || t.octaves > 10) error(loc, "'octaves' must be between 1 and 10");
+    } else if (w == "omega") {
+        t.omega = floatExpr();
+    } else {
+        t.lambda = floatExpr();
+    }
+    return true;
+}
+
+// normal = "normal" "{" noise-pattern [ float ] { turbulence-item | transform } "}"
+// The float is the bump amount (default 0.5).
+Normal Parser::normal() {
+    const Token keyword = current_;
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'normal'");
+    Normal n;
+    if (!check(TokenKind::Identifier)) failExpected("a bump pattern (such as 'bumps') after 'normal {'");
+    const std::optional<PatternKind> kind = noisePatternKind(current_.text);
+    if (!kind) failUnknown(current_, kNoiseWords);
+    n.pattern = *kind;
+    advance();
+    if (check(TokenKind::Number) || check(TokenKind::LeftParen) || check(TokenKind::Minus)) n.amount = floatExpr();
+    while (!match(TokenKind::RightBrace)) {
+        if (std::optional<Transform> tr = transformItem()) {
+            n.toWorld = n.toWorld.then(*tr);
+        } else if (turbulenceItem(n.turbulence)) {
+        } else if (check(TokenKind::Identifier)) {
+            failUnknown(current_, {"turbulence", "octaves", "omega", "lambda", "translate", "rotate", "scale", "matrix"});
+        } else {
+            failExpected("'turbulence', a transform or '}' in normal");
+        }
+    }
+    (void)keyword;
+    return n;
 }
 
 // finish = "finish" "{" [ finish-name ] { finish-item } "}"

@@ -76,7 +76,7 @@ class SceneWriter {
     void object(const Object& o, int indent);
     std::string shapeHead(const Object& o, int indent);
     std::string meshText(const Mesh& m, int indent);
-    void texture(const Texture& t, const std::string& pigment, int indent);
+    void texture(const Texture& t, const std::string& pigment, const std::string& normal, int indent);
     static std::string motionText(const Motion& m);
 
     WriterOptions options_;
@@ -155,6 +155,21 @@ void SceneWriter::settings(const Scene& scene) {
         line(0, "global_settings {" + items + " }");
     if (!isBlack(scene.background))
         line(0, "background { color " + colorText(scene.background) + " }");
+    if (!scene.sky.empty()) {
+        line(0, "sky_sphere {");
+        for (const Pigment& p : scene.sky) {
+            bool exact = true;
+            line(1, "pigment {" + pigmentBody(p, {}, exact, problems_) + " }");
+        }
+        line(0, "}");
+    }
+    for (const Fog& f : scene.fogs) {
+        std::string items = " distance " + number(f.distance) + " color " + colorText(f.color);
+        if (f.type == Fog::Type::Ground)
+            items += " fog_type 2 fog_offset " + number(f.offset) + " fog_alt " + number(f.altitude) + " up " +
+                     vector(f.up);
+        line(0, "fog {" + items + " }");
+    }
     out_ += "\n";
 }
 
@@ -305,22 +320,25 @@ void SceneWriter::object(const Object& o, int indent) {
     // own; after them, it needs its whole pattern -> world map. Take the form
     // that rebuilds the model exactly, the one without `matrix` if both do.
     const Texture& t = o.texture;
-    const bool untextured = isDefaultPigment(t.pigment) && isDefaultFinish(t.finish) &&
+    const bool untextured = isDefaultPigment(t.pigment) && isDefaultFinish(t.finish) && !t.normal &&
                             writer::sameTransform(t.pigment.toWorld, writer::compose(steps));
     bool exactBefore = true, exactAfter = true;
     const std::string before = untextured ? "" : pigmentBody(t.pigment, steps, exactBefore, problems_);
     const std::string after =
         untextured || steps.empty() ? before : pigmentBody(t.pigment, {}, exactAfter, problems_);
-    const bool readableBefore = before.find(" matrix") == std::string::npos;
+    const std::string normalBefore = t.normal ? normalBody(*t.normal, steps, exactBefore) : "";
+    const std::string normalAfter = t.normal ? normalBody(*t.normal, {}, exactAfter) : "";
+    const bool readableBefore =
+        before.find(" matrix") == std::string::npos && normalBefore.find(" matrix") == std::string::npos;
     const bool textureBefore = untextured || steps.empty() ||
                                (exactBefore && (readableBefore || !exactAfter)) ||
                                (!exactBefore && !exactAfter);
     if (textureBefore && !untextured)
-        texture(t, before, indent + 1);
+        texture(t, before, normalBefore, indent + 1);
     if (!steps.empty())
         line(indent + 1, formatSteps(steps).substr(1));
     if (!textureBefore)
-        texture(t, after, indent + 1);
+        texture(t, after, normalAfter, indent + 1);
     if (!isDefaultInterior(o.interior))
         line(indent + 1, "interior {" + interiorBody(o.interior) + " }");
     std::string flags;
@@ -443,15 +461,19 @@ std::string SceneWriter::meshText(const Mesh& m, int indent) {
     return text;
 }
 
-void SceneWriter::texture(const Texture& t, const std::string& pigmentText, int indent) {
+void SceneWriter::texture(const Texture& t, const std::string& pigmentText, const std::string& normalText,
+                          int indent) {
     const std::string pigment = "pigment {" + pigmentText + " }";
-    if (isDefaultFinish(t.finish)) {
+    if (isDefaultFinish(t.finish) && !t.normal) {
         line(indent, "texture { " + pigment + " }");
         return;
     }
     line(indent, "texture {");
     line(indent + 1, pigment);
-    line(indent + 1, "finish {" + finishBody(t.finish) + " }");
+    if (t.normal)
+        line(indent + 1, "normal {" + normalText + " }");
+    if (!isDefaultFinish(t.finish))
+        line(indent + 1, "finish {" + finishBody(t.finish) + " }");
     line(indent, "}");
 }
 

@@ -53,6 +53,8 @@ bool isDefaultInterior(const Interior& i);
 // rebuilt to the last bit, and adds to `problems` what .drt cannot express.
 std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool& exact,
                         std::set<std::string>& problems);
+// The inside of `normal { ... }`, placed like pigmentBody.
+std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& exact);
 std::string finishBody(const Finish& f);     // the non-default items, each after a space
 std::string interiorBody(const Interior& i); // the same
 

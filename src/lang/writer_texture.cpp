@@ -31,6 +31,53 @@ bool isDefaultPigment(const Pigment& p) {
            p.mortar == d.mortar;
 }
 
+// The .drt keyword of a noise pattern, or nullptr for the other kinds.
+static const char* noiseKeyword(PatternKind kind) {
+    switch (kind) {
+    case PatternKind::Bozo: return "bozo";
+    case PatternKind::Granite: return "granite";
+    case PatternKind::Marble: return "marble";
+    case PatternKind::Wood: return "wood";
+    case PatternKind::Agate: return "agate";
+    case PatternKind::Leopard: return "leopard";
+    case PatternKind::Crackle: return "crackle";
+    case PatternKind::Wrinkles: return "wrinkles";
+    case PatternKind::Dents: return "dents";
+    case PatternKind::Bumps: return "bumps";
+    case PatternKind::Ripples: return "ripples";
+    case PatternKind::Waves: return "waves";
+    default: return nullptr;
+    }
+}
+
+// " turbulence ... octaves ..." for the non-default items.
+static std::string turbulenceText(const Turbulence& t) {
+    const Turbulence d;
+    std::string text;
+    if (!(t.amount == d.amount))
+        text += " turbulence " +
+                (t.amount.x == t.amount.y && t.amount.y == t.amount.z ? number(t.amount.x) : vector(t.amount));
+    if (t.octaves != d.octaves)
+        text += " octaves " + std::to_string(t.octaves);
+    if (t.omega != d.omega)
+        text += " omega " + number(t.omega);
+    if (t.lambda != d.lambda)
+        text += " lambda " + number(t.lambda);
+    return text;
+}
+
+std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& exact) {
+    const Transform after = writer::compose(suffix);
+    std::vector<Step> own;
+    if (!writer::sameTransform(n.toWorld, after)) {
+        own = decompose(n.toWorld.then(after.inverted()));
+        exact = exact && writer::sameTransform(writer::compose(suffix, writer::compose(own)), n.toWorld);
+    }
+    const char* keyword = noiseKeyword(n.pattern);
+    return std::string(" ") + (keyword ? keyword : "bumps") + " " + number(n.amount) + turbulenceText(n.turbulence) +
+           formatSteps(own);
+}
+
 bool isDefaultFinish(const Finish& f) {
     const Finish d;
     return f.ambient == d.ambient && f.emission == d.emission && f.diffuse == d.diffuse &&
@@ -117,7 +164,13 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         text += " onion";
         colorMap();
         break;
+    default:
+        text += std::string(" ") + noiseKeyword(p.pattern);
+        colorMap();
+        break;
     }
+    if (p.pattern != PatternKind::Solid)
+        text += turbulenceText(p.turbulence);
     const Pigment d;
     if (!(p.brickSize == d.brickSize))
         text += " brick_size " + vector(p.brickSize);

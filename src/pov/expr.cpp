@@ -29,6 +29,7 @@ const char* kindName(Kind kind) {
     case Kind::ColorMap: return "color_map";
     case Kind::Macro: return "macro";
     case Kind::Opaque: return "unsupported item";
+    case Kind::SkySphere: return "sky_sphere";
     }
     return "value";
 }
@@ -188,6 +189,9 @@ static PovValue binaryLevel(PovParser& p, int level) {
     for (;;) {
         const Tok op = p.peekOperator();
         if (!isLevelOperator(level, op, p.inVector_)) return left;
+        // POV-Ray's commas are optional: `<a, b, c> <d, e, f>` is two vectors,
+        // and a comparison needs floats, so '<' after a vector starts the next one.
+        if (level == 3 && op.text == "<" && (left.kind == Kind::Vector || left.kind == Kind::Color)) return left;
         p.next();
         const PovValue right = binaryLevel(p, level + 1);
         if (level >= 4) {

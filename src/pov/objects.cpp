@@ -34,7 +34,7 @@ void transformLight(Light& l, const Transform& t) {
 }
 
 void transformPigments(PovObject& o, const Transform& t) {
-    transformPigmentTree(o.object.texture.pigment, t);
+    transformTextureSpaces(o.object.texture, t);
     for (PovObject& c : o.children) transformPigments(c, t);
 }
 
@@ -430,7 +430,11 @@ PovObject PovParser::object(const Tok& keyword) {
             tex.finish = finish(tex.finish);
             setTexture(po, tex);
         } else if (m == "normal") {
-            normalBlock(t.loc);
+            if (std::optional<Normal> n = normalBlock(t.loc)) {
+                Texture tex = po.textured ? o.texture : defaultTexture_;
+                tex.normal = std::move(n);
+                setTexture(po, tex);
+            }
         } else if (m == "interior") {
             setInterior(po, interior(o.interior));
         } else if (m == "material") {

@@ -86,7 +86,10 @@ public:
     Finish finish(const Finish& base);     // after 'finish'
     Interior interior(const Interior& base);
     PovMaterial material(const PovMaterial& base);
-    void normalBlock(SourceLoc keyword); // after 'normal': parsed and ignored
+    // After 'normal': the bump pattern, or none (then a warning says why).
+    std::optional<Normal> normalBlock(SourceLoc keyword);
+    bool patternModifier(const Tok& t, Turbulence& turbulence); // turbulence/octaves/omega/lambda
+    void noiseNote(const std::string& kind, SourceLoc loc);
     std::vector<ColorMapEntry> colorMap(); // after 'color_map'
     // A transform keyword (translate rotate scale matrix transform) at the current token, or nothing.
     std::optional<Transform> transformItem();
@@ -102,6 +105,9 @@ public:
     CameraSpec camera(const CameraSpec& base, SourceLoc loc);
     Light lightSource(SourceLoc loc);
     void globalSettings();
+    void fog(const Tok& keyword); // after 'fog'
+    void resolveParallelSky(CameraSpec& cam);
+    std::vector<Pigment> skySphere(); // after 'sky_sphere'
     void addToScene(PovObject o);
     void finishScene(); // gamma rules, defaults
 

@@ -255,13 +255,19 @@ PovValue PovParser::rvalue() {
             v.transform = std::make_shared<Transform>(transformBlock());
             return v;
         }
+        if (w == "sky_sphere") {
+            next();
+            v.kind = Kind::SkySphere;
+            v.sky = std::make_shared<const std::vector<Pigment>>(skySphere());
+            return v;
+        }
         if (w == "array") {
             next();
             return arrayLiteral(t.loc);
         }
         static const std::set<std::string> opaque = {
             "function", "spline", "pigment_map", "normal_map", "texture_map", "slope_map", "density_map",
-            "material_map", "media", "density", "interior_texture", "rainbow", "fog", "sky_sphere", "photons",
+            "material_map", "media", "density", "interior_texture", "rainbow", "fog", "photons",
             "radiosity"};
         if (opaque.count(w)) {
             next();

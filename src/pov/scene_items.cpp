@@ -307,31 +307,12 @@ void PovParser::statement(const Tok& t) {
         scene_.background = toColorFT(colorExpr()).rgb;
         expectSymbol("}", "after the background colour");
     } else if (w == "sky_sphere") {
-        expectSymbol("{", "after 'sky_sphere'");
-        std::vector<Pigment> layers;
-        for (;;) {
-            const Tok s = next();
-            if (s.is("}")) break;
-            if (s.isWord("pigment")) layers.push_back(pigment(Pigment{}));
-            else if (s.isWord("emission")) colorExpr();
-            else if (s.isWord("translate") || s.isWord("rotate") || s.isWord("scale") || s.isWord("matrix") ||
-                     s.isWord("transform")) {
-                pushBack(s);
-                transformItem();
-            } else if (s.kind == TokKind::Word && lookup(s.text)) {
-                continue; // a sky_sphere identifier: its pigments are not kept
-            } else {
-                failExpected(s, "'pigment', a transform or '}' in sky_sphere");
-            }
-        }
-        // A solid sky_sphere is exactly a background colour; a pattern is averaged.
-        if (layers.size() > 1 || (!layers.empty() && layers.front().pattern != PatternKind::Solid))
-            warnOnce("sky_sphere", t.loc,
-                     "sky_sphere is approximated by a uniform background of its pigment's average colour");
-        if (!layers.empty()) scene_.background = pigmentAverage(layers.front()).rgb;
+        scene_.sky = skySphere();
     } else if (w == "global_settings") {
         globalSettings();
-    } else if (w == "fog" || w == "rainbow" || w == "media" || w == "photons" || w == "radiosity") {
+    } else if (w == "fog") {
+        fog(t);
+    } else if (w == "rainbow" || w == "media" || w == "photons" || w == "radiosity") {
         warnOnce(w, t.loc, "'" + w + "' is not supported and is ignored");
         expectSymbol("{", ("after '" + w + "'").c_str());
         skipBlock();
@@ -349,6 +330,100 @@ void PovParser::statement(const Tok& t) {
     }
 }
 
+// sky-sphere = "sky_sphere" "{" [ identifier ] { pigment | emission colour | transform } "}"
+// The sky_sphere's transforms turn the directions its pigments see.
+std::vector<Pigment> PovParser::skySphere() {
+    expectSymbol("{", "after 'sky_sphere'");
+    std::vector<Pigment> layers;
+    for (;;) {
+        const Tok s = next();
+        if (s.is("}")) break;
+        if (s.isWord("pigment")) {
+            layers.push_back(pigment(Pigment{}));
+        } else if (s.isWord("emission")) {
+            colorExpr();
+            warnOnce("sky-emission", s.loc, "sky_sphere 'emission' is not supported and is ignored");
+        } else if (s.isWord("translate") || s.isWord("rotate") || s.isWord("scale") || s.isWord("matrix") ||
+                   s.isWord("transform")) {
+            pushBack(s);
+            if (const std::optional<Transform> tr = transformItem())
+                for (Pigment& p : layers) transformPigmentTree(p, *tr);
+        } else if (const Cell c = s.kind == TokKind::Word ? lookup(s.text) : nullptr;
+                   c && c->kind == Kind::SkySphere) {
+            layers.insert(layers.end(), c->sky->begin(), c->sky->end());
+        } else {
+            failExpected(s, "'pigment', a transform or '}' in sky_sphere");
+        }
+    }
+    return layers;
+}
+
+// POV-Ray 3.7 (Parse_Camera, look_at): when sky is parallel to the view
+// direction, it warns and keeps the supplied right vector instead of
+// sky x direction; up becomes direction x right. The model's camera would
+// refuse such a sky, so the look_at is resolved here into explicit vectors.
+void PovParser::resolveParallelSky(CameraSpec& cam) {
+    if (!cam.lookAt || !cam.right) return;
+    const Vec3 toTarget = *cam.lookAt - cam.location;
+    if (!(length(toTarget) > 0) || !(length(cam.sky) > 0)) return; // the renderer reports these
+    const Vec3 d = normalize(toTarget);
+    if (length(cross(cam.sky, d)) > 1e-12 * length(cam.sky)) return;
+    const Vec3 rightUnit = normalize(*cam.right);
+    const Vec3 up = cross(d, rightUnit);
+    if (!(length(up) > 1e-12)) return; // right along the view too: left to the renderer's error
+    note(cam.loc, "camera: sky is parallel to the look_at direction; the right vector is kept (as POV-Ray)");
+    cam.direction = d * length(cam.direction);
+    cam.up = normalize(up) * length(cam.up);
+    cam.lookAt.reset();
+}
+
+// fog = "fog" "{" { fog_type n | distance d | colour | fog_offset h | fog_alt a | up v
+//                   | turbulence ... | transform } "}"   (POV-Ray defaults: type 1)
+void PovParser::fog(const Tok& keyword) {
+    expectSymbol("{", "after 'fog'");
+    Fog f;
+    for (;;) {
+        const Tok s = next();
+        if (s.is("}")) break;
+        if (s.isWord("fog_type")) {
+            const double type = floatExpr();
+            if (type == 2) f.type = Fog::Type::Ground;
+            else if (type != 1) warnOnce("fog_type", s.loc, "fog_type must be 1 or 2; constant fog is used");
+        } else if (s.isWord("distance")) {
+            f.distance = floatExpr();
+        } else if (s.isWord("fog_offset")) {
+            f.offset = floatExpr();
+        } else if (s.isWord("fog_alt")) {
+            f.altitude = floatExpr();
+        } else if (s.isWord("up")) {
+            f.up = vectorExpr();
+        } else if (s.isWord("turbulence") || s.isWord("turb_depth")) {
+            vectorExpr();
+            warnOnce("fog-turbulence", s.loc, "fog turbulence is not supported: the fog is uniform");
+        } else if (s.isWord("omega") || s.isWord("lambda") || s.isWord("octaves")) {
+            floatExpr();
+        } else if (s.isWord("color") || s.isWord("colour") || s.isWord("rgb") || s.isWord("rgbf") ||
+                   s.isWord("rgbt") || s.isWord("rgbft") || s.isWord("srgb") || s.isWord("srgbf") ||
+                   s.isWord("srgbt") || s.isWord("srgbft") || s.isWord("red") || s.isWord("green") ||
+                   s.isWord("blue") || s.isWord("filter") || s.isWord("transmit") || s.is("<")) {
+            pushBack(s);
+            f.color = toColorFT(colorExpr());
+        } else if (s.isWord("translate") || s.isWord("rotate") || s.isWord("scale") || s.isWord("matrix") ||
+                   s.isWord("transform")) {
+            pushBack(s);
+            if (const std::optional<Transform> tr = transformItem()) f.up = tr->vector(f.up);
+        } else if (s.kind == TokKind::Word && lookup(s.text)) {
+            pushBack(s); // a colour identifier
+            f.color = toColorFT(colorExpr());
+        } else {
+            failExpected(s, "a fog item or '}'");
+        }
+    }
+    if (!(f.distance > 0)) fail(keyword.loc, "fog 'distance' must be positive");
+    if (f.type == Fog::Type::Ground && !(f.altitude > 0)) fail(keyword.loc, "fog 'fog_alt' must be positive");
+    scene_.fogs.push_back(f);
+}
+
 // POV-Ray's gamma rule (../shared/POVRAY-NOTES.md): assumed_gamma 1.0, or
 // #version 3.7+ without assumed_gamma, means linear colours. Otherwise the
 // scene's colours are already encoded with gamma g (2.2 when only an older
@@ -360,9 +435,12 @@ void PovParser::finishScene() {
         for (Object& o : scene_.objects) decodeObject(o, gamma);
         for (Light& l : scene_.lights) l.color = decodeGamma(l.color, gamma);
         scene_.background = decodeGamma(scene_.background, gamma);
+        for (Pigment& p : scene_.sky) decodePigment(p, gamma);
+        for (Fog& f : scene_.fogs) f.color.rgb = decodeGamma(f.color.rgb, gamma);
     }
     scene_.global.assumedGamma = 1.0;
     if (!scene_.camera.right) scene_.camera.right = Vec3(1.33, 0, 0);
+    resolveParallelSky(scene_.camera);
     scene_.render.width = options_.imageWidth;
     scene_.render.height = options_.imageHeight;
 }

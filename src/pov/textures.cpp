@@ -1,9 +1,11 @@
 // Textures: pigment (solid colours and the block and colour-map patterns the
 // scene model has; noise patterns approximated), finish (the classic model),
-// interior, material, normal (ignored), colour maps and transforms.
+// interior, material, normal (bump patterns), colour maps and transforms.
 #include "pov/parser.h"
 
 #include <fmt/format.h>
+
+#include <map>
 
 namespace drt::pov {
 
@@ -75,6 +77,19 @@ const std::set<std::string>& noisePatterns() {
         "cylindrical", "boxed", "quilted", "average", "cubic", "tiling", "pavement", "facets", "function",
         "density_file", "object", "aoi", "slope", "pigment_pattern", "magnet", "fractal", "wave", "noise"};
     return words;
+}
+
+// POV-Ray's noise patterns that the scene model approximates (render/noise.h).
+std::optional<PatternKind> noiseKind(const std::string& w) {
+    static const std::map<std::string, PatternKind> kinds = {
+        {"bozo", PatternKind::Bozo},         {"spotted", PatternKind::Bozo},     {"granite", PatternKind::Granite},
+        {"marble", PatternKind::Marble},     {"wood", PatternKind::Wood},        {"agate", PatternKind::Agate},
+        {"leopard", PatternKind::Leopard},   {"crackle", PatternKind::Crackle},  {"wrinkles", PatternKind::Wrinkles},
+        {"dents", PatternKind::Dents},       {"bumps", PatternKind::Bumps},      {"ripples", PatternKind::Ripples},
+        {"waves", PatternKind::Waves}};
+    const auto it = kinds.find(w);
+    if (it == kinds.end()) return std::nullopt;
+    return it->second;
 }
 
 const std::set<std::string>& ignoredPatternModifiers() {
@@ -295,6 +310,12 @@ Pigment PovParser::pigment(const Pigment& base) {
         } else if (w == "color_map" || w == "colour_map") {
             next();
             p.colorMap = colorMap();
+        } else if (const std::optional<PatternKind> kind = noiseKind(w)) {
+            next();
+            p.pattern = *kind;
+            p.children.clear();
+            noiseNote(w, t.loc);
+        } else if (patternModifier(t, p.turbulence)) {
         } else if (noisePatterns().count(w)) {
             next();
             pattern = w;
@@ -478,10 +499,66 @@ Interior PovParser::interior(const Interior& base) {
     }
 }
 
-void PovParser::normalBlock(SourceLoc keyword) {
+void PovParser::noiseNote(const std::string& kind, SourceLoc loc) {
+    if (!warned_.insert("note-" + kind).second) return;
+    note(loc, "'" + kind + "' is approximated: drt's noise has POV-Ray's shapes but not its exact values");
+}
+
+// turbulence float|vector, octaves int, omega float, lambda float: consumed
+// with their value when the peeked token `t` is one of them.
+bool PovParser::patternModifier(const Tok& t, Turbulence& turbulence) {
+    if (t.kind != TokKind::Word) return false;
+    const std::string& w = t.text;
+    if (w != "turbulence" && w != "octaves" && w != "omega" && w != "lambda") return false;
+    next();
+    if (w == "turbulence") turbulence.amount = vectorExpr();
+    else if (w == "octaves") turbulence.octaves = std::clamp(int(floatExpr()), 1, 10);
+    else if (w == "omega") turbulence.omega = floatExpr();
+    else turbulence.lambda = floatExpr();
+    noiseNote("turbulence", t.loc);
+    return true;
+}
+
+// normal { [pattern [amount]] { modifier | transform } }
+std::optional<Normal> PovParser::normalBlock(SourceLoc keyword) {
     expectSymbol("{", "after 'normal'");
-    warnOnce("normal", keyword, "'normal' (surface perturbation) is not supported and is ignored");
-    skipBlock();
+    Normal n;
+    bool known = false;
+    for (;;) {
+        const Tok t = peek();
+        if (t.is("}")) {
+            next();
+            break;
+        }
+        if (std::optional<Transform> tr = transformItem()) {
+            n.toWorld = n.toWorld.then(*tr);
+            continue;
+        }
+        if (t.kind == TokKind::Word) {
+            if (const std::optional<PatternKind> kind = noiseKind(t.text)) {
+                next();
+                n.pattern = *kind;
+                known = true;
+                noiseNote(t.text, t.loc);
+                if (peek().kind == TokKind::Number || peek().is("(") || peek().is("-")) n.amount = floatExpr();
+                continue;
+            }
+            if (patternModifier(t, n.turbulence)) continue;
+            if (t.text == "bump_size") {
+                next();
+                n.amount = floatExpr();
+                continue;
+            }
+        }
+        warnOnce("normal", keyword, "'normal' with '" + t.text + "' is not supported and is ignored");
+        skipBlock();
+        return std::nullopt;
+    }
+    if (!known) {
+        warnOnce("normal", keyword, "'normal' without a bump pattern is not supported and is ignored");
+        return std::nullopt;
+    }
+    return n;
 }
 
 Texture PovParser::texture(const Texture& base) {
@@ -499,10 +576,11 @@ Texture PovParser::texture(const Texture& base) {
         const std::string& w = t.text;
         if (w == "pigment") tex.pigment = pigment(tex.pigment);
         else if (w == "finish") tex.finish = finish(tex.finish);
-        else if (w == "normal") normalBlock(t.loc);
-        else if (w == "translate" || w == "rotate" || w == "scale" || w == "matrix" || w == "transform") {
+        else if (w == "normal") {
+            if (std::optional<Normal> n = normalBlock(t.loc)) tex.normal = std::move(n);
+        } else if (w == "translate" || w == "rotate" || w == "scale" || w == "matrix" || w == "transform") {
             pushBack(t);
-            transformPigmentTree(tex.pigment, *transformItem());
+            transformTextureSpaces(tex, *transformItem());
         } else if (w == "texture_map" || w == "material_map" || noisePatterns().count(w) || w == "checker" ||
                    w == "hexagon" || w == "brick" || w == "gradient" || w == "radial" || w == "onion") {
             warnOnce("texture-pattern", t.loc, "patterned textures (texture_map) are not supported; the first texture is used");
@@ -552,7 +630,7 @@ PovMaterial PovParser::material(const PovMaterial& base) {
                    t.text == "transform") {
             pushBack(t);
             const Transform tr = *transformItem();
-            if (m.texture) transformPigmentTree(m.texture->pigment, tr);
+            if (m.texture) transformTextureSpaces(*m.texture, tr);
         } else {
             failExpected(t, "'texture', 'interior', a transform or '}'");
         }

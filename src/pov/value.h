@@ -63,7 +63,7 @@ struct PovArray {
 struct PovValue {
     enum class Kind {
         Float, Vector, Color, String, Array, Object, Texture, Pigment, Finish, Interior, Material,
-        Normal, Camera, Light, Transform, ColorMap, Macro, Opaque,
+        Normal, Camera, Light, Transform, ColorMap, Macro, Opaque, SkySphere,
     };
     Kind kind = Kind::Float;
     double number = 0;
@@ -74,6 +74,7 @@ struct PovValue {
     std::shared_ptr<const PovObject> object;
     std::shared_ptr<const Texture> texture;
     std::shared_ptr<const Pigment> pigment;
+    std::shared_ptr<const std::vector<Pigment>> sky; // SkySphere: its pigments, transformed
     std::shared_ptr<const Finish> finish;
     std::shared_ptr<const Interior> interior;
     std::shared_ptr<const PovMaterial> material;

@@ -1,5 +1,6 @@
 #include "render/integrator.h"
 
+#include "render/atmosphere.h"
 #include "render/directions.h"
 #include "render/noise.h"
 #include "render/pigment.h"
@@ -32,12 +33,23 @@ Color Integrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounts& count
         else
             ++counts.secondary;
         Hit hit;
-        if (!accel_.intersect(pending.ray, hit)) {
-            result += pending.weight * scene_.background;
+        const bool found = accel_.intersect(pending.ray, hit);
+        PendingRay seen = pending;
+        if (!scene_.fogs.empty()) { // the fog in front of what the ray sees
+            const double speed = length(pending.ray.direction);
+            const FogEffect fog = fogEffect(scene_.fogs, pending.ray.origin, pending.ray.direction / speed,
+                                            found ? hit.t * speed : kFogMissDistance);
+            result += pending.weight * fog.add;
+            seen.weight = pending.weight * fog.scale;
+        }
+        if (!found) {
+            const Color sky = scene_.sky.empty() ? scene_.background
+                                                 : skyColor(scene_, normalize(pending.ray.direction));
+            result += seen.weight * sky;
             continue;
         }
         if (++shaded > kMaxRaysPerSample) break;
-        shade(pending, hit, sampler, counts, result, stack);
+        shade(seen, hit, sampler, counts, result, stack);
     }
     stack.clear();
     return result;

@@ -304,11 +304,34 @@ struct RenderSettings {
     std::optional<int> maxSamplesPerPixel;
 };
 
+// POV-Ray fog. Along a ray segment of fog depth z (the path length for
+// constant fog; for ground fog the path integral of the density below), the
+// transmittance is T = max(exp(-z / distance), color.transmit) and what is
+// seen becomes (1 - T)(1 - f) C + (T + (1 - T) f C) * seen, with C the fog
+// colour and f its filter. Rays that miss everything have length 1e7 (POV-Ray's
+// Max_Distance), so constant fog covers the background fully.
+struct Fog {
+    enum class Type { Constant, Ground }; // POV-Ray fog_type 1, 2
+    Type type = Type::Constant;
+    double distance = 1;
+    ColorFT color;
+    // Ground fog: density 1 at heights h = dot(p, up) below offset, and
+    // 1 / (1 + ((h - offset) / altitude)^2) above it.
+    double offset = 0;
+    double altitude = 1;
+    Vec3 up{0, 1, 0};
+};
+
 struct Scene {
     CameraSpec camera;
     std::vector<Light> lights;
     std::vector<Object> objects;
     Color background{0};
+    // POV-Ray sky_sphere: pigments evaluated at the unit direction of rays that
+    // miss everything, the last one on top; what their filter/transmit lets
+    // through shows the background colour. Empty: the background alone.
+    std::vector<Pigment> sky;
+    std::vector<Fog> fogs; // applied in order, the first nearest the eye
     GlobalSettings global;
     RenderSettings render;
 };

@@ -1,0 +1,60 @@
+#include "render/atmosphere.h"
+
+#include "render/pigment.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drt {
+
+namespace {
+
+// Antiderivative of the ground-fog density over the height h above the offset.
+double groundFogIntegral(double h, double altitude) { return h <= 0 ? h : altitude * std::atan(h / altitude); }
+
+} // namespace
+
+double fogDepth(const Fog& fog, const Vec3& origin, const Vec3& direction, double length) {
+    if (fog.type == Fog::Type::Constant) return length;
+    const double altitude = fog.altitude > 0 ? fog.altitude : 1e-9;
+    const Vec3 up = normalize(fog.up);
+    const double h0 = dot(origin, up) - fog.offset;
+    const double dh = dot(direction, up) * length;
+    if (std::abs(dh) < 1e-9 * std::max(1.0, length)) { // level ray: the density at its height
+        const double u = h0 / altitude;
+        return length * (h0 <= 0 ? 1.0 : 1.0 / (1.0 + u * u));
+    }
+    return length * (groundFogIntegral(h0 + dh, altitude) - groundFogIntegral(h0, altitude)) / dh;
+}
+
+FogEffect fogEffect(const std::vector<Fog>& fogs, const Vec3& origin, const Vec3& direction, double length) {
+    FogEffect total;
+    // Applied from the farthest fog inwards, so the first fog is nearest the eye:
+    // each one maps c to add + scale c on top of what is behind it.
+    for (auto it = fogs.rbegin(); it != fogs.rend(); ++it) {
+        const Fog& fog = *it;
+        const double distance = fog.distance > 0 ? fog.distance : 1e-9;
+        const double t = std::clamp(std::max(std::exp(-fogDepth(fog, origin, direction, length) / distance),
+                                             fog.color.transmit),
+                                    0.0, 1.0);
+        const double f = fog.color.filter;
+        const Color add = (1 - t) * (1 - f) * fog.color.rgb;
+        const Color scale = Color(t) + (1 - t) * f * fog.color.rgb;
+        total.add = add + scale * total.add;
+        total.scale = scale * total.scale;
+    }
+    return total;
+}
+
+Color skyColor(const Scene& scene, const Vec3& unitDirection) {
+    Color result(0);
+    Color through(1); // what the layers above let through
+    for (auto it = scene.sky.rbegin(); it != scene.sky.rend(); ++it) {
+        const ColorFT c = evaluatePigment(*it, unitDirection);
+        result += through * (std::max(0.0, c.opacity()) * c.rgb);
+        through *= c.rgb * c.filter + Color(c.transmit);
+    }
+    return result + through * scene.background;
+}
+
+} // namespace drt

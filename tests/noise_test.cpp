@@ -1,0 +1,261 @@
+// Noise patterns, turbulence and bump normals (render/noise.h), their .drt
+// syntax and the POV-Ray front end's mapping onto them.
+#include "lang/load.h"
+#include "lang/writer.h"
+#include "pov/load.h"
+#include "render/noise.h"
+#include "render/pigment.h"
+
+#include <cmath>
+#include <gtest/gtest.h>
+#include <random>
+
+namespace drt {
+namespace {
+
+const PatternKind kAllNoise[] = {PatternKind::Bozo,    PatternKind::Granite,  PatternKind::Marble, PatternKind::Wood,
+                                 PatternKind::Agate,   PatternKind::Leopard,  PatternKind::Crackle,
+                                 PatternKind::Wrinkles, PatternKind::Dents,   PatternKind::Bumps,
+                                 PatternKind::Ripples, PatternKind::Waves};
+
+Vec3 randomPoint(std::mt19937_64& rng, double extent) {
+    std::uniform_real_distribution<double> u(-extent, extent);
+    return Vec3(u(rng), u(rng), u(rng));
+}
+
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+TEST(Noise, RangeIsZeroToOneAndUsesMostOfIt) {
+    std::mt19937_64 rng(7);
+    double lo = 1, hi = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double n = noise01(randomPoint(rng, 50));
+        ASSERT_GE(n, 0.0);
+        ASSERT_LE(n, 1.0);
+        lo = std::min(lo, n), hi = std::max(hi, n);
+    }
+    EXPECT_LT(lo, 0.2); // a constant or squashed noise would fail these
+    EXPECT_GT(hi, 0.8);
+    EXPECT_DOUBLE_EQ(noise01(Vec3(3, -4, 5)), 0.5); // zero at lattice points (gradient noise)
+}
+
+TEST(Noise, IsContinuousAndDeterministic) {
+    std::mt19937_64 rng(11);
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 p = randomPoint(rng, 20);
+        // Gradients are bounded by a few units: a step of 1e-6 moves the value by < 1e-4.
+        EXPECT_LT(std::fabs(noise01(p) - noise01(p + Vec3(1e-6, -1e-6, 1e-6))), 1e-4);
+        EXPECT_EQ(noise01(p), noise01(p));
+    }
+    // Not constant across cells.
+    EXPECT_NE(noise01(Vec3(0.5, 0.5, 0.5)), noise01(Vec3(1.5, 0.5, 0.5)));
+}
+
+TEST(Noise, TurbulenceWithOneOctaveIsAPlainNoiseWarp) {
+    Turbulence t;
+    t.amount = Vec3(0.3, 0.5, 0.7);
+    t.octaves = 1;
+    std::mt19937_64 rng(3);
+    for (int i = 0; i < 200; ++i) {
+        const Vec3 p = randomPoint(rng, 10);
+        const Vec3 expected = t.amount * vectorNoise(p);
+        const Vec3 got = turbulenceOffset(t, p);
+        EXPECT_DOUBLE_EQ(got.x, expected.x);
+        EXPECT_DOUBLE_EQ(got.y, expected.y);
+        EXPECT_DOUBLE_EQ(got.z, expected.z);
+        // and the pattern is evaluated at the warped point
+        EXPECT_DOUBLE_EQ(noisePatternValue(PatternKind::Marble, t, p),
+                         noisePatternValue(PatternKind::Marble, Turbulence{}, p + expected));
+    }
+    const Vec3 none = turbulenceOffset(Turbulence{}, Vec3(1.3, 2.1, 0.4));
+    EXPECT_EQ(none.x, 0.0);
+    // More octaves add detail: the offset changes.
+    Turbulence six = t;
+    six.octaves = 6;
+    EXPECT_NE(turbulenceOffset(six, Vec3(1.3, 2.1, 0.4)).x, turbulenceOffset(t, Vec3(1.3, 2.1, 0.4)).x);
+}
+
+TEST(Noise, PatternValuesStayInUnitRangeAndVary) {
+    Turbulence t;
+    t.amount = Vec3(0.4);
+    std::mt19937_64 rng(5);
+    for (PatternKind kind : kAllNoise) {
+        double lo = 1, hi = 0;
+        for (int i = 0; i < 3000; ++i) {
+            const double v = noisePatternValue(kind, t, randomPoint(rng, 8));
+            ASSERT_TRUE(v >= 0.0 && v <= 1.0) << int(kind) << " " << v;
+            lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+        EXPECT_GT(hi - lo, 0.3) << "pattern " << int(kind) << " is nearly constant";
+    }
+}
+
+TEST(Noise, WoodIsConcentricAroundTheZAxis) {
+    const Turbulence none;
+    // Same radius from the z axis, any angle and any z: the same value.
+    const double r = 1.3;
+    const double v = noisePatternValue(PatternKind::Wood, none, Vec3(r, 0, 0));
+    EXPECT_NEAR(noisePatternValue(PatternKind::Wood, none, Vec3(0, r, 5)), v, 1e-12);
+    EXPECT_NEAR(noisePatternValue(PatternKind::Wood, none, Vec3(-r / std::sqrt(2.0), r / std::sqrt(2.0), -2)), v,
+                1e-12);
+    // Marble varies along x only.
+    EXPECT_NEAR(noisePatternValue(PatternKind::Marble, none, Vec3(0.25, 3, -7)), 0.5, 1e-12);
+}
+
+TEST(Noise, BumpNormalsAreUnitOnTheSurfaceSideAndNeverNaN) {
+    std::mt19937_64 rng(9);
+    for (PatternKind kind : kAllNoise) {
+        Normal bump;
+        bump.pattern = kind;
+        bump.amount = 2.0;
+        bump.toWorld = Transform::scale(Vec3(0.2));
+        double maxTilt = 0;
+        for (int i = 0; i < 500; ++i) {
+            const Vec3 n = normalize(randomPoint(rng, 1) + Vec3(0, 0, 1e-3));
+            const Vec3 b = perturbNormal(bump, randomPoint(rng, 5), n);
+            ASSERT_TRUE(finite(b));
+            EXPECT_NEAR(length(b), 1.0, 1e-9);
+            EXPECT_GT(dot(b, n), 0.2);
+            maxTilt = std::max(maxTilt, 1 - dot(b, n));
+        }
+        EXPECT_GT(maxTilt, 0.01) << "pattern " << int(kind) << " does not bump";
+    }
+    // Amount 0 leaves the normal exactly; huge or infinite inputs do not make NaN.
+    Normal flat;
+    flat.amount = 0;
+    EXPECT_EQ(perturbNormal(flat, Vec3(0.3, 0.1, 0.2), Vec3(0, 1, 0)).y, 1.0);
+    Normal big;
+    big.amount = 1e9;
+    EXPECT_TRUE(finite(perturbNormal(big, Vec3(0.31, 0.17, 0.29), Vec3(0, 1, 0))));
+    EXPECT_TRUE(finite(perturbNormal(big, Vec3(INFINITY, 0, 0), Vec3(0, 1, 0))));
+}
+
+TEST(Noise, PigmentUsesTheColorMapAndTurbulence) {
+    Pigment p;
+    p.pattern = PatternKind::Bozo;
+    p.colorMap = {{0, {Color(1, 0, 0), 0, 0}}, {1, {Color(0, 0, 1), 0, 0}}};
+    const Vec3 q(0.37, 1.21, -2.6);
+    const double v = noise01(q);
+    const ColorFT c = evaluatePigment(p, q);
+    EXPECT_NEAR(c.rgb.r, 1 - v, 1e-12);
+    EXPECT_NEAR(c.rgb.b, v, 1e-12);
+    // Turbulence on a gradient warps it too (POV-Ray applies it to every pattern).
+    Pigment g;
+    g.pattern = PatternKind::Gradient;
+    g.colorMap = p.colorMap;
+    const double straight = evaluatePigment(g, q).rgb.b;
+    g.turbulence.amount = Vec3(0.5);
+    EXPECT_NE(evaluatePigment(g, q).rgb.b, straight);
+}
+
+std::optional<Scene> loadDrt(const std::string& body, Diagnostics& diags) {
+    return loadSceneText("camera { location <0, 0, -5> look_at <0, 0, 0> }\n" + body, "t.drt", diags);
+}
+
+TEST(NoiseLanguage, ParsesPatternsTurbulenceAndNormals) {
+    Diagnostics diags;
+    const auto s = loadDrt("sphere { 0, 1 texture { pigment { wood color_map { [0 rgb 0] [1 rgb 1] } "
+                           "turbulence <0.1, 0.2, 0.3> octaves 3 omega 0.6 lambda 2.5 scale 2 }\n"
+                           "normal { bumps 0.4 turbulence 0.2 scale 0.5 } } translate <1, 0, 0> }\n"
+                           "sphere { 0, 1 pigment { granite } normal { dents } }",
+                           diags);
+    ASSERT_TRUE(s) << diags.formatAll();
+    const Texture& t = s->objects[0].texture;
+    EXPECT_EQ(t.pigment.pattern, PatternKind::Wood);
+    EXPECT_EQ(t.pigment.turbulence.amount.y, 0.2);
+    EXPECT_EQ(t.pigment.turbulence.octaves, 3);
+    EXPECT_EQ(t.pigment.turbulence.omega, 0.6);
+    EXPECT_EQ(t.pigment.turbulence.lambda, 2.5);
+    ASSERT_TRUE(t.normal);
+    EXPECT_EQ(t.normal->pattern, PatternKind::Bumps);
+    EXPECT_EQ(t.normal->amount, 0.4);
+    EXPECT_EQ(t.normal->turbulence.amount.x, 0.2);
+    // The normal moves with the object: scale 0.5 then translate 1.
+    const Vec3 origin = t.normal->toWorld.point(Vec3(0, 0, 0)), unit = t.normal->toWorld.point(Vec3(1, 0, 0));
+    EXPECT_NEAR(origin.x, 1.0, 1e-12);
+    EXPECT_NEAR(unit.x, 1.5, 1e-12);
+    const Texture& u = s->objects[1].texture;
+    EXPECT_EQ(u.pigment.pattern, PatternKind::Granite);
+    ASSERT_TRUE(u.normal);
+    EXPECT_EQ(u.normal->pattern, PatternKind::Dents);
+    EXPECT_EQ(u.normal->amount, 0.5);
+}
+
+TEST(NoiseLanguage, ErrorsPointAtTheBadItem) {
+    struct Case {
+        const char* text;
+        const char* message;
+        int column;
+    };
+    const Case cases[] = {
+        {"sphere { 0, 1 pigment { bozo octaves 0 } }", "'octaves' must be between 1 and 10", 38},
+        {"sphere { 0, 1 pigment { bozo turbulence -1 } }", "'turbulence' must not be negative", 41},
+        {"sphere { 0, 1 normal { bumpy 0.3 } }", "bumpy", 24},
+        {"sphere { 0, 1 normal { bumps 0.3 octave 2 } }", "octave", 34},
+    };
+    for (const Case& c : cases) {
+        Diagnostics diags;
+        EXPECT_FALSE(loadSceneText(std::string(c.text), "e.drt", diags)) << c.text;
+        ASSERT_GE(diags.errorCount(), 1) << c.text;
+        const Diagnostic& d = diags.all().front();
+        EXPECT_NE(d.message.find(c.message), std::string::npos) << d.message;
+        EXPECT_EQ(d.loc.line, 1) << c.text;
+        EXPECT_EQ(d.loc.column, c.column) << c.text << ": " << d.message;
+    }
+}
+
+TEST(NoiseLanguage, WriterRoundTripIsExact) {
+    Diagnostics diags;
+    const auto s = loadDrt("sphere { 0, 1 texture { pigment { agate color_map { [0 rgb 0.2] [1 rgb <1, 0.5, 0>] } "
+                           "turbulence <0.1, 0.2, 0.3> octaves 4 scale 0.3 } normal { wrinkles 0.7 omega 0.4 "
+                           "rotate <0, 30, 0> } finish { phong 1 } } translate <1, 2, 0> }\n"
+                           "box { -1, 1 pigment { crackle turbulence 0.2 } normal { ripples 0.2 } }",
+                           diags);
+    ASSERT_TRUE(s) << diags.formatAll();
+    const std::string text = writeDrtScene(*s, {"test"});
+    EXPECT_NE(text.find("agate"), std::string::npos) << text;
+    EXPECT_NE(text.find("normal { wrinkles 0.7"), std::string::npos) << text;
+    Diagnostics again;
+    const auto reread = loadSceneText(text, "w.drt", again);
+    ASSERT_TRUE(reread) << again.formatAll() << text;
+    EXPECT_EQ(writeDrtScene(*reread, {"test"}), text);
+    const Texture& a = s->objects[0].texture;
+    const Texture& b = reread->objects[0].texture;
+    ASSERT_TRUE(b.normal);
+    EXPECT_EQ(b.pigment.pattern, PatternKind::Agate);
+    EXPECT_EQ(b.pigment.turbulence.octaves, 4);
+    EXPECT_EQ(b.normal->turbulence.omega, 0.4);
+    const Vec3 q(0.3, 0.7, -0.2);
+    EXPECT_EQ(evaluatePigment(a.pigment, q).rgb.g, evaluatePigment(b.pigment, q).rgb.g);
+    EXPECT_EQ(perturbNormal(*a.normal, q, Vec3(0, 1, 0)).x, perturbNormal(*b.normal, q, Vec3(0, 1, 0)).x);
+}
+
+TEST(NoisePov, WoodWithTurbulenceAndBumpsLoadsWithNotesOnly) {
+    Diagnostics diags;
+    const auto s = loadPovSceneText("sphere { 0, 1 pigment { wood turbulence 0.3 color_map { [0 rgb <0.6, 0.3, 0.1>] "
+                                    "[1 rgb <0.3, 0.1, 0>] } } normal { bumps 0.4 scale 0.2 } }\n"
+                                    "sphere { 0, 1 pigment { wood octaves 3 } }",
+                                    "s.pov", diags);
+    ASSERT_TRUE(s) << diags.formatAll();
+    EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
+    int woodNotes = 0;
+    for (const Diagnostic& d : diags.all())
+        if (d.severity == Severity::Note && d.message.find("'wood'") != std::string::npos) ++woodNotes;
+    EXPECT_EQ(woodNotes, 1) << diags.formatAll();
+    const Texture& t = s->objects[0].texture;
+    EXPECT_EQ(t.pigment.pattern, PatternKind::Wood);
+    EXPECT_EQ(t.pigment.turbulence.amount.z, 0.3);
+    ASSERT_EQ(t.pigment.colorMap.size(), 2u);
+    ASSERT_TRUE(t.normal);
+    EXPECT_EQ(t.normal->pattern, PatternKind::Bumps);
+    EXPECT_EQ(t.normal->amount, 0.4);
+    EXPECT_NEAR(t.normal->toWorld.point(Vec3(1, 0, 0)).x, 0.2, 1e-12);
+    EXPECT_EQ(s->objects[1].texture.pigment.turbulence.octaves, 3);
+    // A normal pattern drt does not model still warns.
+    Diagnostics other;
+    ASSERT_TRUE(loadPovSceneText("sphere { 0, 1 normal { quilted 0.4 } }", "q.pov", other));
+    EXPECT_EQ(other.warningCount(), 1) << other.formatAll();
+}
+
+} // namespace
+} // namespace drt
