@@ -169,7 +169,7 @@ const ErrorCase kCases[] = {
     {"MotionInRotatingUnion", "union { sphere { 0, 1 motion { translate y } } motion { rotate y } }", "a moving object inside a union moving with rotate or scale is not supported", 1, 9},
     // textures
     {"TextureUnknown", "sphere { 0, 1 texture { pigmnt { } } }", "unknown keyword 'pigmnt'; did you mean 'pigment'?", 1, 25},
-    {"TextureNotWord", "sphere { 0, 1 texture { 1 } }", "expected 'pigment', 'finish', a transform or '}' in texture, found '1'", 1, 25},
+    {"TextureNotWord", "sphere { 0, 1 texture { 1 } }", "expected 'pigment', 'finish', 'normal', a transform or '}' in texture, found '1'", 1, 25},
     {"TextureWrongName", "#declare F = finish { }\nsphere { 0, 1 texture { F } }", "'F' is a finish, not a texture", 2, 25},
     {"PigmentUnknown", "sphere { 0, 1 pigment { chequer } }", "unknown keyword 'chequer'; did you mean 'checker'?", 1, 25},
     {"PigmentNotWord", "sphere { 0, 1 pigment { } } }", "expected a statement (an object, camera, light_source, ...), found '}'", 1, 29},

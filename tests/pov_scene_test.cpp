@@ -254,15 +254,15 @@ TEST(PovScene, GammaRules) {
 
 TEST(PovScene, UnsupportedFeaturesWarnOncePerKindWithLocation) {
     Diagnostics diags;
-    const auto s = load("fog { distance 10 }\nsphere { 0, 1 normal { quilted 0.5 } }\nfog { distance 3 }\n"
+    const auto s = load("rainbow { angle 42 }\nsphere { 0, 1 normal { quilted 0.5 } }\nrainbow { width 3 }\n"
                         "sphere { 0, 1 normal { facets 1 } }",
                         diags);
     ASSERT_TRUE(s);
     EXPECT_EQ(s->objects.size(), 2u);
     EXPECT_EQ(diags.warningCount(), 2);
-    ASSERT_EQ(warningsContaining(diags, "'fog'"), 1);
+    ASSERT_EQ(warningsContaining(diags, "'rainbow'"), 1);
     for (const Diagnostic& d : diags.all()) {
-        if (d.message.find("'fog'") != std::string::npos) {
+        if (d.message.find("'rainbow'") != std::string::npos) {
             EXPECT_EQ(d.loc.line, 1);
             EXPECT_EQ(d.loc.column, 1);
         }
@@ -287,7 +287,7 @@ TEST(PovScene, StrictModeTurnsWarningsIntoErrors) {
     PovOptions o;
     o.strict = true;
     Diagnostics diags;
-    EXPECT_FALSE(load("sphere { 0, 1 }\nfog { distance 3 }", diags, o));
+    EXPECT_FALSE(load("sphere { 0, 1 }\nrainbow { angle 42 }", diags, o));
     EXPECT_EQ(diags.errorCount(), 1);
     EXPECT_EQ(diags.all()[0].loc.line, 2);
     Diagnostics clean;
@@ -352,16 +352,16 @@ TEST(PovCli, StrictAndIncludePathOptions) {
     const std::string dir = test::tempDir();
     test::writeFile(dir + "/lib/size.inc", "#declare R = 2;\n");
     const std::string scene = test::writeFile(dir + "/scene.pov", "#include \"size.inc\"\nsphere { 0, R }\n"
-                                                                  "fog { distance 3 }\n");
+                                                                  "rainbow { angle 42 }\n");
     const auto missing = test::runDrt("check '" + scene + "'");
     EXPECT_EQ(missing.exitCode, 1);
     EXPECT_NE(missing.err.find("scene.pov:1:10: error: cannot find include file"), std::string::npos) << missing.err;
     const auto found = test::runDrt("check -L '" + dir + "/lib' '" + scene + "'");
     EXPECT_EQ(found.exitCode, 0) << found.err;
-    EXPECT_NE(found.err.find("scene.pov:3:1: warning: 'fog'"), std::string::npos) << found.err;
+    EXPECT_NE(found.err.find("scene.pov:3:1: warning: 'rainbow'"), std::string::npos) << found.err;
     const auto strict = test::runDrt("check --strict -L '" + dir + "/lib' '" + scene + "'");
     EXPECT_EQ(strict.exitCode, 1);
-    EXPECT_NE(strict.err.find("scene.pov:3:1: error: 'fog'"), std::string::npos) << strict.err;
+    EXPECT_NE(strict.err.find("scene.pov:3:1: error: 'rainbow'"), std::string::npos) << strict.err;
 }
 
 // ---------------------------------------------------------------- POV-Ray's sample scenes

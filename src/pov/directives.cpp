@@ -85,18 +85,7 @@ void PovParser::directive(const Tok& t) {
         messageDirective(t);
     else if (d == "version") versionDirective(t);
     else if (d == "default") {
-        // #default { texture {..} | pigment {..} | finish {..} | normal {..} }: the
-        // texture of objects created after it that have none of their own.
-        expectSymbol("{", "after #default");
-        for (;;) {
-            const Tok item = next();
-            if (item.is("}")) break;
-            if (item.isWord("texture")) defaultTexture_ = texture(defaultTexture_);
-            else if (item.isWord("pigment")) defaultTexture_.pigment = pigment(defaultTexture_.pigment);
-            else if (item.isWord("finish")) defaultTexture_.finish = finish(defaultTexture_.finish);
-            else if (item.isWord("normal")) normalBlock(item.loc);
-            else failExpected(item, "'texture', 'pigment', 'finish', 'normal' or '}' in #default");
-        }
+        defaultBlock();
     } else if (d == "fopen" || d == "fclose" || d == "read" || d == "write") {
         fail(t.loc, "#" + d + " (file input/output) is not supported");
     } else {
@@ -452,6 +441,22 @@ void PovParser::invokeMacro(const Tok& t) {
     f.condDepth = conds_.size();
     pushFrame(std::move(f));
     scopes_.push_back(std::move(scope));
+}
+
+// #default { texture {..} | pigment {..} | finish {..} | normal {..} }: the
+// texture of objects created after it that have none of their own. POV-Ray
+// also accepts the old form without '#'.
+void PovParser::defaultBlock() {
+    expectSymbol("{", "after #default");
+    for (;;) {
+        const Tok item = next();
+        if (item.is("}")) break;
+        if (item.isWord("texture")) defaultTexture_ = texture(defaultTexture_);
+        else if (item.isWord("pigment")) defaultTexture_.pigment = pigment(defaultTexture_.pigment);
+        else if (item.isWord("finish")) defaultTexture_.finish = finish(defaultTexture_.finish);
+        else if (item.isWord("normal")) normalBlock(item.loc);
+        else failExpected(item, "'texture', 'pigment', 'finish', 'normal' or '}' in #default");
+    }
 }
 
 } // namespace drt::pov

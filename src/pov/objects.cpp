@@ -460,9 +460,12 @@ PovObject PovParser::object(const Tok& keyword) {
         } else if (m == "inside_vector") {
             vectorExpr();
         } else if (m == "bounded_by" || m == "clipped_by") {
-            if (m == "bounded_by")
-                warnOnce(m, t.loc, "'bounded_by' is ignored (drt builds its own bounds)");
-            else
+            // POV-Ray treats bounded_by as an optimisation (it can only cut an
+            // object it does not enclose), so ignoring it is a note, not a warning.
+            if (m == "bounded_by") {
+                if (warned_.insert("note-bounded_by").second)
+                    note(t.loc, "'bounded_by' is ignored: drt builds its own bounds");
+            } else
                 warnOnce(m, t.loc, "'clipped_by' is not supported; the object is not clipped");
             expectSymbol("{", ("after '" + m + "'").c_str());
             skipBlock();
@@ -486,7 +489,9 @@ PovObject PovParser::object(const Tok& keyword) {
     }
     if (po.isCsg() && po.children.empty() && !po.lights.empty()) po.lightOnly = true;
     if (po.isCsg() && po.children.empty() && po.lights.empty()) {
-        warnOnce("empty-csg", keyword.loc, "'" + w + "' has no objects; left out");
+        // POV-Ray itself only warns and renders nothing for it: the image is the same.
+        if (warned_.insert("note-empty-csg").second)
+            note(keyword.loc, "'" + w + "' has no objects; left out (as POV-Ray)");
         po.lightOnly = true;
     }
     (void)open;

@@ -108,6 +108,7 @@ public:
     void fog(const Tok& keyword); // after 'fog'
     void resolveParallelSky(CameraSpec& cam);
     std::vector<Pigment> skySphere(); // after 'sky_sphere'
+    void defaultBlock();              // after '#default' or 'default'
     void addToScene(PovObject o);
     void finishScene(); // gamma rules, defaults
 

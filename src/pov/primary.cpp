@@ -79,8 +79,9 @@ PovValue PovParser::primary() {
             const SourceLoc loc = peek().loc;
             if (n == 5) fail(loc, "a vector has at most 5 components");
             v.v[size_t(n++)] = toFloat(expression(), loc);
-            // POV-Ray accepts components separated by blanks only: <4 0 0>.
-        } while (acceptSymbol(",") || (!peek().is(">") && n < 5));
+            // POV-Ray accepts components separated by blanks only: <4 0 0>,
+            // and a trailing comma: <0.2, 0.1, 0.5,>.
+        } while ((acceptSymbol(",") && !peek().is(">")) || (!peek().is(">") && n < 5));
         expectSymbol(">", "to close the vector");
         inVector_ = saved;
         if (n < 2) fail(t.loc, "a vector needs at least 2 components");

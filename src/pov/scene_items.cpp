@@ -160,6 +160,7 @@ Light PovParser::lightSource(SourceLoc loc) {
     expectSymbol("{", "after 'light_source'");
     Light l;
     l.loc = loc;
+    AreaLight early; // area-light modifiers given before area_light
     const Tok first = peek();
     const Cell id = first.kind == TokKind::Word ? use(first.text) : nullptr;
     if (id && id->kind == Kind::Object && id->object->lightOnly && !id->object->lights.empty()) {
@@ -207,7 +208,7 @@ Light PovParser::lightSource(SourceLoc loc) {
         else if (w == "fade_distance") l.fadeDistance = floatExpr();
         else if (w == "fade_power") l.fadePower = floatExpr();
         else if (w == "area_light") {
-            AreaLight a;
+            AreaLight a = early; // modifiers may come first (POV-Ray keeps them as flags)
             a.axis1 = vectorExpr();
             acceptSymbol(",");
             a.axis2 = vectorExpr();
@@ -222,11 +223,11 @@ Light PovParser::lightSource(SourceLoc loc) {
             a.sampling = AreaSampling::PovGrid;
             l.area = a;
         } else if (w == "adaptive" || w == "jitter" || w == "circular" || w == "orient") {
-            if (!l.area) fail(t.loc, "'" + w + "' needs an area_light before it");
-            if (w == "adaptive") l.area->adaptive = static_cast<int>(floatExpr());
-            else if (w == "jitter") l.area->jitter = true;
-            else if (w == "circular") l.area->circular = true;
-            else l.area->orient = true;
+            AreaLight& target = l.area ? *l.area : early;
+            if (w == "adaptive") target.adaptive = static_cast<int>(floatExpr());
+            else if (w == "jitter") target.jitter = true;
+            else if (w == "circular") target.circular = true;
+            else target.orient = true;
         } else if (w == "area_illumination") {
             const Tok n = peekOperator();
             l.areaIllumination = (n.kind == TokKind::Number || n.isWord("on") || n.isWord("off") ||
@@ -312,6 +313,8 @@ void PovParser::statement(const Tok& t) {
         globalSettings();
     } else if (w == "fog") {
         fog(t);
+    } else if (w == "default") {
+        defaultBlock();
     } else if (w == "rainbow" || w == "media" || w == "photons" || w == "radiosity") {
         warnOnce(w, t.loc, "'" + w + "' is not supported and is ignored");
         expectSymbol("{", ("after '" + w + "'").c_str());

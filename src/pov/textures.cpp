@@ -316,6 +316,11 @@ Pigment PovParser::pigment(const Pigment& base) {
             p.children.clear();
             noiseNote(w, t.loc);
         } else if (patternModifier(t, p.turbulence)) {
+        } else if (p.pattern == PatternKind::Crackle && (w == "metric" || w == "form" || w == "offset" || w == "solid")) {
+            // crackle's variants: drt has one cellular form (F2 - F1, Euclidean).
+            next();
+            warnOnce("crackle-" + w, t.loc, "crackle '" + w + "' is not supported and is ignored");
+            if (w != "solid") w == "form" ? (void)vectorExpr() : (void)floatExpr();
         } else if (noisePatterns().count(w)) {
             next();
             pattern = w;
@@ -544,6 +549,11 @@ std::optional<Normal> PovParser::normalBlock(SourceLoc keyword) {
                 continue;
             }
             if (patternModifier(t, n.turbulence)) continue;
+            if (t.text == "accuracy") { // the finite-difference step: drt chooses its own
+                next();
+                floatExpr();
+                continue;
+            }
             if (t.text == "bump_size") {
                 next();
                 n.amount = floatExpr();

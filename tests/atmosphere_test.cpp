@@ -1,0 +1,135 @@
+// Fog and sky_sphere (scene.h Fog, Scene::sky; render/atmosphere.h): the
+// transmittance formulas, the ground-fog depth integral against a numerical
+// one, and rendered pixels against the closed forms.
+#include "render/atmosphere.h"
+#include "render/render.h"
+
+#include <cmath>
+#include <gtest/gtest.h>
+
+namespace drt {
+namespace {
+
+TEST(Fog, ConstantFogBlendsByExpMinusDistance) {
+    Fog fog;
+    fog.distance = 4;
+    fog.color.rgb = {0.2, 0.4, 0.8};
+    const FogEffect e = fogEffect({fog}, {0, 0, 0}, {0, 0, 1}, 3);
+    const double t = std::exp(-3.0 / 4.0);
+    EXPECT_NEAR(e.scale.r, t, 1e-12);
+    EXPECT_NEAR(e.add.g, (1 - t) * 0.4, 1e-12);
+    EXPECT_NEAR(e.add.b, (1 - t) * 0.8, 1e-12);
+}
+
+TEST(Fog, TransmitIsTheMinimumTransmittanceAndFilterTints) {
+    Fog fog;
+    fog.distance = 1;
+    fog.color = ColorFT{Color(0.5, 1, 0), 0.4, 0.3};
+    const FogEffect e = fogEffect({fog}, {0, 0, 0}, {1, 0, 0}, kFogMissDistance);
+    // exp(-1e7) is 0, so T = transmit = 0.3.
+    EXPECT_NEAR(e.scale.r, 0.3 + 0.7 * 0.4 * 0.5, 1e-12);
+    EXPECT_NEAR(e.scale.b, 0.3, 1e-12);
+    EXPECT_NEAR(e.add.r, 0.7 * 0.6 * 0.5, 1e-12);
+    EXPECT_NEAR(e.add.b, 0.0, 1e-12);
+}
+
+TEST(Fog, GroundFogDepthMatchesTheDensityIntegral) {
+    Fog fog;
+    fog.type = Fog::Type::Ground;
+    fog.offset = 1;
+    fog.altitude = 2;
+    const Vec3 origin{0, -1, 0};
+    const Vec3 dir = normalize(Vec3{1, 0.5, 0});
+    const double length = 12;
+    // Midpoint rule over the density 1 below the offset, 1/(1+u^2) above.
+    const int n = 200000;
+    double sum = 0;
+    for (int i = 0; i < n; ++i) {
+        const double h = origin.y + dir.y * (i + 0.5) * length / n - fog.offset;
+        const double u = h / fog.altitude;
+        sum += (h <= 0 ? 1.0 : 1.0 / (1 + u * u)) * length / n;
+    }
+    EXPECT_NEAR(fogDepth(fog, origin, dir, length), sum, 1e-6);
+    // A level ray above the offset sees the density at its height.
+    EXPECT_NEAR(fogDepth(fog, {0, 5, 0}, {1, 0, 0}, 3), 3 / (1 + 4.0), 1e-12);
+    // Constant fog's depth is the length.
+    EXPECT_EQ(fogDepth(Fog{}, origin, dir, length), length);
+}
+
+RenderOptions tinyOptions() {
+    RenderOptions o;
+    o.width = 5;
+    o.height = 5;
+    o.samplesPerPixel = 1;
+    o.seed = 3;
+    o.threads = 1;
+    return o;
+}
+
+// A self-lit wall at z = 10 in front of a camera with a narrow view, so every
+// ray travels 10 within 1e-4.
+Scene wallScene() {
+    Scene scene;
+    Object wall;
+    wall.shape = Plane{{0, 0, -1}, -10};
+    wall.texture.pigment.color.rgb = {0.9, 0.1, 0.1};
+    wall.texture.finish.ambient = Color(1);
+    wall.texture.finish.diffuse = 0;
+    scene.objects.push_back(wall);
+    scene.camera.angle = 0.5;
+    return scene;
+}
+
+TEST(Fog, RenderedWallIsFoggedByItsDistance) {
+    Scene scene = wallScene();
+    Fog fog;
+    fog.distance = 8;
+    fog.color.rgb = {0.1, 0.2, 0.9};
+    scene.fogs.push_back(fog);
+    const Image image = render(scene, tinyOptions()).color;
+    const double t = std::exp(-10.0 / 8.0);
+    EXPECT_NEAR(image.at(2, 2, 0), t * 0.9 + (1 - t) * 0.1, 1e-4);
+    EXPECT_NEAR(image.at(2, 2, 2), t * 0.1 + (1 - t) * 0.9, 1e-4);
+}
+
+TEST(Fog, BackgroundTakesTheFullFogColour) {
+    Scene scene;
+    scene.background = {1, 1, 0};
+    Fog fog;
+    fog.distance = 100;
+    fog.color.rgb = {0.3, 0.6, 0.2};
+    scene.fogs.push_back(fog);
+    const Image image = render(scene, tinyOptions()).color;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(image.at(4, 0, c), fog.color.rgb[c], 1e-6); // the image is float
+}
+
+TEST(SkySphere, GradientIsEvaluatedOnTheRayDirection) {
+    Scene scene;
+    Pigment sky;
+    sky.pattern = PatternKind::Gradient;
+    sky.colorMap = {{0, ColorFT{Color(0, 0, 0)}}, {1, ColorFT{Color(1, 1, 1)}}};
+    scene.sky.push_back(sky);
+    scene.camera.location = {0, 0, 0};
+    scene.camera.lookAt = Vec3(0, 1, 1); // 45 degrees up: direction y = 0.7071 at the centre
+    scene.camera.angle = 0.5;
+    const Image image = render(scene, tinyOptions()).color;
+    EXPECT_NEAR(image.at(2, 2, 0), std::sqrt(0.5), 5e-3);
+    // Direct: the colour map at the direction's y.
+    EXPECT_NEAR(skyColor(scene, normalize(Vec3{0, 1, 3})).g, 1 / std::sqrt(10.0), 1e-9);
+}
+
+TEST(SkySphere, TransmitShowsTheBackgroundAndTheLastLayerIsOnTop) {
+    Scene scene;
+    scene.background = {0, 0, 1};
+    Pigment bottom, top;
+    bottom.color = ColorFT{Color(1, 0, 0), 0, 0.5};
+    top.color = ColorFT{Color(0, 1, 0), 0, 0.25};
+    scene.sky = {bottom, top};
+    const Color c = skyColor(scene, {0, 0, 1});
+    EXPECT_NEAR(c.g, 0.75, 1e-12);
+    EXPECT_NEAR(c.r, 0.25 * 0.5, 1e-12);
+    EXPECT_NEAR(c.b, 0.25 * 0.5, 1e-12);
+}
+
+} // namespace
+} // namespace drt
