@@ -26,10 +26,10 @@ TEST(Fog, TransmitIsTheMinimumTransmittanceAndFilterTints) {
     fog.distance = 1;
     fog.color = ColorFT{Color(0.5, 1, 0), 0.4, 0.3};
     const FogEffect e = fogEffect({fog}, {0, 0, 0}, {1, 0, 0}, kFogMissDistance);
-    // exp(-1e7) is 0, so T = transmit = 0.3.
-    EXPECT_NEAR(e.scale.r, 0.3 + 0.7 * 0.4 * 0.5, 1e-12);
-    EXPECT_NEAR(e.scale.b, 0.3, 1e-12);
-    EXPECT_NEAR(e.add.r, 0.7 * 0.6 * 0.5, 1e-12);
+    // exp(-1e7) is 0, so T = transmit = 0.3; seen through, T ((1 - f) + f C).
+    EXPECT_NEAR(e.scale.r, 0.3 * (0.6 + 0.4 * 0.5), 1e-12);
+    EXPECT_NEAR(e.scale.b, 0.3 * 0.6, 1e-12);
+    EXPECT_NEAR(e.add.r, 0.7 * 0.5, 1e-12);
     EXPECT_NEAR(e.add.b, 0.0, 1e-12);
 }
 
@@ -54,6 +54,23 @@ TEST(Fog, GroundFogDepthMatchesTheDensityIntegral) {
     EXPECT_NEAR(fogDepth(fog, {0, 5, 0}, {1, 0, 0}, 3), 3 / (1 + 4.0), 1e-12);
     // Constant fog's depth is the length.
     EXPECT_EQ(fogDepth(Fog{}, origin, dir, length), length);
+}
+
+TEST(Fog, TurbulenceThinsTheFogWithinItsBound) {
+    Fog fog;
+    fog.distance = 5;
+    fog.turbulence = Turbulence{Vec3(0.5, 0.5, 0.5)};
+    fog.turbDepth = 0.5;
+    // The depth shrinks by at most exp(-length / D) of itself, and never grows.
+    bool thinner = false;
+    for (int i = 0; i < 20; ++i) {
+        const Vec3 origin{0.37 * i, 0.11 * i, -1.3 * i};
+        const double z = fogDepth(fog, origin, {0, 0, 1}, 4);
+        EXPECT_LE(z, 4.0);
+        EXPECT_GE(z, 4.0 * (1 - std::exp(-4.0 / 5.0)) - 1e-12);
+        thinner = thinner || z < 4.0 - 1e-9;
+    }
+    EXPECT_TRUE(thinner);
 }
 
 RenderOptions tinyOptions() {

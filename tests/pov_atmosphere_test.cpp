@@ -48,10 +48,16 @@ TEST(PovAtmosphere, GroundFogAndGammaDecodedColour) {
     EXPECT_NEAR(s.fogs[0].color.rgb.r, std::pow(0.5, 2.2), 1e-12);
 }
 
-TEST(PovAtmosphere, FogTurbulenceIsAWarning) {
+TEST(PovAtmosphere, FogTurbulenceIsKeptWithANote) {
     Diagnostics diags;
-    loadPov("fog { distance 3 color rgb 1 turbulence 0.2 }", diags);
-    EXPECT_EQ(countSeverity(diags, Severity::Warning), 1) << diags.formatAll();
+    const Scene s = loadPov("fog { distance 3 color rgb 1 turbulence 0.2 octaves 4 turb_depth 0.3 }", diags);
+    ASSERT_EQ(s.fogs.size(), 1u);
+    ASSERT_TRUE(s.fogs[0].turbulence);
+    EXPECT_DOUBLE_EQ(s.fogs[0].turbulence->amount.y, 0.2);
+    EXPECT_EQ(s.fogs[0].turbulence->octaves, 4);
+    EXPECT_DOUBLE_EQ(s.fogs[0].turbDepth, 0.3);
+    EXPECT_EQ(countSeverity(diags, Severity::Warning), 0) << diags.formatAll();
+    EXPECT_EQ(countSeverity(diags, Severity::Note), 1) << diags.formatAll();
 }
 
 TEST(PovAtmosphere, SkySphereKeepsItsPigmentsAndDeclaredSkies) {
@@ -133,7 +139,7 @@ TEST(DrtAtmosphere, FogAndSkySphereParseAndRoundTrip) {
     Diagnostics diags;
     const Scene s = parseDrt("sky_sphere { pigment { gradient y color_map { [0 rgb 1] [1 rgb <0, 0, 1>] } } }\n"
                              "fog { distance 20 color rgbft <0.5, 0.5, 0.5, 0.2, 0.1> }\n"
-                             "fog { fog_type 2 distance 5 color rgb 1 fog_offset 2 fog_alt 0.5 up <0, 0, 1> }\n",
+                             "fog { fog_type 2 distance 5 color rgb 1 fog_offset 2 fog_alt 0.5 up <0, 0, 1> turbulence 0.4 }\n",
                              diags);
     ASSERT_EQ(s.fogs.size(), 2u);
     ASSERT_EQ(s.sky.size(), 1u);
@@ -151,6 +157,9 @@ TEST(DrtAtmosphere, FogAndSkySphereParseAndRoundTrip) {
     EXPECT_EQ(r.fogs[1].offset, 2);
     EXPECT_EQ(r.fogs[1].altitude, 0.5);
     EXPECT_EQ(r.fogs[1].up.z, 1);
+    ASSERT_TRUE(r.fogs[1].turbulence);
+    EXPECT_EQ(r.fogs[1].turbulence->amount.x, 0.4);
+    EXPECT_EQ(r.fogs[1].turbDepth, 0.5);
 }
 
 TEST(DrtAtmosphere, BadFogIsAnErrorWithALocation) {

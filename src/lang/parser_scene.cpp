@@ -227,7 +227,8 @@ void Parser::skySphere() {
 // fog = "fog" "{" { "distance" float | colour | "fog_type" int | "fog_offset" float
 //                 | "fog_alt" float | "up" vector } "}"
 void Parser::fog() {
-    static const std::vector<std::string> known{"distance", "color", "fog_type", "fog_offset", "fog_alt", "up"};
+    static const std::vector<std::string> known{"distance", "color",      "fog_type", "fog_offset", "fog_alt", "up",
+                                                "turbulence", "turb_depth", "octaves", "omega", "lambda"};
     const Token keyword = current_;
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'fog'");
@@ -259,6 +260,20 @@ void Parser::fog() {
         } else if (w == "up") {
             f.up = vectorExpr();
             requireNonZero(f.up, loc, "the fog 'up'");
+        } else if (w == "turbulence") {
+            if (!f.turbulence) f.turbulence = Turbulence{};
+            f.turbulence->amount = vectorExpr();
+        } else if (w == "turb_depth") {
+            f.turbDepth = floatExpr("the turbulence depth");
+        } else if (w == "octaves" || w == "omega" || w == "lambda") {
+            if (!f.turbulence) f.turbulence = Turbulence{};
+            if (w == "octaves") {
+                f.turbulence->octaves = intExpr("the octave count");
+                if (f.turbulence->octaves < 1 || f.turbulence->octaves > 10)
+                    error(loc, "'octaves' must be between 1 and 10");
+            } else {
+                (w == "omega" ? f.turbulence->omega : f.turbulence->lambda) = floatExpr();
+            }
         } else {
             failUnknown(word, known);
         }

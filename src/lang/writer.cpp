@@ -168,6 +168,10 @@ void SceneWriter::settings(const Scene& scene) {
         if (f.type == Fog::Type::Ground)
             items += " fog_type 2 fog_offset " + number(f.offset) + " fog_alt " + number(f.altitude) + " up " +
                      vector(f.up);
+        if (f.turbulence)
+            items += " turbulence " + vector(f.turbulence->amount) + " octaves " +
+                     std::to_string(f.turbulence->octaves) + " omega " + number(f.turbulence->omega) + " lambda " +
+                     number(f.turbulence->lambda) + " turb_depth " + number(f.turbDepth);
         line(0, "fog {" + items + " }");
     }
     out_ += "\n";

@@ -400,11 +400,19 @@ void PovParser::fog(const Tok& keyword) {
             f.altitude = floatExpr();
         } else if (s.isWord("up")) {
             f.up = vectorExpr();
-        } else if (s.isWord("turbulence") || s.isWord("turb_depth")) {
-            vectorExpr();
-            warnOnce("fog-turbulence", s.loc, "fog turbulence is not supported: the fog is uniform");
+        } else if (s.isWord("turbulence")) {
+            if (!f.turbulence) f.turbulence = Turbulence{};
+            f.turbulence->amount = vectorExpr();
+            if (warned_.insert("note-fog-turbulence").second)
+                note(s.loc, "fog turbulence is approximated: drt's noise has POV-Ray's shapes but not its exact values");
+        } else if (s.isWord("turb_depth")) {
+            f.turbDepth = floatExpr();
         } else if (s.isWord("omega") || s.isWord("lambda") || s.isWord("octaves")) {
-            floatExpr();
+            if (!f.turbulence) f.turbulence = Turbulence{};
+            const double v = floatExpr();
+            if (s.isWord("omega")) f.turbulence->omega = v;
+            else if (s.isWord("lambda")) f.turbulence->lambda = v;
+            else f.turbulence->octaves = std::clamp(static_cast<int>(v), 1, 10);
         } else if (s.isWord("color") || s.isWord("colour") || s.isWord("rgb") || s.isWord("rgbf") ||
                    s.isWord("rgbt") || s.isWord("rgbft") || s.isWord("srgb") || s.isWord("srgbf") ||
                    s.isWord("srgbt") || s.isWord("srgbft") || s.isWord("red") || s.isWord("green") ||

@@ -1,5 +1,6 @@
 #include "render/atmosphere.h"
 
+#include "render/noise.h"
 #include "render/pigment.h"
 
 #include <algorithm>
@@ -12,9 +13,32 @@ namespace {
 // Antiderivative of the ground-fog density over the height h above the offset.
 double groundFogIntegral(double h, double altitude) { return h <= 0 ? h : altitude * std::atan(h / altitude); }
 
+// Scalar turbulence: octaves of |noise| in [-1, 1], weight omega^i at frequency lambda^i.
+double scalarTurbulence(const Turbulence& t, const Vec3& p) {
+    double sum = 0, weight = 1, frequency = 1;
+    for (int i = 0; i < std::clamp(t.octaves, 1, 10); ++i) {
+        sum += weight * std::abs(2 * noise01(p * frequency) - 1);
+        weight *= t.omega;
+        frequency *= t.lambda;
+    }
+    return sum;
+}
+
+double plainFogDepth(const Fog& fog, const Vec3& origin, const Vec3& direction, double length);
+
 } // namespace
 
 double fogDepth(const Fog& fog, const Vec3& origin, const Vec3& direction, double length) {
+    const double depth = plainFogDepth(fog, origin, direction, length);
+    if (!fog.turbulence) return depth;
+    const Vec3 mid = (origin + direction * (length / 2)) * fog.turbulence->amount;
+    const double k = std::exp(-length / (fog.distance > 0 ? fog.distance : 1e-9)); // by the path length (POV-Ray)
+    return depth * (1 - k * std::min(1.0, scalarTurbulence(*fog.turbulence, mid) * fog.turbDepth));
+}
+
+namespace {
+
+double plainFogDepth(const Fog& fog, const Vec3& origin, const Vec3& direction, double length) {
     if (fog.type == Fog::Type::Constant) return length;
     const double altitude = fog.altitude > 0 ? fog.altitude : 1e-9;
     const Vec3 up = normalize(fog.up);
@@ -27,6 +51,8 @@ double fogDepth(const Fog& fog, const Vec3& origin, const Vec3& direction, doubl
     return length * (groundFogIntegral(h0 + dh, altitude) - groundFogIntegral(h0, altitude)) / dh;
 }
 
+} // namespace
+
 FogEffect fogEffect(const std::vector<Fog>& fogs, const Vec3& origin, const Vec3& direction, double length) {
     FogEffect total;
     // Applied from the farthest fog inwards, so the first fog is nearest the eye:
@@ -38,8 +64,8 @@ FogEffect fogEffect(const std::vector<Fog>& fogs, const Vec3& origin, const Vec3
                                              fog.color.transmit),
                                     0.0, 1.0);
         const double f = fog.color.filter;
-        const Color add = (1 - t) * (1 - f) * fog.color.rgb;
-        const Color scale = Color(t) + (1 - t) * f * fog.color.rgb;
+        const Color add = (1 - t) * fog.color.rgb;
+        const Color scale = t * (Color(1 - f) + f * fog.color.rgb);
         total.add = add + scale * total.add;
         total.scale = scale * total.scale;
     }

@@ -307,8 +307,8 @@ struct RenderSettings {
 // POV-Ray fog. Along a ray segment of fog depth z (the path length for
 // constant fog; for ground fog the path integral of the density below), the
 // transmittance is T = max(exp(-z / distance), color.transmit) and what is
-// seen becomes (1 - T)(1 - f) C + (T + (1 - T) f C) * seen, with C the fog
-// colour and f its filter. Rays that miss everything have length 1e7 (POV-Ray's
+// seen becomes (1 - T) C + T ((1 - f) + f C) * seen, with C the fog colour and
+// f its filter (POV-Ray's atmosph.cpp do_fog). Rays that miss everything have length 1e7 (POV-Ray's
 // Max_Distance), so constant fog covers the background fully.
 struct Fog {
     enum class Type { Constant, Ground }; // POV-Ray fog_type 1, 2
@@ -320,6 +320,12 @@ struct Fog {
     double offset = 0;
     double altitude = 1;
     Vec3 up{0, 1, 0};
+    // POV-Ray's turbulent fog (atmosph.cpp): with P the segment's midpoint
+    // scaled by turbulence.amount, the depth z becomes
+    // z (1 - exp(-length / distance) min(1, turb(P) turbDepth)), turb a sum of
+    // |noise| octaves (drt's noise, so not value-for-value POV-Ray's).
+    std::optional<Turbulence> turbulence;
+    double turbDepth = 0.5;
 };
 
 struct Scene {
