@@ -86,7 +86,22 @@ std::string nearestWord(const std::string& word, const std::vector<std::string>&
             best = k;
         }
     }
-    return best;
+    if (!best.empty()) return best;
+    // Two swapped neighbours ("widht") cost 2 edits: too many for a short word
+    // by distance alone, but a typical typo.
+    for (const std::string& k : known) {
+        if (k.size() != word.size()) continue;
+        for (size_t i = 0; i + 1 < word.size(); ++i) {
+            std::string swapped = word;
+            std::swap(swapped[i], swapped[i + 1]);
+            if (swapped == k) return k;
+        }
+    }
+    // A cut-short keyword ("max_trace" for "max_trace_level").
+    if (word.size() >= 4)
+        for (const std::string& k : known)
+            if (k.compare(0, word.size(), word) == 0) return k;
+    return "";
 }
 
 } // namespace drt

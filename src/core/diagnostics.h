@@ -82,7 +82,8 @@ private:
     bool warningsAsErrors_ = false;
 };
 
-// The known word nearest to `word` by edit distance, or "" if none is close
+// The known word nearest to `word` by edit distance (or by one swap of
+// neighbouring letters, or as a cut-short prefix), or "" if none is close
 // enough to be a plausible typo. Used for "did you mean ...?" suggestions.
 std::string nearestWord(const std::string& word, const std::vector<std::string>& known);
 

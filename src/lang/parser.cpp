@@ -165,26 +165,9 @@ void Parser::failExpected(const char* what) {
 
 // nearestWord, widened for two common typos it does not count as close:
 // swapped neighbours ("widht") and a cut-short keyword ("max_trace").
-std::string suggestWord(const std::string& word, const std::vector<std::string>& known) {
-    std::string best = nearestWord(word, known);
-    if (!best.empty()) return best;
-    for (const std::string& k : known) {
-        if (k.size() != word.size()) continue;
-        for (size_t i = 0; i + 1 < word.size(); ++i) {
-            std::string swapped = word;
-            std::swap(swapped[i], swapped[i + 1]);
-            if (swapped == k) return k;
-        }
-    }
-    if (word.size() >= 4)
-        for (const std::string& k : known)
-            if (k.compare(0, word.size(), word) == 0) return k;
-    return "";
-}
-
 void Parser::failUnknown(const Token& word, const std::vector<std::string>& known, const char* kind) {
     std::string message = std::string("unknown ") + kind + " '" + word.text + "'";
-    const std::string suggestion = suggestWord(word.text, known);
+    const std::string suggestion = nearestWord(word.text, known);
     if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
     fail(word.loc, message);
 }

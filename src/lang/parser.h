@@ -159,10 +159,5 @@ private:
     std::map<std::string, Value> symbols_;
 };
 
-// The known word a misspelt `word` most likely meant, or "".
-std::string suggestWord(const std::string& word, const std::vector<std::string>& known);
-
-// Applies `t` after a pigment's pattern -> world map, and to its children's.
-void transformPigment(Pigment& p, const Transform& t);
 
 } // namespace drt

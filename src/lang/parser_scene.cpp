@@ -338,7 +338,7 @@ void Parser::renderBlock() {
             const auto& names = sampler ? samplerNames() : filterNames();
             if (std::find(names.begin(), names.end(), name.text) == names.end()) {
                 std::string message = "unknown " + w + " '" + name.text + "'";
-                const std::string near = suggestWord(name.text, names);
+                const std::string near = nearestWord(name.text, names);
                 if (!near.empty()) message += "; did you mean '" + near + "'?";
                 error(name.loc, message);
             }

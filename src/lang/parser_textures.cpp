@@ -7,11 +7,6 @@
 
 namespace drt {
 
-void transformPigment(Pigment& p, const Transform& t) {
-    p.toWorld = p.toWorld.then(t);
-    for (Pigment& child : p.children) transformPigment(child, t);
-}
-
 static Pigment solid(const ColorFT& c) {
     Pigment p;
     p.color = c;
@@ -104,7 +99,7 @@ Pigment Parser::pigment() {
 bool Parser::pigmentItem(Pigment& p) {
     const SourceLoc loc = current_.loc;
     if (std::optional<Transform> t = transformItem()) {
-        transformPigment(p, *t);
+        transformPigmentSpaces(p, *t);
         return true;
     }
     const bool declaredColor = check(TokenKind::Identifier) && lookup(current_.text) &&
@@ -134,7 +129,7 @@ bool Parser::pigmentItem(Pigment& p) {
             defaults = std::move(children);
         }
         // Children live in the parent's pattern space: give them its transform so far.
-        for (Pigment& child : defaults) transformPigment(child, p.toWorld);
+        for (Pigment& child : defaults) transformPigmentSpaces(child, p.toWorld);
         p.children = std::move(defaults);
     };
     if (w == "checker") list(PatternKind::Checker, {solidRgb(0, 0, 1), solidRgb(0, 1, 0)});

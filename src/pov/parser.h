@@ -190,8 +190,6 @@ private:
 // unbounded shapes give +-1e10 as POV-Ray's BOUND_HUGE/2 does.
 void objectBounds(const PovObject& o, Vec3& lower, Vec3& upper);
 
-// Applies `t` to a pigment and its sub-pigments (pattern space moves with it).
-void transformPigmentTree(Pigment& p, const Transform& t);
 // POV-Ray colour (r g b filter transmit) -> scene colour.
 ColorFT toColorFT(const std::array<double, 5>& c);
 

@@ -350,7 +350,7 @@ std::vector<Pigment> PovParser::skySphere() {
                    s.isWord("transform")) {
             pushBack(s);
             if (const std::optional<Transform> tr = transformItem())
-                for (Pigment& p : layers) transformPigmentTree(p, *tr);
+                for (Pigment& p : layers) transformPigmentSpaces(p, *tr);
         } else if (const Cell c = s.kind == TokKind::Word ? lookup(s.text) : nullptr;
                    c && c->kind == Kind::SkySphere) {
             layers.insert(layers.end(), c->sky->begin(), c->sky->end());

@@ -11,11 +11,6 @@ namespace drt::pov {
 
 using Kind = PovValue::Kind;
 
-void transformPigmentTree(Pigment& p, const Transform& t) {
-    p.toWorld = p.toWorld.then(t);
-    for (Pigment& child : p.children) transformPigmentTree(child, t);
-}
-
 ColorFT toColorFT(const std::array<double, 5>& c) { return ColorFT{Color(c[0], c[1], c[2]), c[3], c[4]}; }
 
 namespace {
@@ -249,7 +244,7 @@ Pigment PovParser::pigment(const Pigment& base) {
             break;
         }
         if (std::optional<Transform> tr = transformItem()) {
-            transformPigmentTree(p, *tr);
+            transformPigmentSpaces(p, *tr);
             first = false;
             continue;
         }

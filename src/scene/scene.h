@@ -112,15 +112,15 @@ struct Texture {
     std::optional<Normal> normal; // none: the surface's own normal
 };
 
+// Applies a transform after the pattern space of a pigment and of all its sub-pigments.
+inline void transformPigmentSpaces(Pigment& p, const Transform& t) {
+    p.toWorld = p.toWorld.then(t);
+    for (Pigment& child : p.children) transformPigmentSpaces(child, t);
+}
+
 // Applies a transform to every pattern space of a texture (pigment tree and normal).
 inline void transformTextureSpaces(Texture& texture, const Transform& t) {
-    struct Walk {
-        static void pigment(Pigment& p, const Transform& t) {
-            p.toWorld = p.toWorld.then(t);
-            for (Pigment& child : p.children) pigment(child, t);
-        }
-    };
-    Walk::pigment(texture.pigment, t);
+    transformPigmentSpaces(texture.pigment, t);
     if (texture.normal) texture.normal->toWorld = texture.normal->toWorld.then(t);
 }
 
