@@ -148,5 +148,34 @@ TEST(SkySphere, TransmitShowsTheBackgroundAndTheLastLayerIsOnTop) {
     EXPECT_NEAR(c.b, 0.25 * 0.5, 1e-12);
 }
 
+
+// POV-Ray's ComputeFog: each fog acts on the whole segment; colours add and
+// transmittances multiply, whatever the order (interior/foglyr2.pov's two
+// saturated ground fogs, blue and orange, give pink, not the first fog's blue).
+TEST(Fog, SeveralFogsAddTheirColoursAndMultiplyTransmittances) {
+    Fog blue;
+    blue.distance = 4;
+    blue.color = ColorFT{Color(0, 0, 1), 0.25, 0};
+    Fog orange;
+    orange.distance = 2;
+    orange.color.rgb = {1, 0.5, 0};
+    const double length = 3;
+    const double tBlue = std::exp(-length / 4), tOrange = std::exp(-length / 2);
+    for (const auto& fogs : {std::vector<Fog>{blue, orange}, std::vector<Fog>{orange, blue}}) {
+        const FogEffect e = fogEffect(fogs, {0, 0, 0}, {0, 0, 1}, length);
+        const Color add = (1 - tBlue) * blue.color.rgb + (1 - tOrange) * orange.color.rgb;
+        const Color scale = tBlue * (Color(0.75) + 0.25 * blue.color.rgb) * tOrange;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(e.add[c], add[c], 1e-12);
+            EXPECT_NEAR(e.scale[c], scale[c], 1e-12);
+        }
+    }
+    // Both saturated (a miss): the sum of the two colours.
+    const FogEffect far = fogEffect({blue, orange}, {0, 0, 0}, {0, 0, 1}, kFogMissDistance);
+    EXPECT_NEAR(far.add.r, 1, 1e-12);
+    EXPECT_NEAR(far.add.g, 0.5, 1e-12);
+    EXPECT_NEAR(far.add.b, 1, 1e-12);
+}
+
 } // namespace
 } // namespace drt

@@ -105,6 +105,7 @@ const std::vector<CrossCheckScene>& scenes() {
         {"focalblur", "camera/focalblur.pov", {"camera/camera-context.inc"}, 120},
         {"arealit1", "lights/arealit1.pov", {}, 4},
         {"arealit2", "lights/arealit2.pov", {}, 4},
+        {"foglyr2", "interior/foglyr2.pov", {}, 4}, // two turbulent ground fogs
     };
     return list;
 }

@@ -55,19 +55,17 @@ double plainFogDepth(const Fog& fog, const Vec3& origin, const Vec3& direction, 
 
 FogEffect fogEffect(const std::vector<Fog>& fogs, const Vec3& origin, const Vec3& direction, double length) {
     FogEffect total;
-    // Applied from the farthest fog inwards, so the first fog is nearest the eye:
-    // each one maps c to add + scale c on top of what is behind it.
-    for (auto it = fogs.rbegin(); it != fogs.rend(); ++it) {
-        const Fog& fog = *it;
+    // POV-Ray (trace.cpp ComputeFog): every fog acts on the whole segment on its
+    // own; their colours add, (1 - T_i) C_i, and what they let through
+    // multiplies, T_i ((1 - f_i) + f_i C_i). So the order of fogs does not matter.
+    for (const Fog& fog : fogs) {
         const double distance = fog.distance > 0 ? fog.distance : 1e-9;
         const double t = std::clamp(std::max(std::exp(-fogDepth(fog, origin, direction, length) / distance),
                                              fog.color.transmit),
                                     0.0, 1.0);
         const double f = fog.color.filter;
-        const Color add = (1 - t) * fog.color.rgb;
-        const Color scale = t * (Color(1 - f) + f * fog.color.rgb);
-        total.add = add + scale * total.add;
-        total.scale = scale * total.scale;
+        total.add += (1 - t) * fog.color.rgb;
+        total.scale *= t * (Color(1 - f) + f * fog.color.rgb);
     }
     return total;
 }

@@ -337,7 +337,7 @@ struct Scene {
     // miss everything, the last one on top; what their filter/transmit lets
     // through shows the background colour. Empty: the background alone.
     std::vector<Pigment> sky;
-    std::vector<Fog> fogs; // applied in order, the first nearest the eye
+    std::vector<Fog> fogs; // each over the whole ray segment: colours add, transmittances multiply (POV-Ray)
     GlobalSettings global;
     RenderSettings render;
 };
