@@ -30,20 +30,27 @@ static double evaluate(const double* c, int degree, double t) {
 
 // The root of a polynomial that is monotonic on [lo, hi] with f(lo), f(hi) of
 // opposite signs: Newton steps, falling back to bisection whenever a step leaves
-// the bracket, which shrinks every iteration.
+// the bracket or the bracket has not halved over the last two steps (Newton
+// far from a root of a degree-n polynomial gains only a factor 1 - 1/n per
+// step, too slow on the huge intervals of unbounded surfaces).
 static double refineBracketedRoot(const double* c, const double* derivative, int degree, double lo, double hi,
                                   double fLo) {
     double t = 0.5 * (lo + hi);
-    for (int iteration = 0; iteration < 100; ++iteration) {
+    double widthBefore = hi - lo, widthBeforeThat = widthBefore;
+    for (int iteration = 0; iteration < 300; ++iteration) {
         const double f = evaluate(c, degree, t);
         if (f == 0) return t;
         if ((f < 0) == (fLo < 0)) lo = t;
         else hi = t;
         const double slope = evaluate(derivative, degree - 1, t);
+        const double tolerance = 1e-15 * std::fmax(1.0, std::fabs(t));
         double next = slope != 0 ? t - f / slope : 0.5 * (lo + hi);
-        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        if (std::fabs(next - t) <= 1e-15 * std::fmax(1.0, std::fabs(t)) || hi - lo <= 1e-15 * std::fmax(1.0, std::fabs(t)))
-            return next;
+        const bool inside = next > lo && next < hi;
+        if (inside && std::fabs(next - t) <= tolerance) return next;
+        if (!inside || hi - lo > 0.5 * widthBeforeThat) next = 0.5 * (lo + hi);
+        widthBeforeThat = widthBefore;
+        widthBefore = hi - lo;
+        if (hi - lo <= tolerance) return next;
         t = next;
     }
     return t;
@@ -60,26 +67,25 @@ int polynomialRootsInInterval(const double* c, int degree, double lo, double hi,
         }
         return 0;
     }
-    double derivative[4];
+    if (degree > kMaxPolynomialDegree) return 0;
+    double derivative[kMaxPolynomialDegree];
     for (int i = 1; i <= degree; ++i) derivative[i - 1] = i * c[i];
     // Critical points split [lo, hi] into monotonic pieces.
-    double edges[6];
+    double edges[kMaxPolynomialDegree + 2];
     edges[0] = lo;
     const int criticalCount = polynomialRootsInInterval(derivative, degree - 1, lo, hi, edges + 1);
     edges[criticalCount + 1] = hi;
+    // Signs only (zero counts as positive): a root is reported where the sign
+    // changes, never for an exact zero at a critical point that the surface
+    // only touches.
     int count = 0;
     double fLo = evaluate(c, degree, edges[0]);
     for (int piece = 0; piece <= criticalCount; ++piece) {
         const double a = edges[piece], b = edges[piece + 1];
         const double fHi = evaluate(c, degree, b);
-        if (fLo == 0) {
-            if (count == 0 || roots[count - 1] != a) roots[count++] = a;
-        } else if (fHi != 0 && (fLo < 0) != (fHi < 0)) {
-            roots[count++] = refineBracketedRoot(c, derivative, degree, a, b, fLo);
-        }
+        if ((fLo < 0) != (fHi < 0)) roots[count++] = refineBracketedRoot(c, derivative, degree, a, b, fLo);
         fLo = fHi;
     }
-    if (fLo == 0 && (count == 0 || roots[count - 1] != hi)) roots[count++] = hi;
     return count;
 }
 
