@@ -72,9 +72,12 @@ double integerPower(double v, int e) {
 
 void expandAlongLine(const PolynomialSurface& surface, const Vec3& p, const Vec3& u, double* out) {
     const int order = surface.order, width = order + 1;
-    thread_local std::vector<double> buffer;
-    buffer.assign(size_t(width * width * 3 + width * 2), 0.0);
-    double* xs = buffer.data();
+    const size_t size = size_t(width * width * 3 + width * 2);
+    constexpr int kStackOrder = 8;
+    double stack[(kStackOrder + 1) * (kStackOrder + 1) * 3 + (kStackOrder + 1) * 2];
+    thread_local std::vector<double> heap;
+    if (order > kStackOrder && heap.size() < size) heap.resize(size);
+    double* xs = order > kStackOrder ? heap.data() : stack;
     double* ys = xs + width * width;
     double* zs = ys + width * width;
     double* group = zs + width * width; // sum of c z-powers of one (x, y) group
@@ -134,8 +137,22 @@ int intersectPolynomial(const PolynomialSurface& surface, const Vec3& o, const V
     const double half = std::sqrt(reach2);
     double coefficients[kMaxPolynomialDegree + 1];
     expandAlongLine(surface, p, u, coefficients);
+    // Fujiwara's bound: every root has |s| <= 2 max_k |c_(n-k) / c_n|^(1/k)
+    // (the constant term's ratio halved). Searching only there keeps the
+    // root isolation's intervals short (the polynomial cannot change sign
+    // outside, so no crossing is lost).
+    int degree = surface.order;
+    while (degree > 0 && coefficients[degree] == 0) --degree;
+    if (degree == 0) return 0;
+    double bound = 0;
+    for (int k = 1; k <= degree; ++k) {
+        const double ratio = std::fabs(coefficients[degree - k] / coefficients[degree]) * (k == degree ? 0.5 : 1.0);
+        bound = std::max(bound, std::pow(ratio, 1.0 / k));
+    }
+    bound = 2 * bound * (1 + 1e-12) + 1e-6; // a margin: roots at exactly +-bound or 0 stay inside
+    const double lo = std::max(-half, -bound), hi = std::min(half, bound);
     double roots[kMaxPolynomialDegree + 1];
-    const int n = polynomialRootsInInterval(coefficients, surface.order, -half, half, roots);
+    const int n = polynomialRootsInInterval(coefficients, degree, lo, hi, roots);
     int count = 0;
     for (int i = 0; i < n && count < capacity; ++i) {
         const Vec3 at = p + roots[i] * u;

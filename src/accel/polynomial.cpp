@@ -67,6 +67,20 @@ int polynomialRootsInInterval(const double* c, int degree, double lo, double hi,
         }
         return 0;
     }
+    if (degree == 2) {
+        // Closed form (cancellation-free, as solveQuadratic). A double or
+        // complex pair does not change sign: no root, as below.
+        const double a = c[2], b = c[1], c0 = c[0];
+        const double discriminant = b * b - 4 * a * c0;
+        if (!(discriminant > 0)) return 0;
+        const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
+        double t0 = q / a, t1 = c0 / q;
+        if (t0 > t1) std::swap(t0, t1);
+        int count = 0;
+        if (t0 >= lo && t0 <= hi) roots[count++] = t0;
+        if (t1 >= lo && t1 <= hi) roots[count++] = t1;
+        return count;
+    }
     if (degree > kMaxPolynomialDegree) return 0;
     double derivative[kMaxPolynomialDegree];
     for (int i = 1; i <= degree; ++i) derivative[i - 1] = i * c[i];

@@ -61,7 +61,20 @@ Shape PovParser::algebraicShape(const Tok& keyword) {
     a.order = w == "cubic" ? 3 : 4;
     if (a.form == Algebraic::Form::Poly) {
         const SourceLoc at = peek().loc;
-        const double order = floatExpr();
+        // `poly { 4 <...> }` (no comma, as in objects/primitiv.pov): a bare
+        // number before '<' is the order, not the left side of a comparison.
+        const Tok first = peek();
+        double order = 0;
+        if (first.kind == TokKind::Number) {
+            next();
+            if (peekOperator().is("<")) order = first.number;
+            else {
+                pushBack(first);
+                order = floatExpr();
+            }
+        } else {
+            order = floatExpr();
+        }
         if (order != std::floor(order) || order < kMinAlgebraicOrder || order > kMaxAlgebraicOrder)
             fail(at, fmt::format("poly order must be a whole number from 2 to 35, not {}", order));
         a.order = int(order);
