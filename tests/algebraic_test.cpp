@@ -156,6 +156,41 @@ TEST(Algebraic, QuarticTorusAgreesWithTorus) {
     expectSameCrossings(torusQuartic(1, 0.25), Torus{1, 0.25}, 1.25, 1e-9, 4000, 4);
 }
 
+TEST(Algebraic, EllipsoidQuadricsAreBoundedOthersAreNot) {
+    Vec3 lo, hi;
+    // (x - 1)^2 + y^2 + z^2 = 4: the box [-1, 3] x [-2, 2] x [-2, 2].
+    ASSERT_TRUE(accel::shapeBounds(*accel::prepareShape(quadric({1, 1, 1, 0, 0, 0, -2, 0, 0, -3})), lo, hi));
+    EXPECT_NEAR(lo.x, -1, 1e-8);
+    EXPECT_NEAR(hi.x, 3, 1e-8);
+    EXPECT_NEAR(lo.y, -2, 1e-8);
+    EXPECT_NEAR(hi.z, 2, 1e-8);
+    // A tilted ellipsoid x^2 + y^2 + z^2 + xy + 0.5 yz = 1: every surface point
+    // found by rays from the centre lies in the box, and the box is tight
+    // (some point comes within 1e-3 of each face).
+    const Algebraic tilted = quadric({1, 1, 1, 1, 0, 0.5, 0, 0, 0, -1});
+    ASSERT_TRUE(accel::shapeBounds(*accel::prepareShape(tilted), lo, hi));
+    Vec3 seenLo(INFINITY), seenHi(-INFINITY);
+    std::mt19937 rng(6);
+    for (int i = 0; i < 20000; ++i) {
+        Crossing c[kMaxCrossings];
+        const Vec3 d = randomUnit(rng);
+        ASSERT_EQ(crossings(tilted, {0, 0, 0}, d, c), 2); // behind and ahead
+        seenLo = min(seenLo, c[1].t * d);
+        seenHi = max(seenHi, c[1].t * d);
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_LE(lo[axis], seenLo[axis]);
+        EXPECT_GE(hi[axis], seenHi[axis]);
+        EXPECT_NEAR(lo[axis], seenLo[axis], 1e-3);
+        EXPECT_NEAR(hi[axis], seenHi[axis], 1e-3);
+    }
+    // Hyperboloids, paraboloids, cylinders and the inside-out sphere are not.
+    EXPECT_FALSE(accel::shapeBounds(*accel::prepareShape(quadric({1, -1, 1, 0, 0, 0, 0, 0, 0, -1})), lo, hi));
+    EXPECT_FALSE(accel::shapeBounds(*accel::prepareShape(quadric({1, 0, 1, 0, 0, 0, 0, -1, 0, 0})), lo, hi));
+    EXPECT_FALSE(accel::shapeBounds(*accel::prepareShape(quadric({1, 1, 0, 0, 0, 0, 0, 0, 0, -1})), lo, hi));
+    EXPECT_FALSE(accel::shapeBounds(*accel::prepareShape(quadric({-1, -1, -1, 0, 0, 0, 0, 0, 0, 1})), lo, hi));
+}
+
 TEST(Algebraic, PolyOfOrderTwoEqualsTheSameQuadric) {
     // A tilted hyperboloid x^2 + 2 y^2 - z^2 + xy - 1 = 0 in both spellings.
     Algebraic poly;

@@ -11,6 +11,49 @@ namespace drt::accel {
 
 // ---------------------------------------------------------------- polynomials
 
+namespace {
+
+// f = x^T M x + b.x + c with M positive definite is an ellipsoid (or empty):
+// with centre m = -M^-1 b / 2 and k = -f(m) = -(b.m / 2 + c), the surface is
+// (x - m)^T M (x - m) = k, which spans m_i +- sqrt(k (M^-1)_ii) along axis i.
+void ellipsoidBounds(PolynomialSurface& s) {
+    double M[3][3] = {}, b[3] = {}, c = 0;
+    for (const Monomial& t : s.terms) {
+        const int e[3] = {t.x, t.y, t.z};
+        int first = -1, second = -1;
+        for (int axis = 0; axis < 3; ++axis)
+            for (int k = 0; k < e[axis]; ++k) (first < 0 ? first : second) = axis;
+        if (first < 0) c += t.coefficient;
+        else if (second < 0) b[first] += t.coefficient;
+        else if (first == second) M[first][first] += t.coefficient;
+        else M[first][second] = M[second][first] = M[first][second] + 0.5 * t.coefficient;
+    }
+    const double minor2 = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    double inverse[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+            inverse[i][j] = M[i1][j1] * M[i2][j2] - M[i1][j2] * M[i2][j1]; // cofactor, transposed
+        }
+    const double det = M[0][0] * inverse[0][0] + M[0][1] * inverse[1][0] + M[0][2] * inverse[2][0];
+    if (!(M[0][0] > 0 && minor2 > 0 && det > 0)) return;
+    for (auto& row : inverse)
+        for (double& v : row) v /= det;
+    Vec3 centre;
+    for (int i = 0; i < 3; ++i) centre[i] = -0.5 * (inverse[i][0] * b[0] + inverse[i][1] * b[1] + inverse[i][2] * b[2]);
+    const double k = -(0.5 * (b[0] * centre.x + b[1] * centre.y + b[2] * centre.z) + c);
+    if (!std::isfinite(k) || !isFinite(centre)) return;
+    Vec3 extent;
+    for (int i = 0; i < 3; ++i) extent[i] = std::sqrt(std::max(0.0, k * inverse[i][i]));
+    // A margin for the rounding of the computation above.
+    extent = extent * (1 + 1e-9) + Vec3(1e-12 * (maxComponent(abs(centre)) + maxComponent(extent)));
+    s.bounded = true;
+    s.lower = centre - extent;
+    s.upper = centre + extent;
+}
+
+} // namespace
+
 PolynomialSurface preparePolynomial(const Algebraic& a) {
     const int order = a.form == Algebraic::Form::Cubic     ? 3
                       : a.form == Algebraic::Form::Quartic ? 4
@@ -35,6 +78,7 @@ PolynomialSurface preparePolynomial(const Algebraic& a) {
     });
     for (const Monomial& m : s.terms) s.order = std::max(s.order, m.x + m.y + m.z);
     if (s.order == 0) throw std::invalid_argument("algebraic surface has no non-constant term");
+    if (s.order == 2) ellipsoidBounds(s);
     return s;
 }
 
@@ -147,7 +191,9 @@ int intersectPolynomial(const PolynomialSurface& surface, const Vec3& o, const V
     double bound = 0;
     for (int k = 1; k <= degree; ++k) {
         const double ratio = std::fabs(coefficients[degree - k] / coefficients[degree]) * (k == degree ? 0.5 : 1.0);
-        bound = std::max(bound, std::pow(ratio, 1.0 / k));
+        const double root = k == 1 ? ratio : k == 2 ? std::sqrt(ratio) : k == 3 ? std::cbrt(ratio)
+                            : k == 4 ? std::sqrt(std::sqrt(ratio)) : std::pow(ratio, 1.0 / k);
+        bound = std::max(bound, root);
     }
     bound = 2 * bound * (1 + 1e-12) + 1e-6; // a margin: roots at exactly +-bound or 0 stay inside
     const double lo = std::max(-half, -bound), hi = std::min(half, bound);

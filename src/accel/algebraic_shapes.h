@@ -15,6 +15,10 @@ namespace drt::accel {
 struct PolynomialSurface {
     int order = 0; // highest total degree of a non-zero term
     std::vector<Monomial> terms;
+    // Set for ellipsoids (a quadric whose quadratic part is positive
+    // definite): the box around the solid; other polynomials are unbounded.
+    bool bounded = false;
+    Vec3 lower, upper;
 };
 
 // Polynomials are unbounded: crossings are searched on the part of the line

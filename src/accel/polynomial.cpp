@@ -29,29 +29,34 @@ static double evaluate(const double* c, int degree, double t) {
 }
 
 // The root of a polynomial that is monotonic on [lo, hi] with f(lo), f(hi) of
-// opposite signs: Newton steps, falling back to bisection whenever a step leaves
-// the bracket or the bracket has not halved over the last two steps (Newton
-// far from a root of a degree-n polynomial gains only a factor 1 - 1/n per
-// step, too slow on the huge intervals of unbounded surfaces).
+// opposite signs: Newton steps safeguarded as in Numerical Recipes' rtsafe
+// (9.4): a bisection instead whenever the Newton step would leave the bracket
+// or would not at least halve the step before last, so the bracket shrinks
+// geometrically even far from the root, where Newton on a degree-n
+// polynomial gains only a factor 1 - 1/n per step.
 static double refineBracketedRoot(const double* c, const double* derivative, int degree, double lo, double hi,
                                   double fLo) {
+    if (fLo > 0) std::swap(lo, hi); // from here f(lo) < 0 < f(hi), lo may exceed hi
     double t = 0.5 * (lo + hi);
-    double widthBefore = hi - lo, widthBeforeThat = widthBefore;
-    for (int iteration = 0; iteration < 300; ++iteration) {
-        const double f = evaluate(c, degree, t);
+    double step = std::fabs(hi - lo), stepBefore = step;
+    double f = evaluate(c, degree, t), slope = evaluate(derivative, degree - 1, t);
+    for (int iteration = 0; iteration < 200; ++iteration) {
         if (f == 0) return t;
-        if ((f < 0) == (fLo < 0)) lo = t;
+        const bool leaves = ((t - hi) * slope - f) * ((t - lo) * slope - f) > 0;
+        const bool slow = std::fabs(2 * f) > std::fabs(stepBefore * slope);
+        stepBefore = step;
+        if (leaves || slow) {
+            step = 0.5 * (hi - lo);
+            t = lo + step;
+        } else {
+            step = f / slope;
+            t -= step;
+        }
+        if (std::fabs(step) <= 1e-15 * std::fmax(1.0, std::fabs(t))) return t;
+        f = evaluate(c, degree, t);
+        slope = evaluate(derivative, degree - 1, t);
+        if (f < 0) lo = t;
         else hi = t;
-        const double slope = evaluate(derivative, degree - 1, t);
-        const double tolerance = 1e-15 * std::fmax(1.0, std::fabs(t));
-        double next = slope != 0 ? t - f / slope : 0.5 * (lo + hi);
-        const bool inside = next > lo && next < hi;
-        if (inside && std::fabs(next - t) <= tolerance) return next;
-        if (!inside || hi - lo > 0.5 * widthBeforeThat) next = 0.5 * (lo + hi);
-        widthBeforeThat = widthBefore;
-        widthBefore = hi - lo;
-        if (hi - lo <= tolerance) return next;
-        t = next;
     }
     return t;
 }

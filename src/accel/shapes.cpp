@@ -323,7 +323,10 @@ bool shapeBounds(const AnalyticShape& s, Vec3& lower, Vec3& upper) {
         lower = s.lower;
         upper = s.upper;
         return true;
-    case ShapeKind::Polynomial: return false;
+    case ShapeKind::Polynomial:
+        lower = s.polynomial->lower;
+        upper = s.polynomial->upper;
+        return s.polynomial->bounded;
     case ShapeKind::Superellipsoid:
         lower = Vec3(-1);
         upper = Vec3(1);

@@ -58,7 +58,8 @@ int intersectShape(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Cro
 // half-space below; discs and open cones have no inside).
 bool insideShape(const AnalyticShape& shape, const Vec3& p);
 
-// Object-space bounds; false when the shape is unbounded (planes, polynomials).
+// Object-space bounds; false when the shape is unbounded (planes, polynomials
+// other than ellipsoids).
 bool shapeBounds(const AnalyticShape& shape, Vec3& lower, Vec3& upper);
 
 } // namespace drt::accel
