@@ -24,10 +24,11 @@ std::vector<Monomial> algebraicTerms(const Algebraic& a) {
             add(exponents[t][0], exponents[t][1], exponents[t][2], a.coefficients[t]);
         return terms;
     }
+    const int order = a.form == Algebraic::Form::Cubic ? 3 : a.form == Algebraic::Form::Quartic ? 4 : a.order;
     int index = 0;
-    for (int i = a.order; i >= 0; --i)
-        for (int j = a.order - i; j >= 0; --j)
-            for (int k = a.order - i - j; k >= 0; --k, ++index)
+    for (int i = order; i >= 0; --i)
+        for (int j = order - i; j >= 0; --j)
+            for (int k = order - i - j; k >= 0; --k, ++index)
                 if (size_t(index) < a.coefficients.size()) add(i, j, k, a.coefficients[size_t(index)]);
     return terms;
 }

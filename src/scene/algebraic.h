@@ -11,7 +11,7 @@ namespace drt {
 struct Algebraic {
     enum class Form { Quadric, Cubic, Quartic, Poly }; // the keyword it was written with
     Form form = Form::Poly;
-    int order = 2;
+    int order = 2; // Poly only: the cubic, quartic and quadric forms have order 3, 4 and 2
     // As written. Quadric: A..J of A x^2 + B y^2 + C z^2 + D xy + E xz + F yz +
     // G x + H y + I z + J. Other forms: one coefficient per term in POV-Ray's
     // order (algebraicTerms below), algebraicTermCount(order) of them.
