@@ -200,6 +200,17 @@ const ErrorCase kCases[] = {
     {"Ior", "sphere { 0, 1 interior { ior 0 } }", "'ior' must be positive", 1, 30},
     {"InteriorFadeDistance", "sphere { 0, 1 interior { fade_distance -1 } }", "'fade_distance' must not be negative", 1, 40},
     {"InteriorFadePower", "sphere { 0, 1 interior { fade_power -1 } }", "'fade_power' must not be negative", 1, 37},
+    // algebraic shapes
+    {"QuarticCoefficientCount", "quartic {\n  <1, 2, 3> }", "quartic coefficient list needs 35 numbers, found 3", 2, 3},
+    {"CubicCoefficientCount", "cubic { <1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21> }", "cubic coefficient list needs 20 numbers, found 21", 1, 9},
+    {"PolyCoefficientCount", "poly { 3, <1, 2> }", "poly coefficient list needs 20 numbers, found 2", 1, 11},
+    {"PolyOrderRange", "poly { 1, <1, 2, 3, 4> }", "poly order must be between 2 and 35, not 1", 1, 8},
+    {"PolyOrderWhole", "poly { 2.5, <1> }", "the poly order must be a whole number", 1, 8},
+    {"PolyNeedsList", "poly { 2, 1 }", "expected '<' to open the poly coefficient list, found '1'", 1, 11},
+    {"QuadricNeedsComma", "quadric { <1, 1, 1> <0, 0, 0>, <0, 0, 0>, -1 }", "expected ',' after the quadric's vector, found '<'", 1, 21},
+    {"ConstantPolynomial", "poly { 2, <0, 0, 0, 0, 0, 0, 0, 0, 0, 5> }", "poly has no term in x, y or z: it defines no surface", 1, 1},
+    {"SuperellipsoidCount", "superellipsoid { <1, 1, 1> }", "superellipsoid exponents <e, n> needs 2 numbers, found 3", 1, 18},
+    {"SuperellipsoidPositive", "superellipsoid { <0, 1> }", "superellipsoid exponents must be positive", 1, 18},
 };
 // clang-format on
 

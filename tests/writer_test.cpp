@@ -106,6 +106,15 @@ struct Differ {
             return eq(s->majorRadius, t.majorRadius, p + ".major") &&
                    eq(s->minorRadius, t.minorRadius, p + ".minor");
         }
+        if (auto* s = std::get_if<Algebraic>(&a)) {
+            auto& t = std::get<Algebraic>(b);
+            return eq(s->form, t.form, p + ".form") && eq(s->order, t.order, p + ".order") &&
+                   eq(s->coefficients, t.coefficients, p + ".coefficients") && eq(s->sturm, t.sturm, p + ".sturm");
+        }
+        if (auto* s = std::get_if<Superellipsoid>(&a)) {
+            auto& t = std::get<Superellipsoid>(b);
+            return eq(s->e, t.e, p + ".e") && eq(s->n, t.n, p + ".n");
+        }
         if (auto* s = std::get_if<Mesh>(&a)) {
             auto& t = std::get<Mesh>(b);
             return eq(s->vertices, t.vertices, p + ".vertices") &&
@@ -287,6 +296,11 @@ cylinder { <0, 0, 0>, <0, 2, 0>, 0.5 open translate -x * 3 pigment { radial colo
 cone { <0, 0, 0>, 1, <0, 2, 0>, 0.2 open pigment { onion } translate z * 3 }
 disc { <0, 0.01, 0>, <0, 1, 1>, 2, 1 }
 torus { 1, 0.25 translate y * 3 no_shadow hollow inverse }
+quadric { <1, 2, 3>, <0.5, -0.25, 0.125>, <0.1, 0.2, 0.3>, -1 translate <4, 1, 0> }
+cubic { <1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, -0.5> sturm scale 0.5 translate <-4, 1, 0> }
+quartic { <1, 0, 0, 0, 2, 0, 0, 2, 0, -104, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 56, 0, 0, 0, 0, 1, 0, -104, 0, 784> scale 0.1 }
+poly { 2, <1, 0, 0, 0, 0, 0, 0, 1, 0, -0.01> }
+superellipsoid { <0.3, 2.5> translate <2, 1, 2> }
 triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> }
 smooth_triangle { <0, 0, 0>, <0, 0, -1>, <1, 0, 0>, <0, 0.2, -1>, <0, 1, 0>, <0.1, 0, -1> }
 mesh { triangle { <0, 0, 0>, <1, 0, 0>, <1, 1, 0> } smooth_triangle { <0, 0, 0>, <0, 0, -1>, <1, 1, 0>, <0, 1, -1>, <0, 1, 0>, <1, 0, -1> } translate z * 5 }

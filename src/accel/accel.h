@@ -1,7 +1,8 @@
 // The Embree wrapper: one device, one scene built from the scene model, and
 // ray queries. All ray intersection in drt goes through here.
 //
-// Shapes: spheres, planes, cylinders, cones, discs and tori are analytic Embree
+// Shapes: spheres, planes, cylinders, cones, discs, tori and the algebraic
+// surfaces (polynomials, superellipsoids: algebraic_shapes.h) are analytic Embree
 // user geometry (intersected in object space in double precision, so any
 // affine transform works); boxes, triangles and meshes are Embree triangles.
 // Objects with Motion become instances of their own sub-scene with two
@@ -28,7 +29,8 @@
 // and ray origins are shifted in double before Embree rounds them to float, so
 // a scene at 1e5 traces like one at the origin.
 //
-// Planes get finite bounds of +-1e18 (Embree drops bounds beyond ~1.8e18).
+// Planes and polynomial surfaces get finite bounds of +-1e18 (Embree drops
+// bounds beyond ~1.8e18).
 #pragma once
 
 #include "core/vec.h"

@@ -29,22 +29,34 @@ static double evaluate(const double* c, int degree, double t) {
 }
 
 // The root of a polynomial that is monotonic on [lo, hi] with f(lo), f(hi) of
-// opposite signs: Newton steps, falling back to bisection whenever a step leaves
-// the bracket, which shrinks every iteration.
+// opposite signs: Newton steps safeguarded as in Numerical Recipes' rtsafe
+// (9.4): a bisection instead whenever the Newton step would leave the bracket
+// or would not at least halve the step before last, so the bracket shrinks
+// geometrically even far from the root, where Newton on a degree-n
+// polynomial gains only a factor 1 - 1/n per step.
 static double refineBracketedRoot(const double* c, const double* derivative, int degree, double lo, double hi,
                                   double fLo) {
+    if (fLo > 0) std::swap(lo, hi); // from here f(lo) < 0 < f(hi), lo may exceed hi
     double t = 0.5 * (lo + hi);
-    for (int iteration = 0; iteration < 100; ++iteration) {
-        const double f = evaluate(c, degree, t);
+    double step = std::fabs(hi - lo), stepBefore = step;
+    double f = evaluate(c, degree, t), slope = evaluate(derivative, degree - 1, t);
+    for (int iteration = 0; iteration < 200; ++iteration) {
         if (f == 0) return t;
-        if ((f < 0) == (fLo < 0)) lo = t;
+        const bool leaves = ((t - hi) * slope - f) * ((t - lo) * slope - f) > 0;
+        const bool slow = std::fabs(2 * f) > std::fabs(stepBefore * slope);
+        stepBefore = step;
+        if (leaves || slow) {
+            step = 0.5 * (hi - lo);
+            t = lo + step;
+        } else {
+            step = f / slope;
+            t -= step;
+        }
+        if (std::fabs(step) <= 1e-15 * std::fmax(1.0, std::fabs(t))) return t;
+        f = evaluate(c, degree, t);
+        slope = evaluate(derivative, degree - 1, t);
+        if (f < 0) lo = t;
         else hi = t;
-        const double slope = evaluate(derivative, degree - 1, t);
-        double next = slope != 0 ? t - f / slope : 0.5 * (lo + hi);
-        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        if (std::fabs(next - t) <= 1e-15 * std::fmax(1.0, std::fabs(t)) || hi - lo <= 1e-15 * std::fmax(1.0, std::fabs(t)))
-            return next;
-        t = next;
     }
     return t;
 }
@@ -60,26 +72,39 @@ int polynomialRootsInInterval(const double* c, int degree, double lo, double hi,
         }
         return 0;
     }
-    double derivative[4];
+    if (degree == 2) {
+        // Closed form (cancellation-free, as solveQuadratic). A double or
+        // complex pair does not change sign: no root, as below.
+        const double a = c[2], b = c[1], c0 = c[0];
+        const double discriminant = b * b - 4 * a * c0;
+        if (!(discriminant > 0)) return 0;
+        const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
+        double t0 = q / a, t1 = c0 / q;
+        if (t0 > t1) std::swap(t0, t1);
+        int count = 0;
+        if (t0 >= lo && t0 <= hi) roots[count++] = t0;
+        if (t1 >= lo && t1 <= hi) roots[count++] = t1;
+        return count;
+    }
+    if (degree > kMaxPolynomialDegree) return 0;
+    double derivative[kMaxPolynomialDegree];
     for (int i = 1; i <= degree; ++i) derivative[i - 1] = i * c[i];
     // Critical points split [lo, hi] into monotonic pieces.
-    double edges[6];
+    double edges[kMaxPolynomialDegree + 2];
     edges[0] = lo;
     const int criticalCount = polynomialRootsInInterval(derivative, degree - 1, lo, hi, edges + 1);
     edges[criticalCount + 1] = hi;
+    // Signs only (zero counts as positive): a root is reported where the sign
+    // changes, never for an exact zero at a critical point that the surface
+    // only touches.
     int count = 0;
     double fLo = evaluate(c, degree, edges[0]);
     for (int piece = 0; piece <= criticalCount; ++piece) {
         const double a = edges[piece], b = edges[piece + 1];
         const double fHi = evaluate(c, degree, b);
-        if (fLo == 0) {
-            if (count == 0 || roots[count - 1] != a) roots[count++] = a;
-        } else if (fHi != 0 && (fLo < 0) != (fHi < 0)) {
-            roots[count++] = refineBracketedRoot(c, derivative, degree, a, b, fLo);
-        }
+        if ((fLo < 0) != (fHi < 0)) roots[count++] = refineBracketedRoot(c, derivative, degree, a, b, fLo);
         fLo = fHi;
     }
-    if (fLo == 0 && (count == 0 || roots[count - 1] != hi)) roots[count++] = hi;
     return count;
 }
 

@@ -9,12 +9,17 @@ namespace drt::accel {
 // twice). a == 0 falls back to the linear equation.
 int solveQuadratic(double a, double b, double c, double roots[2]);
 
-// Real roots of sum_i coefficients[i] t^i (degree <= 4) inside [lo, hi], in
-// ascending order; `roots` must hold degree + 1 values. Each root is isolated
+inline constexpr int kMaxPolynomialDegree = 35; // POV-Ray's largest poly order
+
+// Real roots of sum_i coefficients[i] t^i (degree <= kMaxPolynomialDegree)
+// inside [lo, hi], in ascending order; `roots` must hold degree + 1 values. Each root is isolated
 // between consecutive roots of the derivative (found recursively), where the
 // polynomial is monotonic, then refined by Newton steps safeguarded with
 // bisection. Roots of even multiplicity (tangent grazes) without a sign change
-// are not reported.
+// are not reported. Every root is found where the evaluated sign changes, so
+// the count always agrees with the signs at lo and hi (odd count: they
+// differ), which keeps CSG inside/outside parity right even where rounding
+// blurs near-double roots.
 int polynomialRootsInInterval(const double* coefficients, int degree, double lo, double hi, double* roots);
 
 } // namespace drt::accel

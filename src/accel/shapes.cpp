@@ -1,5 +1,6 @@
 #include "accel/shapes.h"
 
+#include "accel/algebraic_shapes.h"
 #include "accel/polynomial.h"
 
 #include <algorithm>
@@ -231,6 +232,15 @@ std::optional<AnalyticShape> prepareShape(const Shape& shape) {
         s.kind = ShapeKind::Box;
         s.lower = min(box->corner1, box->corner2);
         s.upper = max(box->corner1, box->corner2);
+    } else if (const auto* algebraic = std::get_if<Algebraic>(&shape)) {
+        s.kind = ShapeKind::Polynomial;
+        s.polynomial = std::make_shared<const PolynomialSurface>(preparePolynomial(*algebraic));
+    } else if (const auto* super = std::get_if<Superellipsoid>(&shape)) {
+        require(finite(super->e) && finite(super->n) && super->e > 0 && super->n > 0,
+                "superellipsoid needs positive finite exponents");
+        s.kind = ShapeKind::Superellipsoid;
+        s.exponentE = super->e;
+        s.exponentN = super->n;
     } else {
         return std::nullopt;
     }
@@ -246,6 +256,8 @@ int intersectShape(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossin
     case ShapeKind::Disc: return intersectDisc(s, o, d, list);
     case ShapeKind::Torus: return intersectTorus(s, o, d, list);
     case ShapeKind::Box: return intersectBox(s, o, d, list);
+    case ShapeKind::Polynomial: return intersectPolynomial(*s.polynomial, o, d, out, kMaxCrossings);
+    case ShapeKind::Superellipsoid: return intersectSuperellipsoid(s.exponentE, s.exponentN, o, d, out, kMaxCrossings);
     }
     return 0;
 }
@@ -271,6 +283,8 @@ bool insideShape(const AnalyticShape& s, const Vec3& p) {
     case ShapeKind::Box:
         return p.x > s.lower.x && p.y > s.lower.y && p.z > s.lower.z && p.x < s.upper.x && p.y < s.upper.y &&
                p.z < s.upper.z;
+    case ShapeKind::Polynomial: return insidePolynomial(*s.polynomial, p);
+    case ShapeKind::Superellipsoid: return superellipsoidFunction(s.exponentE, s.exponentN, p) < 0;
     }
     return false;
 }
@@ -308,6 +322,14 @@ bool shapeBounds(const AnalyticShape& s, Vec3& lower, Vec3& upper) {
     case ShapeKind::Box:
         lower = s.lower;
         upper = s.upper;
+        return true;
+    case ShapeKind::Polynomial:
+        lower = s.polynomial->lower;
+        upper = s.polynomial->upper;
+        return s.polynomial->bounded;
+    case ShapeKind::Superellipsoid:
+        lower = Vec3(-1);
+        upper = Vec3(1);
         return true;
     }
     return false;

@@ -8,6 +8,7 @@
 #include "core/vec.h"
 #include "scene/scene.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -18,9 +19,12 @@ struct Crossing {
     Vec3 normal; // object space, outward, not normalised
 };
 
-inline constexpr int kMaxCrossings = 4;
+// A poly of order 35 (the largest) can cross a line 35 times.
+inline constexpr int kMaxCrossings = 36;
 
-enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box };
+struct PolynomialSurface; // algebraic_shapes.h
+
+enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box, Polynomial, Superellipsoid };
 
 // A shape in the form its intersection routine wants. Cylinders are cones
 // with equal radii; cones and cylinders are stored in a local frame whose z
@@ -37,6 +41,8 @@ struct AnalyticShape {
     double baseRadius = 1, capRadius = 1; // Cone
     bool open = false;     // Cone: no end caps
     Vec3 lower, upper;     // Box
+    std::shared_ptr<const PolynomialSurface> polynomial; // Polynomial
+    double exponentE = 1, exponentN = 1;                 // Superellipsoid
 };
 
 // Builds the analytic form of an analytic scene shape. Returns nothing for
@@ -52,7 +58,8 @@ int intersectShape(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Cro
 // half-space below; discs and open cones have no inside).
 bool insideShape(const AnalyticShape& shape, const Vec3& p);
 
-// Object-space bounds; false when the shape is unbounded (planes).
+// Object-space bounds; false when the shape is unbounded (planes, polynomials
+// other than ellipsoids).
 bool shapeBounds(const AnalyticShape& shape, Vec3& lower, Vec3& upper);
 
 } // namespace drt::accel

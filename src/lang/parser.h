@@ -134,6 +134,10 @@ private:
                  bool noShadow, bool hollow);
     std::vector<Object> csgChildren(ParsedObject& po, const Transform& csgToWorld);
     double positiveRadius(const char* what);
+    // parser_algebraic.cpp
+    static bool isAlgebraicWord(const std::string& word);
+    void algebraicBody(const Token& keyword, ParsedObject& po);
+    std::vector<double> coefficientList(const std::string& what, int expected);
 
     // --------------------------------------------------- parser_textures.cpp
     Texture texture();

@@ -11,7 +11,8 @@ static const std::vector<std::string>& objectWords() {
     static const std::vector<std::string> words{"sphere", "plane",    "box",             "cylinder", "cone",
                                                 "disc",   "torus",    "triangle",        "smooth_triangle",
                                                 "mesh",   "union",    "merge",           "difference",
-                                                "intersection", "object"};
+                                                "intersection", "object",
+                                                "quadric", "cubic", "quartic", "poly", "superellipsoid"};
     return words;
 }
 
@@ -175,6 +176,8 @@ void Parser::shapeBody(const Token& keyword, ParsedObject& po) {
         Mesh m;
         meshTriangle(m, w == "smooth_triangle");
         shape = m;
+    } else if (isAlgebraicWord(w)) {
+        algebraicBody(keyword, po);
     } else if (w == "mesh") {
         Mesh m;
         while (checkWord("triangle") || checkWord("smooth_triangle")) {

@@ -409,6 +409,8 @@ std::string SceneWriter::shapeHead(const Object& o, int indent) {
         std::string operator()(const Torus& t) const {
             return "torus { " + number(t.majorRadius) + ", " + number(t.minorRadius);
         }
+        std::string operator()(const Algebraic& a) const { return algebraicHead(a); }
+        std::string operator()(const Superellipsoid& s) const { return superellipsoidHead(s); }
         std::string operator()(const Mesh& m) const { return w.meshText(m, indent); }
         std::string operator()(const Csg& c) const {
             if (c.children.empty()) {

@@ -41,6 +41,12 @@ std::vector<Step> decompose(const Transform& t);
 // " translate <...> rotate <...>": each step preceded by a space.
 std::string formatSteps(const std::vector<Step>& steps);
 
+// ------------------------------------------------------------ writer_algebraic.cpp
+
+// The opening of the shape's block through its coefficients (and `sturm`).
+std::string algebraicHead(const Algebraic& a);
+std::string superellipsoidHead(const Superellipsoid& s);
+
 // ------------------------------------------------------------ writer_texture.cpp
 
 std::string colorText(const Color& c);   // "rgb 0.5" or "rgb <r, g, b>"

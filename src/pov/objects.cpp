@@ -13,14 +13,15 @@ namespace {
 const std::set<std::string>& primitiveWords() {
     static const std::set<std::string> w = {"sphere", "box", "plane", "cylinder", "cone", "disc", "torus",
                                             "triangle", "smooth_triangle", "mesh", "mesh2", "union", "merge",
-                                            "difference", "intersection", "object", "polygon"};
+                                            "difference", "intersection", "object", "polygon",
+                                            "quadric", "cubic", "quartic", "poly", "superellipsoid"};
     return w;
 }
 
 const std::set<std::string>& unsupportedShapes() {
     static const std::set<std::string> w = {"blob", "height_field", "isosurface", "julia_fractal", "lathe",
-                                            "parametric", "prism", "quadric", "cubic", "poly", "quartic", "sor",
-                                            "sphere_sweep", "superellipsoid", "text", "bicubic_patch", "ovus"};
+                                            "parametric", "prism", "sor", "sphere_sweep", "text", "bicubic_patch",
+                                            "ovus"};
     return w;
 }
 
@@ -83,6 +84,8 @@ void objectBounds(const PovObject& po, Vec3& lower, Vec3& upper) {
     } else if (const Torus* t = std::get_if<Torus>(&o.shape)) {
         const double r = t->majorRadius + t->minorRadius;
         lo = {-r, -t->minorRadius, -r}, hi = {r, t->minorRadius, r};
+    } else if (std::holds_alternative<Superellipsoid>(o.shape)) {
+        lo = Vec3(-1), hi = Vec3(1);
     } else if (const Mesh* m = std::get_if<Mesh>(&o.shape)) {
         if (!m->vertices.empty()) {
             lo = hi = m->vertices.front();
@@ -211,6 +214,8 @@ PovObject PovParser::object(const Tok& keyword) {
         comma();
         t.minorRadius = floatExpr();
         o.shape = t;
+    } else if (isAlgebraicWord(w)) {
+        o.shape = algebraicShape(keyword);
     } else if (w == "triangle") {
         const Vec3 a = vectorExpr();
         comma();
@@ -456,7 +461,10 @@ PovObject PovParser::object(const Tok& keyword) {
             else if (Cone* co = std::get_if<Cone>(&o.shape)) co->open = true;
             else warnOnce("open", t.loc, "'open' applies to cylinder and cone only; ignored");
         } else if (m == "sturm" || m == "smooth" || m == "split_union" || m == "hierarchy") {
-            if (peekOperator().kind == TokKind::Number) floatExpr();
+            const Tok n = peekOperator();
+            const bool on = n.kind == TokKind::Number ? floatExpr() != 0 : true;
+            if (Algebraic* a = std::get_if<Algebraic>(&o.shape); a && m == "sturm" && a->form != Algebraic::Form::Quadric)
+                a->sturm = on;
         } else if (m == "inside_vector") {
             vectorExpr();
         } else if (m == "bounded_by" || m == "clipped_by") {

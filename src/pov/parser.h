@@ -99,6 +99,10 @@ public:
     bool isObjectWord(const Tok& t) const;
     PovObject object(const Tok& keyword); // keyword consumed
     void applyTransform(PovObject& o, const Transform& t);
+    // ------------------------------------------------------------ algebraic.cpp
+    static bool isAlgebraicWord(const std::string& w);
+    Shape algebraicShape(const Tok& keyword); // after the shape's '{'
+    std::vector<double> coefficientList(const std::string& what, int expected);
 
     // ------------------------------------------------------------ scene (scene_items.cpp)
     void statement(const Tok& t);
