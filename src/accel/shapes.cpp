@@ -1,5 +1,6 @@
 #include "accel/shapes.h"
 
+#include "accel/extrusion_shape.h"
 #include "accel/polynomial.h"
 
 #include <algorithm>
@@ -231,6 +232,9 @@ std::optional<AnalyticShape> prepareShape(const Shape& shape) {
         s.kind = ShapeKind::Box;
         s.lower = min(box->corner1, box->corner2);
         s.upper = max(box->corner1, box->corner2);
+    } else if (const auto* extrusion = std::get_if<Extrusion>(&shape)) {
+        s.kind = ShapeKind::Extrusion;
+        s.extrusion = std::make_shared<const ExtrusionGeometry>(*extrusion);
     } else {
         return std::nullopt;
     }
@@ -246,8 +250,34 @@ int intersectShape(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossin
     case ShapeKind::Disc: return intersectDisc(s, o, d, list);
     case ShapeKind::Torus: return intersectTorus(s, o, d, list);
     case ShapeKind::Box: return intersectBox(s, o, d, list);
+    case ShapeKind::Extrusion: {
+        thread_local std::vector<Crossing> many;
+        s.extrusion->intersect(o, d, many);
+        for (const Crossing& c : many) list.add(c.t, c.normal);
+        return list.count;
+    }
     }
     return 0;
+}
+
+int allCrossings(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossing fixed[kMaxCrossings],
+                 std::vector<Crossing>& many, const Crossing*& first) {
+    if (s.kind == ShapeKind::Extrusion) {
+        s.extrusion->intersect(o, d, many);
+        first = many.data();
+        return static_cast<int>(many.size());
+    }
+    first = fixed;
+    return intersectShape(s, o, d, fixed);
+}
+
+bool isSolidShape(const AnalyticShape& s) {
+    switch (s.kind) {
+    case ShapeKind::Disc: return false;
+    case ShapeKind::Cone: return !s.open;
+    case ShapeKind::Extrusion: return s.extrusion->solid();
+    default: return true;
+    }
 }
 
 bool insideShape(const AnalyticShape& s, const Vec3& p) {
@@ -271,6 +301,7 @@ bool insideShape(const AnalyticShape& s, const Vec3& p) {
     case ShapeKind::Box:
         return p.x > s.lower.x && p.y > s.lower.y && p.z > s.lower.z && p.x < s.upper.x && p.y < s.upper.y &&
                p.z < s.upper.z;
+    case ShapeKind::Extrusion: return s.extrusion->inside(p);
     }
     return false;
 }
@@ -309,6 +340,7 @@ bool shapeBounds(const AnalyticShape& s, Vec3& lower, Vec3& upper) {
         lower = s.lower;
         upper = s.upper;
         return true;
+    case ShapeKind::Extrusion: s.extrusion->bounds(lower, upper); return true;
     }
     return false;
 }

@@ -8,8 +8,10 @@
 #include "core/vec.h"
 #include "scene/scene.h"
 
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace drt::accel {
 
@@ -20,7 +22,9 @@ struct Crossing {
 
 inline constexpr int kMaxCrossings = 4;
 
-enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box };
+enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box, Extrusion };
+
+class ExtrusionGeometry; // accel/extrusion_shape.h
 
 // A shape in the form its intersection routine wants. Cylinders are cones
 // with equal radii; cones and cylinders are stored in a local frame whose z
@@ -37,6 +41,7 @@ struct AnalyticShape {
     double baseRadius = 1, capRadius = 1; // Cone
     bool open = false;     // Cone: no end caps
     Vec3 lower, upper;     // Box
+    std::shared_ptr<const ExtrusionGeometry> extrusion; // Extrusion
 };
 
 // Builds the analytic form of an analytic scene shape. Returns nothing for
@@ -45,8 +50,17 @@ struct AnalyticShape {
 std::optional<AnalyticShape> prepareShape(const Shape& shape);
 
 // Every crossing of the line o + t d with the surface, sorted by t; returns
-// the count (at most kMaxCrossings). d need not be unit length.
+// the count (at most kMaxCrossings; an extrusion reports its first ones).
+// d need not be unit length.
 int intersectShape(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Crossing out[kMaxCrossings]);
+
+// All crossings, however many (extrusions may have more than kMaxCrossings):
+// points to `fixed` or to `many`, and returns the count.
+int allCrossings(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Crossing fixed[kMaxCrossings],
+                 std::vector<Crossing>& many, const Crossing*& first);
+
+// Whether the shape encloses a volume (discs, open cones and open extrusions do not).
+bool isSolidShape(const AnalyticShape& shape);
 
 // Whether the object-space point p is strictly inside the shape (planes: the
 // half-space below; discs and open cones have no inside).

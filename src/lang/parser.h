@@ -134,6 +134,9 @@ private:
                  bool noShadow, bool hollow);
     std::vector<Object> csgChildren(ParsedObject& po, const Transform& csgToWorld);
     double positiveRadius(const char* what);
+    // parser_extrusion.cpp
+    void prismBody(const Token& keyword, ParsedObject& po);
+    void textBody(const Token& keyword, ParsedObject& po);
 
     // --------------------------------------------------- parser_textures.cpp
     Texture texture();

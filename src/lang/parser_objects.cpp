@@ -11,7 +11,7 @@ static const std::vector<std::string>& objectWords() {
     static const std::vector<std::string> words{"sphere", "plane",    "box",             "cylinder", "cone",
                                                 "disc",   "torus",    "triangle",        "smooth_triangle",
                                                 "mesh",   "union",    "merge",           "difference",
-                                                "intersection", "object"};
+                                                "intersection", "object", "prism", "text"};
     return words;
 }
 
@@ -175,6 +175,10 @@ void Parser::shapeBody(const Token& keyword, ParsedObject& po) {
         Mesh m;
         meshTriangle(m, w == "smooth_triangle");
         shape = m;
+    } else if (w == "prism") {
+        prismBody(keyword, po);
+    } else if (w == "text") {
+        textBody(keyword, po);
     } else if (w == "mesh") {
         Mesh m;
         while (checkWord("triangle") || checkWord("smooth_triangle")) {
@@ -303,7 +307,8 @@ bool Parser::objectModifier(ParsedObject& po) {
         advance();
         if (Cylinder* c = std::get_if<Cylinder>(&o.shape)) c->open = true;
         else if (Cone* c = std::get_if<Cone>(&o.shape)) c->open = true;
-        else error(loc, "'open' applies only to cylinder and cone");
+        else if (Extrusion* e = std::get_if<Extrusion>(&o.shape); e && e->prism) e->open = true;
+        else error(loc, "'open' applies only to cylinder, cone and prism");
     } else {
         return false;
     }

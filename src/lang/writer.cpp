@@ -410,6 +410,7 @@ std::string SceneWriter::shapeHead(const Object& o, int indent) {
             return "torus { " + number(t.majorRadius) + ", " + number(t.minorRadius);
         }
         std::string operator()(const Mesh& m) const { return w.meshText(m, indent); }
+        std::string operator()(const Extrusion& e) const { return writer::extrusionText(e, indent, w.problems_); }
         std::string operator()(const Csg& c) const {
             if (c.children.empty()) {
                 w.problems_.insert("a CSG with no members (left out)");

@@ -98,6 +98,9 @@ public:
     // ------------------------------------------------------------ objects (objects.cpp)
     bool isObjectWord(const Tok& t) const;
     PovObject object(const Tok& keyword); // keyword consumed
+    // extrusion.cpp: the bodies of prism and text, after '{'.
+    Extrusion prismShape(SourceLoc keyword);
+    std::optional<Extrusion> textShape(SourceLoc keyword);
     void applyTransform(PovObject& o, const Transform& t);
 
     // ------------------------------------------------------------ scene (scene_items.cpp)

@@ -7,6 +7,7 @@
 #include "core/diagnostics.h"
 #include "core/transform.h"
 #include "core/vec.h"
+#include "scene/extrusion.h"
 
 #include <array>
 #include <cstdint>
@@ -185,7 +186,8 @@ struct Csg {
     std::vector<Object> children;
 };
 
-using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg>;
+using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg,
+                           Extrusion>;
 
 // Motion over the shutter (issue 3): the extra transform reached at time 1,
 // applied after Object::transform. At time t the object is scaled by
