@@ -33,6 +33,11 @@ ExtrusionGeometry::ExtrusionGeometry(const Extrusion& e)
             if (a.x != b.x || a.y != b.y) edges_.push_back({a, b, {}, false});
         }
     }
+    if (e.contours.empty()) { // e.g. a text of spaces: nothing to hit
+        lo_ = hi_ = {0, 0};
+        empty_ = true;
+        return;
+    }
     if (edges_.size() < 3 || !(hi_.x > lo_.x) || !(hi_.y > lo_.y))
         throw std::invalid_argument("extrusion outline encloses no area");
 
@@ -88,6 +93,7 @@ Vec3 ExtrusionGeometry::fromLocal(const Vec3& l) const {
 // the grid cell of its crossing point only (an edge is listed in every cell
 // its bounds overlap). Edges are half-open in v so a vertex counts once.
 bool ExtrusionGeometry::filled(Vec2 p) const {
+    if (empty_) return false;
     if (!(p.x >= lo_.x && p.x <= hi_.x && p.y >= lo_.y && p.y <= hi_.y)) return false;
     const int r = row(p.y);
     int winding = 0, crossings = 0;
@@ -211,6 +217,7 @@ void ExtrusionGeometry::wallCrossingsConic(const Vec3& o, const Vec3& d, std::ve
 
 void ExtrusionGeometry::intersect(const Vec3& oObject, const Vec3& dObject, std::vector<Crossing>& out) const {
     out.clear();
+    if (empty_) return;
     const Vec3 o = toLocal(oObject), d = toLocal(dObject);
     if (conic_) wallCrossingsConic(o, d, out);
     else wallCrossingsLinear(o, d, out);

@@ -16,7 +16,8 @@ namespace drt::accel {
 
 class ExtrusionGeometry {
 public:
-    // Throws std::invalid_argument for an empty or non-finite outline or equal heights.
+    // Throws std::invalid_argument for a non-finite outline, one without area,
+    // or equal heights. No contours at all (a text of spaces) is an empty shape.
     explicit ExtrusionGeometry(const Extrusion& e);
 
     // Every crossing of the line o + t d (object space), sorted by t, with
@@ -48,6 +49,7 @@ private:
     Extrusion::Fill fill_;
     double h1_, h2_;
     bool conic_, open_;
+    bool empty_ = false;
     Vec2 lo_, hi_;      // outline bounds
     Vec2 cell_;         // grid cell size
     int nx_ = 1, ny_ = 1;

@@ -98,7 +98,6 @@ void Parser::textBody(const Token& keyword, ParsedObject& po) {
     } catch (const FontError& ex) {
         fail(font.loc, ex.what());
     }
-    if (e.contours.empty()) fail(font.loc, "the text has no visible glyphs");
     po.object.shape = std::move(e);
 }
 

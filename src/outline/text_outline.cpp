@@ -21,6 +21,7 @@ std::string findFontFile(const std::string& name, const std::vector<std::string>
         const fs::path candidate = fs::path(dir) / name;
         if (fs::is_regular_file(candidate, ec)) return candidate.lexically_normal().string();
     }
+    if (!fs::path(name).has_extension()) return findFontFile(name + ".ttf", dirs);
     return "";
 }
 
@@ -133,7 +134,8 @@ FT_UInt glyphIndex(FT_Face face, char32_t c) {
 
 } // namespace
 
-std::vector<std::vector<Vec2>> textContours(const std::string& fontPath, const std::string& text, Vec2 offset) {
+std::vector<std::vector<Vec2>> textContours(const std::string& fontPath, const std::string& text, Vec2 offset,
+                                            Vec2* boxLower, Vec2* boxUpper) {
     FreeTypeLibrary ft;
     if (FT_Init_FreeType(&ft.library)) throw FontError("cannot start FreeType");
     if (FT_New_Face(ft.library, fontPath.c_str(), 0, &ft.face))
@@ -152,7 +154,7 @@ std::vector<std::vector<Vec2>> textContours(const std::string& fontPath, const s
     funcs.conic_to = &OutlineSink::conicTo;
     funcs.cubic_to = &OutlineSink::cubicTo;
 
-    Vec2 pen;
+    Vec2 pen, boxLo, boxHi;
     FT_UInt previous = 0;
     bool firstGlyph = true;
     for (char32_t c : decodeText(text)) {
@@ -172,6 +174,13 @@ std::vector<std::vector<Vec2>> textContours(const std::string& fontPath, const s
                 pen.x += std::max(double(kern.x), minKern) * scale;
         }
         sink.origin = pen;
+        FT_BBox box;
+        FT_Outline_Get_CBox(&slot->outline, &box);
+        if (slot->outline.n_points == 0) box = {0, 0, 0, 0};
+        const Vec2 lo{pen.x + box.xMin * scale, pen.y + box.yMin * scale};
+        const Vec2 hi{pen.x + box.xMax * scale, pen.y + box.yMax * scale};
+        boxLo = firstGlyph ? lo : Vec2{std::min(boxLo.x, lo.x), std::min(boxLo.y, lo.y)};
+        boxHi = firstGlyph ? hi : Vec2{std::max(boxHi.x, hi.x), std::max(boxHi.y, hi.y)};
         if (FT_Outline_Decompose(&slot->outline, &funcs, &sink))
             throw FontError("cannot read a glyph outline from font '" + fontPath + "'");
         sink.finish();
@@ -180,17 +189,20 @@ std::vector<std::vector<Vec2>> textContours(const std::string& fontPath, const s
         previous = index;
         firstGlyph = false;
     }
+    if (boxLower) *boxLower = boxLo;
+    if (boxUpper) *boxUpper = boxHi;
     return contours;
 }
 
 Extrusion makeTextExtrusion(const TextSource& source, double thickness) {
     Extrusion e;
-    e.contours = textContours(source.fontPath, source.string, {source.offset.x, source.offset.y});
+    e.text = source;
+    e.contours = textContours(source.fontPath, source.string, {source.offset.x, source.offset.y},
+                              &e.text->boxLower, &e.text->boxUpper);
     e.plane = Extrusion::Plane::XY;
     e.fill = Extrusion::Fill::NonZero;
     e.height1 = 0;
     e.height2 = thickness;
-    e.text = source;
     return e;
 }
 

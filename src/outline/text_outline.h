@@ -29,13 +29,17 @@ struct FontError : std::runtime_error {
 };
 
 // The first of dir/name for dir in `dirs` that is a regular file (name itself
-// when absolute); empty when there is none.
+// when absolute), trying name.ttf too when the name has no extension (as
+// POV-Ray does); empty when there is none.
 std::string findFontFile(const std::string& name, const std::vector<std::string>& dirs);
 
-// The outline of `text` set in the font at `fontPath`. Throws FontError.
-std::vector<std::vector<Vec2>> textContours(const std::string& fontPath, const std::string& text, Vec2 offset);
+// The outline of `text` set in the font at `fontPath`, and if asked the
+// glyphs' box (TextSource::boxLower/boxUpper). Throws FontError.
+std::vector<std::vector<Vec2>> textContours(const std::string& fontPath, const std::string& text, Vec2 offset,
+                                            Vec2* boxLower = nullptr, Vec2* boxUpper = nullptr);
 
-// A text object: the outline extruded along z from 0 to `thickness`. Throws FontError.
+// A text object: the outline extruded along z from 0 to `thickness` (no
+// contours for a text of spaces). Throws FontError.
 Extrusion makeTextExtrusion(const TextSource& source, double thickness);
 
 } // namespace drt

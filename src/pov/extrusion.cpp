@@ -3,6 +3,7 @@
 #include "outline/text_outline.h"
 #include "pov/parser.h"
 
+#include <filesystem>
 #include <stdexcept>
 
 namespace drt::pov {
@@ -32,7 +33,10 @@ Extrusion PovParser::prismShape(SourceLoc keyword) {
         fail(heightLoc, "conic_sweep heights on both sides of the apex (0) are not supported");
     acceptSymbol(",");
     const SourceLoc countLoc = peek().loc;
+    // `4 <1, 2>`: the '<' after the count starts the first point.
+    countBeforeVector_ = true;
     const double count = floatExpr();
+    countBeforeVector_ = false;
     if (!(count >= minimumPrismPoints(source.spline)) || count > 1e7)
         fail(countLoc, "this prism spline needs at least " + std::to_string(minimumPrismPoints(source.spline)) +
                            " points");
@@ -53,19 +57,28 @@ Extrusion PovParser::prismShape(SourceLoc keyword) {
 }
 
 // text { ttf "font" "string" thickness, offset } after '{'. Fonts are found
-// like include files. Nothing when the string has no visible glyph.
+// like include files (with .ttf added to a name without extension). Nothing
+// for POV-Ray's internal fonts (a warning).
 std::optional<Extrusion> PovParser::textShape(SourceLoc keyword) {
     (void)keyword;
     const Tok kind = next();
-    if (kind.isWord("internal")) fail(kind.loc, "POV-Ray's internal fonts are not supported; name a .ttf file");
-    if (!kind.isWord("ttf")) failExpected(kind, "'ttf' and a font file name");
+    if (!kind.isWord("ttf") && !kind.isWord("internal")) failExpected(kind, "'ttf' and a font file name");
     const SourceLoc fontLoc = peek().loc;
     TextSource source;
-    source.font = stringExpr();
+    double internalFont = 0;
+    if (kind.isWord("ttf")) source.font = stringExpr();
+    else internalFont = floatExpr();
+    acceptSymbol(",");
     source.string = stringExpr();
+    acceptSymbol(",");
     const double thickness = floatExpr();
     acceptSymbol(",");
     source.offset = vectorExpr();
+    if (kind.isWord("internal")) {
+        (void)internalFont;
+        warnOnce("text-internal", kind.loc, "POV-Ray's internal fonts are not supported; the text is left out");
+        return std::nullopt;
+    }
     if (thickness == 0) fail(fontLoc, "text thickness must not be zero");
     std::string fromDir = ".";
     for (auto it = frames_.rbegin(); it != frames_.rend(); ++it)
@@ -74,12 +87,12 @@ std::optional<Extrusion> PovParser::textShape(SourceLoc keyword) {
             break;
         }
     source.fontPath = findInclude(source.font, fromDir);
+    if (source.fontPath.empty() && !std::filesystem::path(source.font).has_extension())
+        source.fontPath = findInclude(source.font + ".ttf", fromDir);
     if (source.fontPath.empty())
         fail(fontLoc, "cannot find font file \"" + source.font + "\" (searched the scene's folder and the -L paths)");
     try {
-        Extrusion e = makeTextExtrusion(source, thickness);
-        if (e.contours.empty()) return std::nullopt;
-        return e;
+        return makeTextExtrusion(source, thickness);
     } catch (const FontError& ex) {
         fail(fontLoc, ex.what());
     }

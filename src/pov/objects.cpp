@@ -56,6 +56,7 @@ void extrusionBounds(const Extrusion& e, Vec3& lower, Vec3& upper) {
     Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
     for (const auto& contour : e.contours)
         for (const Vec2& p : contour) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    if (e.text) lo = e.text->boxLower, hi = e.text->boxUpper; // POV-Ray's glyph boxes
     const double h1 = std::min(e.height1, e.height2), h2 = std::max(e.height1, e.height2);
     if (e.conic) {
         const double s = std::max(std::fabs(h1), std::fabs(h2));
@@ -253,7 +254,7 @@ PovObject PovParser::object(const Tok& keyword) {
     } else if (w == "text") {
         std::optional<Extrusion> text = textShape(keyword.loc);
         if (text) o.shape = std::move(*text);
-        else po.lightOnly = true; // only spaces: nothing to render
+        else po.lightOnly = true; // an internal font: left out
     } else if (w == "polygon") {
         // polygon { n, p1, ..., pn }: a closed outline; drt triangulates it as a fan,
         // which is right for convex polygons.

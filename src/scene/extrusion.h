@@ -25,6 +25,9 @@ struct TextSource {
     std::string fontPath; // the file it was found at
     std::string string;   // UTF-8
     Vec3 offset{0, 0, 0}; // extra shift after each glyph (x and y; POV-Ray ignores z)
+    // Derived: POV-Ray's bounding box of the glyphs in x and y (each glyph's
+    // control box at its place, a glyph without outline a point at its origin).
+    Vec2 boxLower, boxUpper;
 };
 
 struct Extrusion {
