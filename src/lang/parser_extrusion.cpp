@@ -3,6 +3,7 @@
 #include "outline/prism_outline.h"
 #include "outline/text_outline.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -85,7 +86,9 @@ void Parser::textBody(const Token& keyword, ParsedObject& po) {
     if (matchWord("offset")) source.offset = vectorExpr("the offset <x, y>");
     // Fonts are found like POV-Ray's: beside the file, beside the scene, then
     // in POV-Ray's include folder.
-    std::vector<std::string> dirs{sources_.back().dir, sources_.front().dir, kPovFontDir};
+    std::vector<std::string> dirs{sources_.back().dir};
+    for (const std::string& dir : {sources_.front().dir, std::string(kPovFontDir)})
+        if (std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) dirs.push_back(dir);
     source.fontPath = findFontFile(source.font, dirs);
     if (source.fontPath.empty()) {
         std::string looked;

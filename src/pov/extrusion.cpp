@@ -71,7 +71,9 @@ std::optional<Extrusion> PovParser::textShape(SourceLoc keyword) {
     acceptSymbol(",");
     source.string = stringExpr();
     acceptSymbol(",");
+    countBeforeVector_ = true; // `1 <0.1, 0, 0>`: the offset follows
     const double thickness = floatExpr();
+    countBeforeVector_ = false;
     acceptSymbol(",");
     source.offset = vectorExpr();
     if (kind.isWord("internal")) {

@@ -75,7 +75,7 @@ public:
     PovValue postfix(PovValue v, SourceLoc loc);
     PovValue arrayLiteral(SourceLoc loc); // after 'array'
     bool inVector_ = false;               // '>' closes a vector literal, not a comparison
-    bool countBeforeVector_ = false;      // '<' starts the vector after a count, not a comparison
+    bool countBeforeVector_ = false;      // '<' after a count or thickness starts a vector, not a comparison
     // Scalar conversions with a clear error.
     double toFloat(const PovValue& v, SourceLoc loc);
     Vec3 toVector(const PovValue& v, SourceLoc loc);
