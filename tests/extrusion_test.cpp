@@ -304,8 +304,26 @@ TEST(ExtrusionIntersect, OpenPrismHasNoCapsAndNoInside) {
 TEST(ExtrusionIntersect, DegenerateExtrusionsAreRejected) {
     EXPECT_THROW(accel::prepareShape(squarePrism(1, 1)), std::invalid_argument);
     EXPECT_THROW(accel::prepareShape(squarePrism(-1, 1, true)), std::invalid_argument);
-    Extrusion empty;
-    EXPECT_THROW(accel::prepareShape(empty), std::invalid_argument);
+    Extrusion flat; // collinear points enclose nothing
+    flat.contours = {{{0, 0}, {1, 1}, {2, 2}}};
+    EXPECT_THROW(accel::prepareShape(flat), std::invalid_argument);
+    Extrusion nan = squarePrism(0, 1);
+    nan.contours[0][1].x = NAN;
+    EXPECT_THROW(accel::prepareShape(nan), std::invalid_argument);
+}
+
+// A text of spaces has no contours: an empty shape, hit by nothing.
+TEST(ExtrusionIntersect, EmptyOutlineIsAnEmptyShape) {
+    TextSource source{"timrom.ttf", kTimes, "   ", {0, 0, 0}};
+    const Extrusion e = makeTextExtrusion(source, 1);
+    EXPECT_TRUE(e.contours.empty());
+    EXPECT_EQ(e.text->boxLower.x, 0); // the spaces' origins: a box of zero height
+    EXPECT_GT(e.text->boxUpper.x, 0);
+    EXPECT_EQ(e.text->boxLower.y, e.text->boxUpper.y);
+    const auto s = *accel::prepareShape(e);
+    accel::Crossing c[accel::kMaxCrossings];
+    EXPECT_EQ(accel::intersectShape(s, {0.2, 0.2, -3}, {0, 0, 1}, c), 0);
+    EXPECT_FALSE(accel::insideShape(s, {0.2, 0.2, 0.5}));
 }
 
 // A text with many edges: every crossing along a line alternates between

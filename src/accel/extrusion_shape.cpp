@@ -75,6 +75,8 @@ ExtrusionGeometry::ExtrusionGeometry(const Extrusion& e)
         edge.boundary = rightFilled != leftFilled;
         edge.outward = !edge.boundary ? Vec2{} : leftFilled ? right : Vec2{-right.x, -right.y};
     }
+    if (std::none_of(edges_.begin(), edges_.end(), [](const Edge& edge) { return edge.boundary; }))
+        throw std::invalid_argument("extrusion outline encloses no area");
 }
 
 int ExtrusionGeometry::column(double u) const {
