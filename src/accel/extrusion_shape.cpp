@@ -91,24 +91,27 @@ Vec3 ExtrusionGeometry::fromLocal(const Vec3& l) const {
     return plane_ == Extrusion::Plane::XZ ? Vec3{l.x, l.z, l.y} : l;
 }
 
-// Crossings of the horizontal half-line from p towards +u, each counted in
-// the grid cell of its crossing point only (an edge is listed in every cell
-// its bounds overlap). Edges are half-open in v so a vertex counts once.
+// Crossings of a horizontal half-line from p, towards whichever end of the
+// grid row is nearer, each counted in the grid cell of its crossing point
+// only (an edge is listed in every cell its bounds overlap). Edges are
+// half-open in v so a vertex counts once. An edge crossing upwards adds 1 to
+// the winding number on the right of p and takes 1 off on the left.
 bool ExtrusionGeometry::filled(Vec2 p) const {
     if (empty_) return false;
     if (!(p.x >= lo_.x && p.x <= hi_.x && p.y >= lo_.y && p.y <= hi_.y)) return false;
-    const int r = row(p.y);
+    const int r = row(p.y), start = column(p.x);
+    const bool rightwards = start >= nx_ / 2;
     int winding = 0, crossings = 0;
-    for (int c = column(p.x); c < nx_; ++c) {
+    for (int c = start; c >= 0 && c < nx_; c += rightwards ? 1 : -1) {
         const size_t cell = size_t(r) * nx_ + c;
         for (uint32_t k = cellStart_[cell]; k < cellStart_[cell + 1]; ++k) {
             const Edge& e = edges_[cellEdges_[k]];
             if ((e.a.y <= p.y) == (e.b.y <= p.y)) continue;
             double u = e.a.x + (p.y - e.a.y) * (e.b.x - e.a.x) / (e.b.y - e.a.y);
             u = std::clamp(u, std::min(e.a.x, e.b.x), std::max(e.a.x, e.b.x));
-            if (!(u > p.x) || column(u) != c) continue;
+            if ((rightwards ? !(u > p.x) : !(u < p.x)) || column(u) != c) continue;
             ++crossings;
-            winding += e.b.y > e.a.y ? 1 : -1;
+            winding += (e.b.y > e.a.y) == rightwards ? 1 : -1;
         }
     }
     return fill_ == Extrusion::Fill::EvenOdd ? (crossings & 1) != 0 : winding != 0;
