@@ -39,7 +39,14 @@ const char* splineWord(PrismSource::Spline s) {
     return "linear_spline";
 }
 
-std::string point(Vec2 p) { return "<" + number(p.x) + ", " + number(p.y) + ">"; }
+std::string point(Vec2 p) {
+    std::string text = "<"; // appended piece by piece: GCC 12 warns (-Wrestrict) on "<" + string
+    text += number(p.x);
+    text += ", ";
+    text += number(p.y);
+    text += ">";
+    return text;
+}
 
 } // namespace
 
