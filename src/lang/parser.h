@@ -136,7 +136,7 @@ private:
     double positiveRadius(const char* what);
     // parser_extrusion.cpp
     void prismBody(const Token& keyword, ParsedObject& po);
-    void textBody(const Token& keyword, ParsedObject& po);
+    void textBody(ParsedObject& po);
 
     // --------------------------------------------------- parser_textures.cpp
     Texture texture();

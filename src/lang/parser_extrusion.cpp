@@ -68,8 +68,7 @@ void Parser::prismBody(const Token& keyword, ParsedObject& po) {
 }
 
 // text-body = "font" string "string" string "thickness" expression [ "offset" expression ]
-void Parser::textBody(const Token& keyword, ParsedObject& po) {
-    (void)keyword;
+void Parser::textBody(ParsedObject& po) {
     TextSource source;
     if (!matchWord("font")) failExpected("'font' and the font file name in quotes");
     const Token font = expect(TokenKind::String, "the font file name in quotes");

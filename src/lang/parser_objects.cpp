@@ -178,7 +178,7 @@ void Parser::shapeBody(const Token& keyword, ParsedObject& po) {
     } else if (w == "prism") {
         prismBody(keyword, po);
     } else if (w == "text") {
-        textBody(keyword, po);
+        textBody(po);
     } else if (w == "mesh") {
         Mesh m;
         while (checkWord("triangle") || checkWord("smooth_triangle")) {

@@ -8,6 +8,17 @@
 
 namespace drt::pov {
 
+namespace {
+
+// Sets a parser flag for one expression, cleared again even if it fails.
+struct FlagFor {
+    bool& flag;
+    explicit FlagFor(bool& f) : flag(f) { flag = true; }
+    ~FlagFor() { flag = false; }
+};
+
+} // namespace
+
 // prism { [sweep] [spline] height1, height2, N, <u, v> ... } after '{'. The
 // points are POV-Ray UV vectors: a float promotes to <f, f>.
 Extrusion PovParser::prismShape(SourceLoc keyword) {
@@ -34,9 +45,10 @@ Extrusion PovParser::prismShape(SourceLoc keyword) {
     acceptSymbol(",");
     const SourceLoc countLoc = peek().loc;
     // `4 <1, 2>`: the '<' after the count starts the first point.
-    countBeforeVector_ = true;
-    const double count = floatExpr();
-    countBeforeVector_ = false;
+    const double count = [&] {
+        FlagFor flag(countBeforeVector_);
+        return floatExpr();
+    }();
     if (!(count >= minimumPrismPoints(source.spline)) || count > 1e7)
         fail(countLoc, "this prism spline needs at least " + std::to_string(minimumPrismPoints(source.spline)) +
                            " points");
@@ -59,25 +71,23 @@ Extrusion PovParser::prismShape(SourceLoc keyword) {
 // text { ttf "font" "string" thickness, offset } after '{'. Fonts are found
 // like include files (with .ttf added to a name without extension). Nothing
 // for POV-Ray's internal fonts (a warning).
-std::optional<Extrusion> PovParser::textShape(SourceLoc keyword) {
-    (void)keyword;
+std::optional<Extrusion> PovParser::textShape() {
     const Tok kind = next();
     if (!kind.isWord("ttf") && !kind.isWord("internal")) failExpected(kind, "'ttf' and a font file name");
     const SourceLoc fontLoc = peek().loc;
     TextSource source;
-    double internalFont = 0;
     if (kind.isWord("ttf")) source.font = stringExpr();
-    else internalFont = floatExpr();
+    else floatExpr(); // the internal font's number
     acceptSymbol(",");
     source.string = stringExpr();
     acceptSymbol(",");
-    countBeforeVector_ = true; // `1 <0.1, 0, 0>`: the offset follows
-    const double thickness = floatExpr();
-    countBeforeVector_ = false;
+    const double thickness = [&] {
+        FlagFor flag(countBeforeVector_); // `1 <0.1, 0, 0>`: the offset follows
+        return floatExpr();
+    }();
     acceptSymbol(",");
     source.offset = vectorExpr();
     if (kind.isWord("internal")) {
-        (void)internalFont;
         warnOnce("text-internal", kind.loc, "POV-Ray's internal fonts are not supported; the text is left out");
         return std::nullopt;
     }

@@ -252,7 +252,7 @@ PovObject PovParser::object(const Tok& keyword) {
     } else if (w == "prism") {
         o.shape = prismShape(keyword.loc);
     } else if (w == "text") {
-        std::optional<Extrusion> text = textShape(keyword.loc);
+        std::optional<Extrusion> text = textShape();
         if (text) o.shape = std::move(*text);
         else po.lightOnly = true; // an internal font: left out
     } else if (w == "polygon") {

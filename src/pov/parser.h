@@ -101,7 +101,7 @@ public:
     PovObject object(const Tok& keyword); // keyword consumed
     // extrusion.cpp: the bodies of prism and text, after '{'.
     Extrusion prismShape(SourceLoc keyword);
-    std::optional<Extrusion> textShape(SourceLoc keyword);
+    std::optional<Extrusion> textShape();
     void applyTransform(PovObject& o, const Transform& t);
 
     // ------------------------------------------------------------ scene (scene_items.cpp)
