@@ -222,6 +222,22 @@ TEST(TextOutline, KerningPullsAVTogether) {
     EXPECT_LT(av, a + v);
 }
 
+// UTF-8 text, and Latin-1 bytes (not valid UTF-8) read byte by byte.
+TEST(TextOutline, Utf8AndLatin1Text) {
+    // U+00A9 (copyright sign), which timrom.ttf has: a ring (two contours) around a C.
+    const auto accented = textContours(kTimes, "\xC2\xA9", {0, 0});
+    const auto latin1 = textContours(kTimes, "\xA9", {0, 0});
+    EXPECT_EQ(accented.size(), 3u);
+    ASSERT_EQ(latin1.size(), accented.size());
+    for (size_t i = 0; i < latin1.size(); ++i) {
+        ASSERT_EQ(latin1[i].size(), accented[i].size());
+        for (size_t k = 0; k < latin1[i].size(); ++k) {
+            EXPECT_EQ(latin1[i][k].x, accented[i][k].x);
+            EXPECT_EQ(latin1[i][k].y, accented[i][k].y);
+        }
+    }
+}
+
 TEST(TextOutline, MissingOrBadFontIsAnError) {
     EXPECT_EQ(findFontFile("no-such-font.ttf", {kPovFontDir, "."}), "");
     EXPECT_EQ(findFontFile("timrom.ttf", {"/nonexistent", kPovFontDir}), kTimes);
@@ -314,7 +330,7 @@ TEST(ExtrusionIntersect, DegenerateExtrusionsAreRejected) {
 
 // A text of spaces has no contours: an empty shape, hit by nothing.
 TEST(ExtrusionIntersect, EmptyOutlineIsAnEmptyShape) {
-    TextSource source{"timrom.ttf", kTimes, "   ", {0, 0, 0}};
+    TextSource source{"timrom.ttf", kTimes, "   ", {0, 0, 0}, {}, {}};
     const Extrusion e = makeTextExtrusion(source, 1);
     EXPECT_TRUE(e.contours.empty());
     EXPECT_EQ(e.text->boxLower.x, 0); // the spaces' origins: a box of zero height
@@ -330,7 +346,7 @@ TEST(ExtrusionIntersect, EmptyOutlineIsAnEmptyShape) {
 // entering and leaving, and a line through a counter (the hole of 'o') leaves
 // the letter there.
 TEST(ExtrusionIntersect, TextCrossingsAlternateAndHolesAreEmpty) {
-    TextSource source{"timrom.ttf", kTimes, "drt 80%", {0, 0, 0}};
+    TextSource source{"timrom.ttf", kTimes, "drt 80%", {0, 0, 0}, {}, {}};
     const auto s = *accel::prepareShape(makeTextExtrusion(source, 0.3));
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> ux(-0.5, 4), uy(-0.5, 1.2), uz(-1, 1);
@@ -404,7 +420,7 @@ Vec3 randomUnitVector(std::mt19937& rng) {
 // prism, at several scales: a ray leaving a surface must not hit it again at
 // its own spawn point.
 TEST(ExtrusionAccel, SpawnedRaysDoNotReHitTheirSurface) {
-    TextSource source{"timrom.ttf", kTimes, "Wg", {0, 0, 0}};
+    TextSource source{"timrom.ttf", kTimes, "Wg", {0, 0, 0}, {}, {}};
     const std::vector<Shape> shapes = {makeTextExtrusion(source, 0.2), squarePrism(0.5, 1, true)};
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(0, 1);
