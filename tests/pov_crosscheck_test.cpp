@@ -266,5 +266,57 @@ TEST(PovCrossCheckControls, AMissingShadingTermFails) {
     EXPECT_FALSE(f.within(Thresholds{})) << f;
 }
 
+// ------------------------------------------------------------ text and prism outlines
+// Flat white text and prisms (ambient only) on black: the images differ only
+// where the outlines differ, so this checks glyph layout (advances, kerning,
+// offset, em scale) and spline outlines against POV-Ray's own. A text moved
+// by 0.02 em must fail.
+
+const char* const kOutlineScene = R"(#version 3.7;
+global_settings { assumed_gamma 1.0 }
+camera { location <2.2, 0.35, -6> look_at <2.2, 0.35, 0> angle 45 }
+background { color rgb 0 }
+#declare White = texture { pigment { color rgb 1 } finish { ambient 1 diffuse 0 } }
+text { ttf "timrom.ttf" "Quick AV fox" 0.3, <0.02, 0, 0> texture { White } scale 0.8 }
+prism { cubic_spline -0.5, 0.5, 8, <0.6, 0.8>, <1, 0>, <0.3, 0.7>, <-0.8, 0.5>, <-0.5, -0.6>, <1, 0>,
+  <0.3, 0.7>, <-0.8, 0.5> rotate -90*x scale 0.6 translate <3, 1.5, 0> texture { White } }
+prism { conic_sweep linear_spline 0.5, 1, 4, <0, -1>, <1, 1>, <-1, 1>, <0, -1>
+  rotate -90*x translate <0.8, 1.3, 0> texture { White } }
+)";
+
+Figures outlineFigures(double textShift) {
+    if (!povrayInstalled()) {
+        ADD_FAILURE() << "`povray` is not installed; the POV-Ray cross-checks cannot run";
+        return {};
+    }
+    const std::string dir = test::tempDir();
+    test::writeFile(dir + "/outlines.pov", kOutlineScene);
+    const std::string command = "cd '" + dir + "' && povray +Ioutlines.pov +Opov.png +W" + std::to_string(kWidth) +
+                                " +H" + std::to_string(kHeight) + " -D +A0.3 +FN >povray.log 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << test::readFile(dir + "/povray.log");
+    Image pov;
+    EXPECT_EQ(readImage(dir + "/pov.png", pov), "");
+    std::optional<Scene> scene = convertedScene(dir + "/outlines.pov");
+    if (!scene || pov.pixels.empty())
+        return {};
+    for (Object& o : scene->objects)
+        if (const Extrusion* e = std::get_if<Extrusion>(&o.shape); e && e->text)
+            o.transform = o.transform.then(Transform::translate({textShift, 0, 0}));
+    const Image drt = renderDrt(*scene, 16);
+    const Figures f = measure(drt, pov);
+    if (textShift == 0)
+        publish("outlines", drt, pov, f, 16);
+    std::cout << "[ figures  ] outlines (text moved by " << textShift << "): " << f << "\n";
+    return f;
+}
+
+TEST(PovCrossCheckOutlines, TextAndPrismOutlinesMatchPovRay) {
+    EXPECT_TRUE(outlineFigures(0).within(Thresholds{}));
+}
+
+TEST(PovCrossCheckControls, TextMovedByAFiftiethOfAnEmFails) {
+    EXPECT_FALSE(outlineFigures(0.02 * 0.8).within(Thresholds{}));
+}
+
 } // namespace
 } // namespace drt

@@ -122,11 +122,35 @@ struct Differ {
                    eq(s->normals, t.normals, p + ".normals") &&
                    eq(s->normalIndices, t.normalIndices, p + ".normalIndices");
         }
+        if (auto* s = std::get_if<Extrusion>(&a))
+            return extrusion(*s, std::get<Extrusion>(b), p);
         auto& s = std::get<Csg>(a);
         auto& t = std::get<Csg>(b);
         bool ok = eq(s.op, t.op, p + ".op") && eq(s.children.size(), t.children.size(), p + ".children.size");
         for (size_t i = 0; ok && i < s.children.size(); ++i)
             ok = object(s.children[i], t.children[i], p + ".children[" + std::to_string(i) + "]");
+        return ok;
+    }
+    bool extrusion(const Extrusion& s, const Extrusion& t, const std::string& p) {
+        bool ok = eq(s.plane, t.plane, p + ".plane") && eq(s.fill, t.fill, p + ".fill") &&
+                  eq(s.height1, t.height1, p + ".height1") && eq(s.height2, t.height2, p + ".height2") &&
+                  eq(s.conic, t.conic, p + ".conic") && eq(s.open, t.open, p + ".open") &&
+                  eq(s.contours.size(), t.contours.size(), p + ".contours.size") &&
+                  eq(s.prism.has_value(), t.prism.has_value(), p + ".prism") &&
+                  eq(s.text.has_value(), t.text.has_value(), p + ".text");
+        for (size_t i = 0; ok && i < s.contours.size(); ++i) {
+            ok = eq(s.contours[i].size(), t.contours[i].size(), p + ".contours.size");
+            for (size_t k = 0; ok && k < s.contours[i].size(); ++k)
+                ok = eq(s.contours[i][k].x, t.contours[i][k].x, p + ".contours.x") &&
+                     eq(s.contours[i][k].y, t.contours[i][k].y, p + ".contours.y");
+        }
+        if (ok && s.text)
+            ok = eq(s.text->fontPath, t.text->fontPath, p + ".text.fontPath") &&
+                 eq(s.text->string, t.text->string, p + ".text.string") &&
+                 eq(s.text->offset, t.text->offset, p + ".text.offset");
+        if (ok && s.prism)
+            ok = eq(s.prism->spline, t.prism->spline, p + ".prism.spline") &&
+                 eq(s.prism->points.size(), t.prism->points.size(), p + ".prism.points");
         return ok;
     }
     bool motion(const std::optional<Motion>& a, const std::optional<Motion>& b, const std::string& p) {
@@ -415,6 +439,27 @@ TEST(Writer, SolidCsgRoundTripsThroughDrt) {
     ASSERT_EQ(back->children.size(), 2u);
     const Transform sphereToWorld = back->children[1].transform.then(again->objects[0].transform);
     EXPECT_EQ(sphereToWorld.point(Vec3(0, 0, 0)), Vec3(0, 1, 0));
+}
+
+TEST(Writer, PrismAndTextRoundTripToTheSameOutlinesAndImage) {
+    const char* source = R"(
+camera { location <1, 1, -4> look_at <1, 0.3, 0> }
+light_source { <-5, 10, -10> color rgb 1 }
+text { font "timrom.ttf" string "Wo\"rd" thickness 0.25 offset <0.05, -0.02, 0> pigment { color rgb 1 } }
+prism { conic_sweep bezier_spline 0.5, 1, 8, <0, 0>, <1, 0>, <1, 1>, <0, 1>, <0, 1>, <-1, 1>, <-1, 0>, <0, 0>
+  open translate <2, -1, 0> }
+prism { quadratic_spline -0.5, 0.25, 6, <0, 1>, <1, 0>, <0, -1>, <-1, 0>, <0, 1>, <1, 0> rotate <-90, 0, 0> }
+)";
+    const std::optional<Scene> scene = loadText(source);
+    ASSERT_TRUE(scene);
+    std::string text;
+    const std::optional<Scene> again = roundTrip(*scene, &text);
+    ASSERT_TRUE(again);
+    EXPECT_NE(text.find("text { font \"timrom.ttf\" string \"Wo\\\"rd\" thickness 0.25"), std::string::npos) << text;
+    EXPECT_NE(text.find("prism { conic_sweep bezier_spline 0.5, 1, 8,"), std::string::npos) << text;
+    const Image a = renderSmall(*scene), b = renderSmall(*again);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    EXPECT_TRUE(a.pixels == b.pixels);
 }
 
 TEST(Writer, UnionsAreFlattenedIntoTheirMembers) {

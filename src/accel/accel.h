@@ -1,10 +1,11 @@
 // The Embree wrapper: one device, one scene built from the scene model, and
 // ray queries. All ray intersection in drt goes through here.
 //
-// Shapes: spheres, planes, cylinders, cones, discs, tori and the algebraic
-// surfaces (polynomials, superellipsoids: algebraic_shapes.h) are analytic Embree
-// user geometry (intersected in object space in double precision, so any
-// affine transform works); boxes, triangles and meshes are Embree triangles.
+// Shapes: spheres, planes, cylinders, cones, discs, tori, the algebraic
+// surfaces (polynomials, superellipsoids: algebraic_shapes.h) and extrusions
+// (prism, text: extrusion_shape.h) are analytic Embree user geometry
+// (intersected in object space in double precision, so any affine transform
+// works); boxes, triangles and meshes are Embree triangles.
 // Objects with Motion become instances of their own sub-scene with two
 // transform time steps; static objects carry no time steps.
 //

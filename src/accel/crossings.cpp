@@ -56,9 +56,6 @@ bool evaluate(const CsgNode& node, const std::vector<char>& state, int& nextLeaf
     return inside != node.inverse;
 }
 
-bool isSolid(const AnalyticShape& s) {
-    return !(s.kind == ShapeKind::Disc || (s.kind == ShapeKind::Cone && s.open));
-}
 
 } // namespace
 
@@ -71,9 +68,11 @@ void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector
     for (size_t i = 0; i < leaves.size(); ++i) {
         const CsgNode& leaf = *leaves[i];
         const Vec3 lo = leaf.toLevel.inversePoint(o), ld = leaf.toLevel.inverseVector(d);
-        Crossing c[kMaxCrossings];
-        const int n = intersectShape(leaf.shape, lo, ld, c);
-        const bool solid = isSolid(leaf.shape);
+        Crossing fixed[kMaxCrossings];
+        thread_local std::vector<Crossing> many;
+        const Crossing* c = nullptr;
+        const int n = allCrossings(leaf.shape, lo, ld, fixed, many, c);
+        const bool solid = isSolidShape(leaf.shape);
         for (int k = 0; solid && k < n; ++k)
             events.push_back({c[k].t, static_cast<int>(i), dot(c[k].normal, ld) < 0, c[k].normal});
         // State before the first crossing along the whole line.
@@ -162,8 +161,10 @@ bool nearestCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tM
             }
         return false;
     }
-    Crossing c[kMaxCrossings];
-    const int n = intersectShape(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), c);
+    Crossing fixed[kMaxCrossings];
+    thread_local std::vector<Crossing> many;
+    const Crossing* c = nullptr;
+    const int n = allCrossings(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), fixed, many, c);
     for (int i = 0; i < n; ++i)
         if (c[i].t > tMin && c[i].t < tMax) {
             out = toLevel(p, c[i]);
@@ -186,8 +187,10 @@ bool closestCrossingTo(const Primitive& p, const Vec3& o, const Vec3& d, double 
             }
         return found;
     }
-    Crossing c[kMaxCrossings];
-    const int n = intersectShape(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), c);
+    Crossing fixed[kMaxCrossings];
+    thread_local std::vector<Crossing> many;
+    const Crossing* c = nullptr;
+    const int n = allCrossings(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), fixed, many, c);
     for (int i = 0; i < n; ++i)
         if (std::fabs(c[i].t - tGuess) < best) {
             best = std::fabs(c[i].t - tGuess);

@@ -1,6 +1,7 @@
 #include "accel/shapes.h"
 
 #include "accel/algebraic_shapes.h"
+#include "accel/extrusion_shape.h"
 #include "accel/polynomial.h"
 
 #include <algorithm>
@@ -241,6 +242,9 @@ std::optional<AnalyticShape> prepareShape(const Shape& shape) {
         s.kind = ShapeKind::Superellipsoid;
         s.exponentE = super->e;
         s.exponentN = super->n;
+    } else if (const auto* extrusion = std::get_if<Extrusion>(&shape)) {
+        s.kind = ShapeKind::Extrusion;
+        s.extrusion = std::make_shared<const ExtrusionGeometry>(*extrusion);
     } else {
         return std::nullopt;
     }
@@ -258,8 +262,34 @@ int intersectShape(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossin
     case ShapeKind::Box: return intersectBox(s, o, d, list);
     case ShapeKind::Polynomial: return intersectPolynomial(*s.polynomial, o, d, out, kMaxCrossings);
     case ShapeKind::Superellipsoid: return intersectSuperellipsoid(s.exponentE, s.exponentN, o, d, out, kMaxCrossings);
+    case ShapeKind::Extrusion: {
+        thread_local std::vector<Crossing> many;
+        s.extrusion->intersect(o, d, many);
+        for (const Crossing& c : many) list.add(c.t, c.normal);
+        return list.count;
+    }
     }
     return 0;
+}
+
+int allCrossings(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossing fixed[kMaxCrossings],
+                 std::vector<Crossing>& many, const Crossing*& first) {
+    if (s.kind == ShapeKind::Extrusion) {
+        s.extrusion->intersect(o, d, many);
+        first = many.data();
+        return static_cast<int>(many.size());
+    }
+    first = fixed;
+    return intersectShape(s, o, d, fixed);
+}
+
+bool isSolidShape(const AnalyticShape& s) {
+    switch (s.kind) {
+    case ShapeKind::Disc: return false;
+    case ShapeKind::Cone: return !s.open;
+    case ShapeKind::Extrusion: return s.extrusion->solid();
+    default: return true;
+    }
 }
 
 bool insideShape(const AnalyticShape& s, const Vec3& p) {
@@ -285,6 +315,7 @@ bool insideShape(const AnalyticShape& s, const Vec3& p) {
                p.z < s.upper.z;
     case ShapeKind::Polynomial: return insidePolynomial(*s.polynomial, p);
     case ShapeKind::Superellipsoid: return superellipsoidFunction(s.exponentE, s.exponentN, p) < 0;
+    case ShapeKind::Extrusion: return s.extrusion->inside(p);
     }
     return false;
 }
@@ -331,6 +362,7 @@ bool shapeBounds(const AnalyticShape& s, Vec3& lower, Vec3& upper) {
         lower = Vec3(-1);
         upper = Vec3(1);
         return true;
+    case ShapeKind::Extrusion: s.extrusion->bounds(lower, upper); return true;
     }
     return false;
 }

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace drt::accel {
 
@@ -24,7 +25,9 @@ inline constexpr int kMaxCrossings = 36;
 
 struct PolynomialSurface; // algebraic_shapes.h
 
-enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box, Polynomial, Superellipsoid };
+enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box, Polynomial, Superellipsoid, Extrusion };
+
+class ExtrusionGeometry; // accel/extrusion_shape.h
 
 // A shape in the form its intersection routine wants. Cylinders are cones
 // with equal radii; cones and cylinders are stored in a local frame whose z
@@ -43,6 +46,7 @@ struct AnalyticShape {
     Vec3 lower, upper;     // Box
     std::shared_ptr<const PolynomialSurface> polynomial; // Polynomial
     double exponentE = 1, exponentN = 1;                 // Superellipsoid
+    std::shared_ptr<const ExtrusionGeometry> extrusion; // Extrusion
 };
 
 // Builds the analytic form of an analytic scene shape. Returns nothing for
@@ -51,8 +55,17 @@ struct AnalyticShape {
 std::optional<AnalyticShape> prepareShape(const Shape& shape);
 
 // Every crossing of the line o + t d with the surface, sorted by t; returns
-// the count (at most kMaxCrossings). d need not be unit length.
+// the count (at most kMaxCrossings; an extrusion reports its first ones).
+// d need not be unit length.
 int intersectShape(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Crossing out[kMaxCrossings]);
+
+// All crossings, however many (extrusions may have more than kMaxCrossings):
+// points to `fixed` or to `many`, and returns the count.
+int allCrossings(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Crossing fixed[kMaxCrossings],
+                 std::vector<Crossing>& many, const Crossing*& first);
+
+// Whether the shape encloses a volume (discs, open cones and open extrusions do not).
+bool isSolidShape(const AnalyticShape& shape);
 
 // Whether the object-space point p is strictly inside the shape (planes: the
 // half-space below; discs and open cones have no inside).

@@ -138,6 +138,9 @@ private:
     static bool isAlgebraicWord(const std::string& word);
     void algebraicBody(const Token& keyword, ParsedObject& po);
     std::vector<double> coefficientList(const std::string& what, int expected);
+    // parser_extrusion.cpp
+    void prismBody(const Token& keyword, ParsedObject& po);
+    void textBody(ParsedObject& po);
 
     // --------------------------------------------------- parser_textures.cpp
     Texture texture();

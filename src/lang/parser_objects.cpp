@@ -12,7 +12,7 @@ static const std::vector<std::string>& objectWords() {
                                                 "disc",   "torus",    "triangle",        "smooth_triangle",
                                                 "mesh",   "union",    "merge",           "difference",
                                                 "intersection", "object",
-                                                "quadric", "cubic", "quartic", "poly", "superellipsoid"};
+                                                "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text"};
     return words;
 }
 
@@ -178,6 +178,10 @@ void Parser::shapeBody(const Token& keyword, ParsedObject& po) {
         shape = m;
     } else if (isAlgebraicWord(w)) {
         algebraicBody(keyword, po);
+    } else if (w == "prism") {
+        prismBody(keyword, po);
+    } else if (w == "text") {
+        textBody(po);
     } else if (w == "mesh") {
         Mesh m;
         while (checkWord("triangle") || checkWord("smooth_triangle")) {
@@ -306,7 +310,8 @@ bool Parser::objectModifier(ParsedObject& po) {
         advance();
         if (Cylinder* c = std::get_if<Cylinder>(&o.shape)) c->open = true;
         else if (Cone* c = std::get_if<Cone>(&o.shape)) c->open = true;
-        else error(loc, "'open' applies only to cylinder and cone");
+        else if (Extrusion* e = std::get_if<Extrusion>(&o.shape); e && e->prism) e->open = true;
+        else error(loc, "'open' applies only to cylinder, cone and prism");
     } else {
         return false;
     }

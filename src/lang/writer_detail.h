@@ -64,4 +64,10 @@ std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& e
 std::string finishBody(const Finish& f);     // the non-default items, each after a space
 std::string interiorBody(const Interior& i); // the same
 
+// ------------------------------------------------------------ writer_extrusion.cpp
+
+// The opening of a prism or text object through its fixed arguments (points
+// on lines indented one level deeper than `indent`).
+std::string extrusionText(const Extrusion& e, int indent, std::set<std::string>& problems);
+
 } // namespace drt::writer

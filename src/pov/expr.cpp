@@ -191,7 +191,9 @@ static PovValue binaryLevel(PovParser& p, int level) {
         if (!isLevelOperator(level, op, p.inVector_)) return left;
         // POV-Ray's commas are optional: `<a, b, c> <d, e, f>` is two vectors,
         // and a comparison needs floats, so '<' after a vector starts the next one.
-        if (level == 3 && op.text == "<" && (left.kind == Kind::Vector || left.kind == Kind::Color)) return left;
+        if (level == 3 && op.text == "<" &&
+            (left.kind == Kind::Vector || left.kind == Kind::Color || p.countBeforeVector_))
+            return left;
         p.next();
         const PovValue right = binaryLevel(p, level + 1);
         if (level >= 4) {

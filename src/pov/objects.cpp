@@ -14,14 +14,13 @@ const std::set<std::string>& primitiveWords() {
     static const std::set<std::string> w = {"sphere", "box", "plane", "cylinder", "cone", "disc", "torus",
                                             "triangle", "smooth_triangle", "mesh", "mesh2", "union", "merge",
                                             "difference", "intersection", "object", "polygon",
-                                            "quadric", "cubic", "quartic", "poly", "superellipsoid"};
+                                            "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text"};
     return w;
 }
 
 const std::set<std::string>& unsupportedShapes() {
     static const std::set<std::string> w = {"blob", "height_field", "isosurface", "julia_fractal", "lathe",
-                                            "parametric", "prism", "sor", "sphere_sweep", "text", "bicubic_patch",
-                                            "ovus"};
+                                            "parametric", "sor", "sphere_sweep", "bicubic_patch", "ovus"};
     return w;
 }
 
@@ -49,6 +48,22 @@ void inheritInterior(PovObject& o, const Interior& in) {
     if (o.interiorSet) return;
     o.object.interior = in;
     for (PovObject& c : o.children) inheritInterior(c, in);
+}
+
+// Object-space bounds of an extrusion (conic sweeps scale the outline by the height).
+void extrusionBounds(const Extrusion& e, Vec3& lower, Vec3& upper) {
+    Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+    for (const auto& contour : e.contours)
+        for (const Vec2& p : contour) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    if (e.text) lo = e.text->boxLower, hi = e.text->boxUpper; // POV-Ray's glyph boxes
+    const double h1 = std::min(e.height1, e.height2), h2 = std::max(e.height1, e.height2);
+    if (e.conic) {
+        const double s = std::max(std::fabs(h1), std::fabs(h2));
+        const double r = s * std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(hi.x), std::fabs(hi.y)});
+        lo = {-r, -r}, hi = {r, r};
+    }
+    lower = e.plane == Extrusion::Plane::XZ ? Vec3{lo.x, h1, lo.y} : Vec3{lo.x, lo.y, h1};
+    upper = e.plane == Extrusion::Plane::XZ ? Vec3{hi.x, h2, hi.y} : Vec3{hi.x, hi.y, h2};
 }
 
 void setTexture(PovObject& o, const Texture& tex) {
@@ -91,6 +106,8 @@ void objectBounds(const PovObject& po, Vec3& lower, Vec3& upper) {
             lo = hi = m->vertices.front();
             for (const Vec3& v : m->vertices) lo = min(lo, v), hi = max(hi, v);
         }
+    } else if (const Extrusion* e = std::get_if<Extrusion>(&o.shape)) {
+        extrusionBounds(*e, lo, hi);
     } else if (const Csg* csg = std::get_if<Csg>(&o.shape)) {
         bool any = false;
         for (size_t i = 0; i < po.children.size(); ++i) {
@@ -235,6 +252,12 @@ PovObject PovParser::object(const Tok& keyword) {
         m.normals = {n[0], n[1], n[2]};
         m.normalIndices = {{0, 1, 2}};
         o.shape = m;
+    } else if (w == "prism") {
+        o.shape = prismShape(keyword.loc);
+    } else if (w == "text") {
+        std::optional<Extrusion> text = textShape();
+        if (text) o.shape = std::move(*text);
+        else po.lightOnly = true; // an internal font: left out
     } else if (w == "polygon") {
         // polygon { n, p1, ..., pn }: a closed outline; drt triangulates it as a fan,
         // which is right for convex polygons.
@@ -459,7 +482,8 @@ PovObject PovParser::object(const Tok& keyword) {
         } else if (m == "open") {
             if (Cylinder* cy = std::get_if<Cylinder>(&o.shape)) cy->open = true;
             else if (Cone* co = std::get_if<Cone>(&o.shape)) co->open = true;
-            else warnOnce("open", t.loc, "'open' applies to cylinder and cone only; ignored");
+            else if (Extrusion* ex = std::get_if<Extrusion>(&o.shape); ex && ex->prism) ex->open = true;
+            else warnOnce("open", t.loc, "'open' applies to cylinder, cone and prism only; ignored");
         } else if (m == "sturm" || m == "smooth" || m == "split_union" || m == "hierarchy") {
             const Tok n = peekOperator();
             const bool on = n.kind == TokKind::Number ? floatExpr() != 0 : true;

@@ -75,6 +75,7 @@ public:
     PovValue postfix(PovValue v, SourceLoc loc);
     PovValue arrayLiteral(SourceLoc loc); // after 'array'
     bool inVector_ = false;               // '>' closes a vector literal, not a comparison
+    bool countBeforeVector_ = false;      // '<' after a count or thickness starts a vector, not a comparison
     // Scalar conversions with a clear error.
     double toFloat(const PovValue& v, SourceLoc loc);
     Vec3 toVector(const PovValue& v, SourceLoc loc);
@@ -98,6 +99,9 @@ public:
     // ------------------------------------------------------------ objects (objects.cpp)
     bool isObjectWord(const Tok& t) const;
     PovObject object(const Tok& keyword); // keyword consumed
+    // extrusion.cpp: the bodies of prism and text, after '{'.
+    Extrusion prismShape(SourceLoc keyword);
+    std::optional<Extrusion> textShape();
     void applyTransform(PovObject& o, const Transform& t);
     // ------------------------------------------------------------ algebraic.cpp
     static bool isAlgebraicWord(const std::string& w);

@@ -62,11 +62,12 @@ PovValue PovParser::primary() {
     if (t.kind == TokKind::Number) return postfix(PovValue::makeFloat(t.number), t.loc);
     if (t.kind == TokKind::String) return PovValue::makeString(t.text);
     if (t.is("(")) {
-        const bool saved = inVector_;
-        inVector_ = false;
+        const bool saved = inVector_, savedCount = countBeforeVector_;
+        inVector_ = countBeforeVector_ = false;
         PovValue v = expression();
         expectSymbol(")", "to close '('");
         inVector_ = saved;
+        countBeforeVector_ = savedCount;
         return postfix(v, t.loc);
     }
     if (t.is("<")) {

@@ -8,6 +8,7 @@
 #include "core/transform.h"
 #include "core/vec.h"
 #include "scene/algebraic.h"
+#include "scene/extrusion.h"
 
 #include <array>
 #include <cstdint>
@@ -186,8 +187,9 @@ struct Csg {
     std::vector<Object> children;
 };
 
-// Algebraic and Superellipsoid: scene/algebraic.h.
-using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid>;
+// Algebraic and Superellipsoid: scene/algebraic.h; Extrusion: scene/extrusion.h.
+using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid,
+                           Extrusion>;
 
 // Motion over the shutter (issue 3): the extra transform reached at time 1,
 // applied after Object::transform. At time t the object is scaled by
