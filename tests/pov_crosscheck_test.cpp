@@ -106,6 +106,7 @@ const std::vector<CrossCheckScene>& scenes() {
         {"arealit1", "lights/arealit1.pov", {}, 4},
         {"arealit2", "lights/arealit2.pov", {}, 4},
         {"foglyr2", "interior/foglyr2.pov", {}, 4}, // two turbulent ground fogs
+        {"ttf1", "objects/ttf1.pov", {}, 4},        // assumed_gamma 1.9: shading in the working space
     };
     return list;
 }

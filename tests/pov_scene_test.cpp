@@ -2,6 +2,7 @@
 // area lights, CSG, textures, gamma rules, warnings and strict mode, and
 // POV-Ray's own sample scenes.
 #include "pov/load.h"
+#include "render/render.h"
 #include "test_support.h"
 
 #include <cmath>
@@ -243,13 +244,39 @@ TEST(PovScene, GammaRules) {
     EXPECT_EQ(loadOk("#version 3.7;\n" + body).objects[0].texture.pigment.color.rgb, Color(0.5));
     EXPECT_EQ(loadOk("global_settings { assumed_gamma 1.0 }\n" + body).objects[0].texture.pigment.color.rgb,
               Color(0.5));
-    // assumed_gamma 2.2: colours were encoded; decoded to linear.
+    EXPECT_EQ(loadOk("#version 3.7;\n" + body).global.assumedGamma, 1.0);
+    // assumed_gamma 2.2: colours are encoded; POV-Ray shades them as written and
+    // decodes the pixels, so the model keeps them and carries the gamma.
     const Scene g = loadOk("global_settings { assumed_gamma 2.2 }\n" + body);
-    EXPECT_NEAR(g.objects[0].texture.pigment.color.rgb.r, std::pow(0.5, 2.2), 1e-12);
-    EXPECT_NEAR(g.lights[0].color.g, std::pow(0.5, 2.2), 1e-12);
-    EXPECT_EQ(g.global.assumedGamma, 1.0);
-    // #version 3.6 without assumed_gamma: no gamma handling in POV-Ray, so decode with 2.2.
-    EXPECT_NEAR(loadOk("#version 3.6;\n" + body).objects[0].texture.pigment.color.rgb.b, std::pow(0.5, 2.2), 1e-12);
+    EXPECT_EQ(g.objects[0].texture.pigment.color.rgb, Color(0.5));
+    EXPECT_EQ(g.lights[0].color, Color(0.5));
+    EXPECT_EQ(g.global.assumedGamma, 2.2);
+    // #version 3.6 without assumed_gamma: no gamma handling in POV-Ray, which is gamma 2.2.
+    EXPECT_EQ(loadOk("#version 3.6;\n" + body).global.assumedGamma, 2.2);
+    // srgb: to linear, then into the working space with the gamma known at that point.
+    const double linear = std::pow((0.5 + 0.055) / 1.055, 2.4);
+    EXPECT_NEAR(loadOk("global_settings { assumed_gamma 2.2 }\nsphere { 0, 1 pigment { srgb 0.5 } }")
+                    .objects[0].texture.pigment.color.rgb.r,
+                std::pow(linear, 1 / 2.2), 1e-12);
+    EXPECT_NEAR(loadOk("sphere { 0, 1 pigment { srgb 0.5 } }").objects[0].texture.pigment.color.rgb.r, linear, 1e-12);
+}
+
+// POV-Ray's working gamma end to end: a surface lit head-on with diffuse 0.6
+// and ambient 0.2 has the working value v = 0.5 (0.2 + 0.6) = 0.4, and the
+// image holds v^2.2 (POV-Ray shades encoded values and decodes the pixel). The
+// old approach, decoding the colour first, would give 0.5^2.2 * 0.8 instead.
+TEST(PovScene, AssumedGammaShadesInTheWorkingSpaceAndDecodesThePixel) {
+    const std::string scene = "global_settings { assumed_gamma 2.2 }\n"
+                              "camera { location <0, 0, -5> look_at 0 angle 10 }\n"
+                              "light_source { <0, 0, -1000> rgb 1 }\n"
+                              "plane { z, 0 pigment { rgb 0.5 } finish { ambient 0.2 diffuse 0.6 } }\n";
+    const Scene s = loadOk(scene);
+    RenderOptions options = resolveRenderOptions(s, {});
+    options.width = 8;
+    options.height = 6;
+    options.samplesPerPixel = 1;
+    const RenderResult r = render(s, options);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.color.at(4, 3, c), std::pow(0.4, 2.2), 1e-4);
 }
 
 TEST(PovScene, UnsupportedFeaturesWarnOncePerKindWithLocation) {

@@ -601,5 +601,27 @@ TEST(Pigment, ColourMapsAndPatternSpace) {
     EXPECT_NEAR(onionValue({0, 2.5, 0}), 0.5, 1e-12);
 }
 
+// assumed_gamma G: pixel v becomes max(v, 0)^G and its variance of the mean
+// (G v^(G-1))^2 var (delta method); G = 1 changes nothing.
+TEST(Film, WorkingGammaDecodesPixelsAndPropagatesVariance) {
+    Image color(2, 1, 3), variance(2, 1, 3);
+    for (int c = 0; c < 3; ++c) {
+        color.at(0, 0, c) = 0.5f;
+        variance.at(0, 0, c) = 0.01f;
+        color.at(1, 0, c) = -0.25f; // noise below zero clamps to black
+        variance.at(1, 0, c) = 0.02f;
+    }
+    Image sameColor = color, sameVariance = variance;
+    decodeWorkingGamma(sameColor, sameVariance, 1.0);
+    EXPECT_EQ(sameColor.pixels, color.pixels);
+    EXPECT_EQ(sameVariance.pixels, variance.pixels);
+    decodeWorkingGamma(color, variance, 2.2);
+    EXPECT_NEAR(color.at(0, 0, 1), std::pow(0.5, 2.2), 1e-6);
+    const double slope = 2.2 * std::pow(0.5, 1.2);
+    EXPECT_NEAR(variance.at(0, 0, 1), slope * slope * 0.01, 1e-7);
+    EXPECT_EQ(color.at(1, 0, 2), 0.0f);
+    EXPECT_EQ(variance.at(1, 0, 2), 0.0f);
+}
+
 } // namespace
 } // namespace drt

@@ -111,8 +111,13 @@ PovValue PovParser::primary() {
             fail(loc, "'" + w + "' needs a float or a vector, found a " + kindName(v.kind));
         }
         if (form == "rgbt") c[4] = c[3], c[3] = 0;
-        if (srgb)
-            for (int i = 0; i < 3; ++i) c[size_t(i)] = srgbToLinear(c[size_t(i)]);
+        if (srgb) { // sRGB-encoded: to linear, then into the working space (gamma g: c^(1/g))
+            const double g = workingGamma();
+            for (int i = 0; i < 3; ++i) {
+                const double linear = srgbToLinear(c[size_t(i)]);
+                c[size_t(i)] = g == 1.0 || linear <= 0 ? linear : std::pow(linear, 1 / g);
+            }
+        }
         PovValue out = PovValue::makeColor(c);
         out.text = srgb ? "srgb" : "";
         return out;

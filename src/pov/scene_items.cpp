@@ -37,23 +37,6 @@ void resolveCameraVectors(CameraSpec& c) {
     c.lookAt.reset();
 }
 
-Color decodeGamma(const Color& c, double gamma) {
-    auto d = [&](double v) { return v > 0 ? std::pow(v, gamma) : v; };
-    return {d(c.r), d(c.g), d(c.b)};
-}
-
-void decodePigment(Pigment& p, double gamma) {
-    p.color.rgb = decodeGamma(p.color.rgb, gamma);
-    for (ColorMapEntry& e : p.colorMap) e.color.rgb = decodeGamma(e.color.rgb, gamma);
-    for (Pigment& c : p.children) decodePigment(c, gamma);
-}
-
-void decodeObject(Object& o, double gamma) {
-    decodePigment(o.texture.pigment, gamma);
-    if (Csg* csg = std::get_if<Csg>(&o.shape))
-        for (Object& c : csg->children) decodeObject(c, gamma);
-}
-
 Object toObject(const PovObject& po) {
     Object o = po.object;
     if (Csg* csg = std::get_if<Csg>(&o.shape)) {
@@ -437,19 +420,11 @@ void PovParser::fog(const Tok& keyword) {
 
 // POV-Ray's gamma rule (../shared/POVRAY-NOTES.md): assumed_gamma 1.0, or
 // #version 3.7+ without assumed_gamma, means linear colours. Otherwise the
-// scene's colours are already encoded with gamma g (2.2 when only an older
-// #version says so); drt renders in linear light, so they are decoded with
-// c^g here and the model's assumed_gamma is 1.
+// scene's colours are encoded with gamma g (2.2 when only an older #version
+// says so) and POV-Ray shades them as they are, decoding only the result; the
+// model's assumed_gamma does exactly that (render/film.h decodeWorkingGamma).
 void PovParser::finishScene() {
-    const double gamma = assumedGamma_ ? *assumedGamma_ : (version_ < 3.7 ? 2.2 : 1.0);
-    if (gamma != 1.0) {
-        for (Object& o : scene_.objects) decodeObject(o, gamma);
-        for (Light& l : scene_.lights) l.color = decodeGamma(l.color, gamma);
-        scene_.background = decodeGamma(scene_.background, gamma);
-        for (Pigment& p : scene_.sky) decodePigment(p, gamma);
-        for (Fog& f : scene_.fogs) f.color.rgb = decodeGamma(f.color.rgb, gamma);
-    }
-    scene_.global.assumedGamma = 1.0;
+    scene_.global.assumedGamma = workingGamma();
     if (!scene_.camera.right) scene_.camera.right = Vec3(1.33, 0, 0);
     resolveParallelSky(scene_.camera);
     scene_.render.width = options_.imageWidth;

@@ -1,6 +1,7 @@
 #include "render/film.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace drt {
@@ -40,6 +41,18 @@ void storePixel(const PixelAccumulator& pixel, int x, int y, Image& color, Image
         color.at(x, y, c) = toFiniteFloat(mean[c]);
         variance.at(x, y, c) = toFiniteFloat(var[c]);
     }
+}
+
+void decodeWorkingGamma(Image& color, Image& variance, double gamma) {
+    if (gamma == 1.0 || !(gamma > 0) || !std::isfinite(gamma)) return;
+    for (int y = 0; y < color.height; ++y)
+        for (int x = 0; x < color.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const double v = std::max(0.0, double(color.at(x, y, c)));
+                const double slope = v > 0 ? gamma * std::pow(v, gamma - 1) : (gamma > 1 ? 0.0 : gamma);
+                color.at(x, y, c) = toFiniteFloat(std::pow(v, gamma));
+                variance.at(x, y, c) = toFiniteFloat(slope * slope * double(variance.at(x, y, c)));
+            }
 }
 
 } // namespace drt

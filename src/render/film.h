@@ -41,4 +41,11 @@ inline Vec2 pixelSamplePosition(Sampler& sampler, const Filter& filter, int x, i
 // Writes a pixel's mean and variance of the mean into the two images.
 void storePixel(const PixelAccumulator& pixel, int x, int y, Image& color, Image& variance);
 
+// POV-Ray's assumed_gamma G: the renderer works on values v that are encoded
+// with gamma G, and the image holds the linear values max(v, 0)^G (POV-Ray
+// decodes its working colour space this way before writing a file). The
+// variance of the mean follows by the delta method: (G v^(G-1))^2 var(v).
+// G = 1 leaves both images untouched.
+void decodeWorkingGamma(Image& color, Image& variance, double gamma);
+
 } // namespace drt

@@ -350,6 +350,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         }
         runRound(0);
     }
+    decodeWorkingGamma(result.color, result.variance, scene.global.assumedGamma);
     result.stats.renderSeconds = secondsSince(renderStart);
     result.stats.cameraRays = cameraRays;
     result.stats.shadowRays = shadowRays;
