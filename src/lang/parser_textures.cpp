@@ -358,6 +358,10 @@ Interior Parser::interior() {
     }
     while (!match(TokenKind::RightBrace)) {
         if (!check(TokenKind::Identifier)) failExpected("an interior keyword or '}'");
+        if (checkWord("media")) {
+            in.media.push_back(media());
+            continue;
+        }
         const Token word = current_;
         advance();
         const SourceLoc loc = current_.loc;
@@ -373,7 +377,7 @@ Interior Parser::interior() {
         } else if (word.text == "fade_color" || word.text == "fade_colour") {
             in.fadeColor = rgbExpr();
         } else {
-            failUnknown(word, {"ior", "fade_distance", "fade_power", "fade_color"});
+            failUnknown(word, {"ior", "fade_distance", "fade_power", "fade_color", "media"});
         }
     }
     return in;

@@ -92,7 +92,7 @@ bool isDefaultFinish(const Finish& f) {
 bool isDefaultInterior(const Interior& i) {
     const Interior d;
     return i.ior == d.ior && i.fadeDistance == d.fadeDistance && i.fadePower == d.fadePower &&
-           i.fadeColor == d.fadeColor;
+           i.fadeColor == d.fadeColor && i.media.empty();
 }
 
 // The inside of `pigment { ... }` for `p`, given the transform items the
@@ -225,7 +225,35 @@ std::string finishBody(const Finish& f) {
     return text;
 }
 
-std::string interiorBody(const Interior& i) {
+std::string mediaBody(const Media& m, std::set<std::string>& problems) {
+    const Media d;
+    std::string text;
+    if (!(m.absorption == d.absorption))
+        text += " absorption " + colorText(m.absorption);
+    if (!(m.emission == d.emission))
+        text += " emission " + colorText(m.emission);
+    if (m.scatteringType != 0) {
+        text += " scattering { " + std::to_string(m.scatteringType) + ", " + colorText(m.scattering);
+        if (m.eccentricity != d.eccentricity)
+            text += " eccentricity " + number(m.eccentricity);
+        if (m.extinction != d.extinction)
+            text += " extinction " + number(m.extinction);
+        text += " }";
+    }
+    if (m.intervals != d.intervals)
+        text += " intervals " + std::to_string(m.intervals);
+    if (m.samples != d.samples)
+        text += " samples " + std::to_string(m.samples);
+    for (const Pigment& p : m.densities) {
+        bool exact = true; // densities are in world space: written after every transform
+        text += " density {" + pigmentBody(p, {}, exact, problems) + " }";
+        if (!exact)
+            problems.insert("a media density whose pattern transform cannot be written exactly");
+    }
+    return text;
+}
+
+std::string interiorBody(const Interior& i, std::set<std::string>& problems) {
     const Interior d;
     std::string text;
     if (i.ior != d.ior)
@@ -236,6 +264,8 @@ std::string interiorBody(const Interior& i) {
         text += " fade_power " + number(i.fadePower);
     if (!(i.fadeColor == d.fadeColor))
         text += " fade_color " + colorText(i.fadeColor);
+    for (const Media& m : i.media)
+        text += " media {" + mediaBody(m, problems) + " }";
     return text;
 }
 

@@ -490,9 +490,7 @@ Interior PovParser::interior(const Interior& base) {
             floatExpr();
             warnOnce("interior-" + w, t.loc, "'" + w + "' is not supported and is ignored");
         } else if (w == "media") {
-            warnOnce("media", t.loc, "'media' is not supported and is ignored");
-            expectSymbol("{", "after 'media'");
-            skipBlock();
+            in.media.push_back(media(Media{}));
         } else {
             failExpected(t, "an interior item or '}'");
         }

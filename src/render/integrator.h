@@ -57,6 +57,8 @@ private:
     const Accelerator& accel_;
     int maxTraceLevel_;
     double adcBailout_;
+    bool hasMedia_; // render/media.h; misses see atmospheric media inside this box:
+    Vec3 mediaLower_{0, 0, 0}, mediaUpper_{0, 0, 0};
 };
 
 } // namespace drt
