@@ -164,6 +164,10 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         text += " onion";
         colorMap();
         break;
+    case PatternKind::Spherical:
+        text += " spherical";
+        colorMap();
+        break;
     default:
         text += std::string(" ") + noiseKeyword(p.pattern);
         colorMap();

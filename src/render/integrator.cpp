@@ -49,7 +49,7 @@ Color Integrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounts& count
         if (hasMedia_) { // the media in front of what the ray sees
             thread_local MediaList media;
             media.clear();
-            segmentMedia(scene_, found ? &hit : nullptr, pending.ray.direction, media);
+            segmentMedia(scene_, pending.medium, found ? &hit : nullptr, pending.ray.direction, media);
             const double speed = length(pending.ray.direction);
             const Vec3 unit = pending.ray.direction / speed;
             const double distance =
@@ -143,7 +143,7 @@ void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampl
         const Vec3 direction = lobeDirection(mirror, finish.reflectionBlur, sampler,
                                              bounceDimension(pending.depth, kOffsetLobe));
         if (dot(direction, normal) > 0) // below the surface: weight 0
-            stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth});
+            stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth, pending.medium});
     }
 
     const Color transmittedWeight = weight * transmitted;
@@ -160,7 +160,8 @@ void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampl
                                              bounceDimension(pending.depth, kOffsetRefractionLobe));
         const double side = dot(direction, normal);
         if (internalReflection ? side > 0 : side < 0)
-            stack.push_back({spawn(hit, direction, pending.ray.time), transmittedWeight, childDepth});
+            stack.push_back({spawn(hit, direction, pending.ray.time), transmittedWeight, childDepth,
+                             internalReflection ? pending.medium : mediumAfterCrossing(pending.medium, object, entering)});
     }
 }
 

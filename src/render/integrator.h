@@ -49,6 +49,7 @@ private:
         Ray ray;
         Color weight;
         int depth = 0;
+        const Object* medium = nullptr; // the media-holding object the ray is inside (render/media.h)
     };
     void shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
                std::vector<PendingRay>& stack) const;

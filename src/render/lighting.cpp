@@ -24,7 +24,7 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
     thread_local MediaList media;
     const auto throughMedia = [&](const Hit* hit, double t) {
         media.clear();
-        if (mediaScene) segmentMedia(*mediaScene, hit, ray.direction, media);
+        if (mediaScene) segmentMedia(*mediaScene, nullptr, hit, ray.direction, media);
         if (media.empty()) return Color(1);
         const double speed = length(ray.direction);
         return mediaTransmittance(media, ray.origin, ray.direction / speed, t * speed);

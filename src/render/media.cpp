@@ -29,14 +29,27 @@ Color mediaDensity(const Media& media, const Vec3& point) {
     return d;
 }
 
-void segmentMedia(const Scene& scene, const Hit* hit, const Vec3& direction, MediaList& out) {
-    bool outside = true; // not within a non-hollow object
+void segmentMedia(const Scene& scene, const Object* inside, const Hit* hit, const Vec3& direction, MediaList& out) {
+    const Object* within = inside;
     if (hit && hit->object && dot(direction, hit->geometricNormal) > 0) { // leaving the object hit
         for (const Media& m : hit->object->interior.media) out.push_back(&m);
-        outside = hit->object->hollow;
+        if (!hit->object->hollow) return;
+        if (hit->object == inside) within = nullptr; // its media are counted: what is around it is unknown
+    } else if (inside) {
+        for (const Media& m : inside->interior.media) out.push_back(&m);
+        if (!inside->hollow) return;
+        within = nullptr;
     }
-    if (outside)
-        for (const Media& m : scene.media) out.push_back(&m);
+    if (within) {
+        for (const Media& m : within->interior.media) out.push_back(&m);
+        if (!within->hollow) return;
+    }
+    for (const Media& m : scene.media) out.push_back(&m);
+}
+
+const Object* mediumAfterCrossing(const Object* before, const Object& object, bool entering) {
+    if (entering) return object.interior.media.empty() ? before : &object;
+    return before == &object ? nullptr : before;
 }
 
 namespace {

@@ -65,10 +65,18 @@ Color mediaDensity(const Media& media, const Vec3& point);
 using MediaList = std::vector<const Media*>;
 
 // The media along the part of a ray that ends at `hit` travelling along
-// `direction` (hit == nullptr: a ray that hits nothing): the interior media of
-// an object the ray leaves there, and the scene's atmospheric media unless the
-// ray leaves a non-hollow object. Appends to `out`.
-void segmentMedia(const Scene& scene, const Hit* hit, const Vec3& direction, MediaList& out);
+// `direction` (hit == nullptr: a ray that hits nothing), for a ray known to be
+// inside the media-holding object `inside` (nullptr: none known). The segment
+// is inside the object the ray leaves at `hit`, else inside `inside`. It sees
+// that object's interior media; a hollow one also lets in the media around it
+// (`inside`'s when the ray leaves another object, else the scene's
+// atmospheric media), a non-hollow one nothing else. Appends to `out`.
+void segmentMedia(const Scene& scene, const Object* inside, const Hit* hit, const Vec3& direction, MediaList& out);
+
+// The media-holding object a transmitted ray is inside after crossing the
+// surface of `object` (entering it or leaving it), when it was inside `before`.
+// One level is kept: leaving a media object returns to none.
+const Object* mediumAfterCrossing(const Object* before, const Object& object, bool entering);
 
 // The box for mediaMissDistance: the accelerator's bounds and the lights.
 void mediaBounds(const Scene& scene, const Accelerator& accel, Vec3& lower, Vec3& upper);

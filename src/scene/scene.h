@@ -28,6 +28,7 @@ enum class PatternKind {
     Gradient, // colour map along `gradientAxis`
     Radial,   // colour map around y
     Onion,    // colour map by distance from the origin
+    Spherical, // colour map of max(0, 1 - distance from the origin) (POV-Ray's spherical)
     // Noise patterns (render/noise.h): drt's own gradient noise, shaped like
     // POV-Ray's documented patterns but not value-for-value equal to them.
     Bozo,     // colour map of plain noise (POV-Ray's bozo and spotted)
