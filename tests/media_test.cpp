@@ -205,6 +205,70 @@ TEST(MediaEstimator, ShadowRaysAreDimmedByTheMediaTheyCross) {
     EXPECT_EQ(shadowTransmittance(accel, from, {0, 3, 0}, 0, counts).r, 1.0);
 }
 
+// A ray inside media object M (hollow) meets objects G: which media does each segment see?
+TEST(MediaSegments, HollowObjectsLetTheSurroundingMediaInAndSolidOnesDoNot) {
+    Scene scene;
+    scene.media.resize(1); // atmospheric
+    Object m, hollowGlass, solidGlass;
+    m.interior.media.resize(2);
+    m.hollow = true;
+    hollowGlass.hollow = true;
+    const Vec3 d{0, 0, 1};
+    auto hitOn = [&](const Object& o, bool leaving) {
+        Hit h;
+        h.object = &o;
+        h.geometricNormal = leaving ? Vec3{0, 0, 1} : Vec3{0, 0, -1};
+        return h;
+    };
+    MediaList out;
+    auto media = [&](const Object* inside, const Hit* hit) {
+        out.clear();
+        segmentMedia(scene, inside, hit, d, out);
+        return out;
+    };
+    const Hit enterHollow = hitOn(hollowGlass, false), leaveHollow = hitOn(hollowGlass, true);
+    const Hit leaveSolid = hitOn(solidGlass, true), leaveM = hitOn(m, true);
+    // Inside M up to another object: M's media and the atmosphere (M is hollow).
+    EXPECT_EQ(media(&m, &enterHollow), (MediaList{&m.interior.media[0], &m.interior.media[1], &scene.media[0]}));
+    // Inside a hollow object within M: M's media still; inside a solid one: nothing.
+    EXPECT_EQ(media(&m, &leaveHollow), (MediaList{&m.interior.media[0], &m.interior.media[1], &scene.media[0]}));
+    EXPECT_EQ(media(&m, &leaveSolid), MediaList{});
+    // Leaving M itself, or a media object the ray did not know it was in.
+    EXPECT_EQ(media(&m, &leaveM), (MediaList{&m.interior.media[0], &m.interior.media[1], &scene.media[0]}));
+    EXPECT_EQ(media(nullptr, &leaveM), (MediaList{&m.interior.media[0], &m.interior.media[1], &scene.media[0]}));
+    // Outside everything: the atmosphere, also for rays that hit nothing.
+    EXPECT_EQ(media(nullptr, &enterHollow), MediaList{&scene.media[0]});
+    EXPECT_EQ(media(nullptr, nullptr), MediaList{&scene.media[0]});
+    // What a transmitted ray is inside after crossing a surface.
+    EXPECT_EQ(mediumAfterCrossing(nullptr, m, true), &m);
+    EXPECT_EQ(mediumAfterCrossing(&m, hollowGlass, true), &m); // no media of its own: keeps M
+    EXPECT_EQ(mediumAfterCrossing(&m, hollowGlass, false), &m);
+    EXPECT_EQ(mediumAfterCrossing(&m, m, false), nullptr);
+}
+
+TEST(MediaEstimator, LightsWithoutMediaInteractionDoNotScatter) {
+    Scene scene;
+    Light light;
+    light.position = {0, 2, 0};
+    light.mediaInteraction = false;
+    scene.lights.push_back(light);
+    Media m;
+    m.scatteringType = 1;
+    m.scattering = Color(0.5);
+    scene.media.push_back(m);
+    const Accelerator accel(scene);
+    auto sampler = fixedSampler();
+    RayCounts counts;
+    const MediaEffect off = integrateMedia({&scene.media[0]}, {0, 0, 0}, {1, 0, 0}, 3, {&scene, &accel, 0}, *sampler,
+                                           kFirstMediaDimension, counts);
+    EXPECT_EQ(off.add.r, 0.0);
+    EXPECT_NEAR(off.scale.r, std::exp(-0.5 * 3), 1e-12); // it still dims what lies behind
+    scene.lights[0].mediaInteraction = true;
+    const MediaEffect on = integrateMedia({&scene.media[0]}, {0, 0, 0}, {1, 0, 0}, 3, {&scene, &accel, 0}, *sampler,
+                                          kFirstMediaDimension, counts);
+    EXPECT_GT(on.add.r, 0.0);
+}
+
 RenderOptions tinyOptions(int threads = 1) {
     RenderOptions o;
     o.width = 5;

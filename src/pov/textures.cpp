@@ -327,8 +327,12 @@ Pigment PovParser::pigment(const Pigment& base) {
             patternLoc = t.loc;
             if (w == "function" || w == "pigment_pattern" || w == "object") {
                 if (peek().is("{")) next(), skipBlock();
-            } else if (w == "wave" || w == "density_file") {
-                // followed by a type word / file: skipped with the rest
+            } else if (w == "density_file") { // density_file df3 "file" [interpolate n]
+                if (peek().isWord("df3")) next();
+                stringExpr();
+                if (peek().isWord("interpolate")) next(), floatExpr();
+            } else if (w == "wave") {
+                // followed by a type word: skipped with the rest
             }
             if (w == "mandel" || w == "julia" || w == "magnet") {
                 // julia <c>, n; mandel n

@@ -247,7 +247,8 @@ Color directLighting(const Scene& scene, const Accelerator& accel, const Shading
         const Light& light = scene.lights[i];
         if (isBlack(light.color)) continue;
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
-        const Scene* media = light.mediaAttenuation ? &scene : nullptr; // shadow rays through media
+        // Shadow rays through media: only for lights that interact with media (POV-Ray).
+        const Scene* media = light.mediaAttenuation && light.mediaInteraction ? &scene : nullptr;
         if (!light.area)
             sum += shadePointLight(accel, point, light, light.position, 1.0, light.inverseSquare, counts, media);
         else if (light.areaIllumination)

@@ -109,7 +109,7 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
         if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) continue;
         if (!light.shadowless && lighting.accel) {
             intensity *= shadowTransmittance(*lighting.accel, from, light.position, lighting.time, counts,
-                                             light.mediaAttenuation ? lighting.scene : nullptr);
+                                             light.mediaAttenuation ? lighting.scene : nullptr); // interaction is on here
             if (isBlack(intensity)) continue;
         }
         const double cosTheta = dot(toLight / distance, direction);
