@@ -249,10 +249,11 @@ std::string mediaBody(const Media& m, std::set<std::string>& problems) {
     if (m.samples != d.samples)
         text += " samples " + std::to_string(m.samples);
     for (const Pigment& p : m.densities) {
-        bool exact = true; // densities are in world space: written after every transform
+        // Densities are in world space, written after every transform of the
+        // object; when no text rebuilds the matrix to the last bit, the nearest
+        // one is written, as for textures (SceneWriter::object).
+        bool exact = true;
         text += " density {" + pigmentBody(p, {}, exact, problems) + " }";
-        if (!exact)
-            problems.insert("a media density whose pattern transform cannot be written exactly");
     }
     return text;
 }
