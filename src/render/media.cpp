@@ -167,8 +167,9 @@ MediaEffect integrateMedia(const MediaList& media, const Vec3& origin, const Vec
         const double u = sampler.get2DStratified(dimension, j, n).x;
         const Vec3 p = origin + direction * ((j + u) * h);
         densities.clear();
-        const Coefficients c = coefficientsAt(media, p, &densities);
+        Coefficients c = coefficientsAt(media, p, &densities); // negative extinction (negative densities) is 0
         const Color source = c.emission + inScattered(media, densities, p, direction, lighting, counts);
+        c.extinction = Color(std::max(0.0, c.extinction.r), std::max(0.0, c.extinction.g), std::max(0.0, c.extinction.b));
         const Color w{stratumWeight(c.extinction.r, h), stratumWeight(c.extinction.g, h),
                       stratumWeight(c.extinction.b, h)};
         effect.add += effect.scale * source * w;
@@ -183,8 +184,10 @@ Color mediaTransmittance(const MediaList& media, const Vec3& origin, const Vec3&
     const int n = strataCount(media);
     const double h = length / n;
     Color depth(0);
-    for (int j = 0; j < n; ++j)
-        depth += coefficientsAt(media, origin + direction * ((j + 0.5) * h), nullptr).extinction;
+    for (int j = 0; j < n; ++j) {
+        const Color k = coefficientsAt(media, origin + direction * ((j + 0.5) * h), nullptr).extinction;
+        depth += Color(std::max(0.0, k.r), std::max(0.0, k.g), std::max(0.0, k.b));
+    }
     return expNegative(depth * h);
 }
 
