@@ -314,6 +314,33 @@ TEST(MediaRender, AbsorbingSlabTransmitsExpMinusAD) {
     EXPECT_NEAR(render(slabScene(d, Color(0)), tinyOptions()).color.at(2, 2, 0), wall.r, 1e-6);
 }
 
+// A clear hollow sphere of radius 1 at z = 5 holding an emitting, absorbing
+// medium, seen through its centre (chord 2) in front of a self-lit wall:
+// e (1 - exp(-2 a)) / a + exp(-2 a) wall.
+TEST(MediaRender, EmittingSphereAddsItsClosedFormInFrontOfTheWall) {
+    Scene scene = slabScene(0, Color(0));
+    scene.objects.pop_back();
+    Object ball;
+    ball.shape = Sphere{{0, 0, 5}, 1};
+    ball.texture.pigment.color = ColorFT{Color(1), 0, 1};
+    ball.texture.finish.ambient = Color(0);
+    ball.texture.finish.diffuse = 0;
+    ball.hollow = true;
+    Media m;
+    m.emission = Color(0.25, 0.5, 0.75);
+    m.absorption = Color(0.4, 0.1, 0);
+    ball.interior.media.push_back(m);
+    scene.objects.push_back(ball);
+    scene.camera.angle = 0.05; // rays within 1e-3 of the axis: chords 2 within 1e-6
+    const Image image = render(scene, tinyOptions()).color;
+    const Color wall(0.9, 0.5, 0.2);
+    for (int c = 0; c < 3; ++c) {
+        const double a = m.absorption[c], e = m.emission[c];
+        const double glow = a > 0 ? e * (1 - std::exp(-2 * a)) / a : 2 * e;
+        EXPECT_NEAR(image.at(2, 2, c), glow + std::exp(-2 * a) * wall[c], 1e-4) << "channel " << c;
+    }
+}
+
 TEST(MediaRender, ScatteringImageIsTheSameForAnyThreadCount) {
     Scene scene = slabScene(2, Color(0.1));
     Media haze;
