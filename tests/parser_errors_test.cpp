@@ -226,6 +226,18 @@ const ErrorCase kCases[] = {
     {"ConstantPolynomial", "poly { 2, <0, 0, 0, 0, 0, 0, 0, 0, 0, 5> }", "poly has no term in x, y or z: it defines no surface", 1, 1},
     {"SuperellipsoidCount", "superellipsoid { <1, 1, 1> }", "superellipsoid exponents <e, n> needs 2 numbers, found 3", 1, 18},
     {"SuperellipsoidPositive", "superellipsoid { <0, 1> }", "superellipsoid exponents must be positive", 1, 18},
+    // media
+    {"MediaUnknown", "media { absorbtion 1 }", "unknown keyword 'absorbtion'; did you mean 'absorption'?", 1, 9},
+    {"MediaNotWord", "media { 1 }", "expected a media keyword or '}', found '1'", 1, 9},
+    {"MediaInInterior", "sphere { 0, 1 interior { media { emision 1 } } }", "unknown keyword 'emision'; did you mean 'emission'?", 1, 34},
+    {"ScatteringType", "media { scattering { 6, 0.1 } }", "the scattering type must be 1, 2, 3, 4 or 5", 1, 22},
+    {"ScatteringEccentricity", "media { scattering { 5, 0.1 eccentricity 1 } }", "'eccentricity' must lie strictly between -1 and 1", 1, 42},
+    {"ScatteringExtinction", "media { scattering { 1, 0.1 extinction -1 } }", "'extinction' must not be negative", 1, 40},
+    {"ScatteringUnknown", "media { scattering { 1, 0.1 eccentric 0.5 } }", "unknown keyword 'eccentric'; did you mean 'eccentricity'?", 1, 29},
+    {"MediaIntervals", "media { intervals 0 }", "'intervals' must be between 1 and 4096", 1, 19},
+    {"MediaSamples", "media { samples 5000 }", "'samples' must be between 1 and 4096", 1, 17},
+    {"MediaMethod", "media { method 4 }", "'method' must be 1, 2 or 3", 1, 16},
+    {"DensityUnknown", "media { density { bozzo } }", "unknown keyword 'bozzo'; did you mean 'bozo'?", 1, 19},
 };
 // clang-format on
 

@@ -52,6 +52,23 @@ struct Differ {
             ok = pigment(a.children[i], b.children[i], p + ".children[" + std::to_string(i) + "]");
         return ok;
     }
+    bool media(const std::vector<Media>& a, const std::vector<Media>& b, const std::string& p) {
+        bool ok = eq(a.size(), b.size(), p + ".size");
+        for (size_t i = 0; ok && i < a.size(); ++i) {
+            const Media &s = a[i], &t = b[i];
+            const std::string q = p + "[" + std::to_string(i) + "]";
+            ok = eq(s.absorption, t.absorption, q + ".absorption") && eq(s.emission, t.emission, q + ".emission") &&
+                 eq(s.scatteringType, t.scatteringType, q + ".scatteringType") &&
+                 eq(s.scattering, t.scattering, q + ".scattering") &&
+                 eq(s.eccentricity, t.eccentricity, q + ".eccentricity") &&
+                 eq(s.extinction, t.extinction, q + ".extinction") && eq(s.intervals, t.intervals, q + ".intervals") &&
+                 eq(s.samples, t.samples, q + ".samples") &&
+                 eq(s.densities.size(), t.densities.size(), q + ".densities.size");
+            for (size_t j = 0; ok && j < s.densities.size(); ++j)
+                ok = pigment(s.densities[j], t.densities[j], q + ".densities[" + std::to_string(j) + "]");
+        }
+        return ok;
+    }
     bool finish(const Finish& a, const Finish& b, const std::string& p) {
         return eq(a.ambient, b.ambient, p + ".ambient") && eq(a.emission, b.emission, p + ".emission") &&
                eq(a.diffuse, b.diffuse, p + ".diffuse") &&
@@ -169,6 +186,7 @@ struct Differ {
                eq(a.interior.fadeDistance, b.interior.fadeDistance, p + ".fadeDistance") &&
                eq(a.interior.fadePower, b.interior.fadePower, p + ".fadePower") &&
                eq(a.interior.fadeColor, b.interior.fadeColor, p + ".fadeColor") &&
+               media(a.interior.media, b.interior.media, p + ".media") &&
                eq(a.noShadow, b.noShadow, p + ".noShadow") && eq(a.hollow, b.hollow, p + ".hollow") &&
                eq(a.inverse, b.inverse, p + ".inverse");
     }
@@ -184,6 +202,8 @@ struct Differ {
                   // area_illumination means nothing without an area (and is then not written).
                   (!a.area || eq(a.areaIllumination, b.areaIllumination, p + ".areaIllumination")) &&
                   eq(a.inverseSquare, b.inverseSquare, p + ".inverseSquare") &&
+                  eq(a.mediaInteraction, b.mediaInteraction, p + ".mediaInteraction") &&
+                  eq(a.mediaAttenuation, b.mediaAttenuation, p + ".mediaAttenuation") &&
                   eq(a.area.has_value(), b.area.has_value(), p + ".area");
         if (ok && a.area) {
             const AreaLight &s = *a.area, &t = *b.area;
@@ -222,6 +242,7 @@ struct Differ {
                   eq(a.render.adaptiveError, b.render.adaptiveError, "render.adaptiveError") &&
                   eq(a.render.minSamplesPerPixel, b.render.minSamplesPerPixel, "render.minSamples") &&
                   eq(a.render.maxSamplesPerPixel, b.render.maxSamplesPerPixel, "render.maxSamples") &&
+                  media(a.media, b.media, "media") &&
                   eq(a.lights.size(), b.lights.size(), "lights.size") &&
                   eq(a.objects.size(), b.objects.size(), "objects.size");
         for (size_t i = 0; ok && i < a.lights.size(); ++i)
@@ -338,6 +359,32 @@ union { sphere { <-1, 0, 0>, 0.3 } sphere { <1, 0, 0>, 0.3 pigment { rgb <0, 0, 
         rotate 30 * x translate y * 2.5 no_shadow }
 )");
     ASSERT_TRUE(scene);
+    std::string text;
+    const std::optional<Scene> again = roundTrip(*scene, &text);
+    ASSERT_TRUE(again);
+    EXPECT_TRUE(drtInexpressible(*scene).empty());
+    EXPECT_EQ(writeDrtScene(*again, {"test"}), text);
+    const Image a = renderSmall(*scene), b = renderSmall(*again);
+    EXPECT_TRUE(a.pixels == b.pixels);
+}
+
+TEST(Writer, MediaRoundTripToTheSameModelAndTheSameImage) {
+    const std::optional<Scene> scene = loadText(R"(
+camera { location <0, 0, -6> look_at 0 }
+media { scattering { 4, rgb <0.01, 0.02, 0.03> extinction 0.5 } intervals 2 samples 3 method 3 jitter 0.1 }
+light_source { <2, 4, -3>, rgb 1 spotlight point_at 0 radius 10 falloff 20 media_interaction off }
+light_source { <-2, 4, -3>, rgb 0.5 media_attenuation off }
+sphere { 0, 1 pigment { rgbt 1 } hollow scale 1.5 rotate 20 * y
+  interior { ior 1.2 media { emission rgb <0.2, 0.1, 0> absorption 0.3
+                             scattering { 5, 0.2 eccentricity -0.4 }
+                             density { spherical color_map { [0 rgb 0] [1 rgb 1] } scale 0.5 }
+                             density { gradient y translate 0.1 } }
+             media { absorption rgb <0.1, 0, 0> } } translate x }
+box { -1, 1 translate <0, -2, 2> }
+)");
+    ASSERT_TRUE(scene);
+    ASSERT_EQ(scene->objects[0].interior.media.size(), 2u);
+    ASSERT_EQ(scene->objects[0].interior.media[0].densities.size(), 2u);
     std::string text;
     const std::optional<Scene> again = roundTrip(*scene, &text);
     ASSERT_TRUE(again);

@@ -29,7 +29,7 @@ std::string kindName(const Value& v) {
 
 static const std::vector<std::string>& topLevelWords() {
     static const std::vector<std::string> words{
-        "camera", "light_source", "background", "sky_sphere", "fog", "global_settings", "render", "sphere", "plane", "box", "cylinder",
+        "camera", "light_source", "background", "sky_sphere", "fog", "media", "global_settings", "render", "sphere", "plane", "box", "cylinder",
         "cone",   "disc",         "torus",      "triangle",        "smooth_triangle", "mesh", "union", "merge",
         "difference", "intersection", "object"};
     return words;
@@ -188,7 +188,7 @@ void Parser::synchronize() {
         if (check(TokenKind::Identifier)) {
             const std::string& w = current_.text;
             if (w == "camera" || w == "light_source" || w == "global_settings" || w == "background" ||
-                w == "render" || w == "sky_sphere" || w == "fog")
+                w == "render" || w == "sky_sphere" || w == "fog" || w == "media")
                 break;
             if (braceDepth_ <= 0 && isTopLevelWord(w)) break;
         }
@@ -240,6 +240,7 @@ void Parser::statement() {
     if (word == "background") return background();
     if (word == "sky_sphere") return skySphere();
     if (word == "fog") return fog();
+    if (word == "media") return scene_.media.push_back(media());
     if (word == "global_settings") return globalSettings();
     if (word == "render") return renderBlock();
     if (atObjectWord()) return addObjectToScene(object());

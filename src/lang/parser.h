@@ -153,6 +153,10 @@ private:
     bool turbulenceItem(Turbulence& turbulence);
     void reflectionBlock(Finish& f);
     Interior interior();
+    // parser_media.cpp
+    Media media();              // at 'media'
+    void scattering(Media& m);  // after 'scattering'
+    Pigment density();          // at 'density'
 
     Diagnostics& diags_;
     Scene& scene_;

@@ -294,7 +294,9 @@ bool Parser::objectModifier(ParsedObject& po) {
         setTexture(po, t);
     } else if (w == "interior") {
         o.interior = interior();
-        for (ParsedObject& child : po.children) child.object.interior = o.interior;
+        Interior local = o.interior; // in this CSG's own space, as inherited textures
+        transformInteriorSpaces(local, o.transform.inverted());
+        for (ParsedObject& child : po.children) child.object.interior = local;
     } else if (w == "no_shadow") {
         advance();
         o.noShadow = true;
@@ -358,6 +360,7 @@ void Parser::applyTransform(ParsedObject& po, const Transform& t, const SourceLo
     }
     o.transform = o.transform.then(t);
     transformTextureSpaces(o.texture, t);
+    transformInteriorSpaces(o.interior, t);
 }
 
 static void inheritTexture(ParsedObject& po, const Texture& texture) {
@@ -419,6 +422,7 @@ void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optio
         std::get<Csg>(o.shape).children = csgChildren(po, toWorld);
         o.transform = toWorld;
         transformTextureSpaces(o.texture, parent);
+        transformInteriorSpaces(o.interior, parent);
         o.noShadow = noShadow;
         o.hollow = hollow;
         scene_.objects.push_back(std::move(o));
@@ -430,6 +434,7 @@ void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optio
     }
     o.transform = toWorld;
     transformTextureSpaces(o.texture, parent);
+    transformInteriorSpaces(o.interior, parent);
     o.motion = motion;
     o.noShadow = noShadow;
     o.hollow = hollow;
@@ -445,6 +450,7 @@ std::vector<Object> Parser::csgChildren(ParsedObject& po, const Transform& csgTo
         Object o = std::move(child.object);
         if (o.motion) error(o.loc, "'motion' inside merge, difference or intersection is not supported");
         transformTextureSpaces(o.texture, csgToWorld);
+        transformInteriorSpaces(o.interior, csgToWorld);
         if (isCsg(child)) std::get<Csg>(o.shape).children = csgChildren(child, o.transform.then(csgToWorld));
         children.push_back(std::move(o));
     }

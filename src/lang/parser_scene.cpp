@@ -109,8 +109,8 @@ void Parser::lightSource() {
     static const std::vector<std::string> known{
         "color",   "colour", "rgb",         "spotlight", "point_at", "radius",   "falloff",
         "tightness", "fade_distance", "fade_power", "shadowless", "area_light", "jitter", "adaptive",
-        "circular", "orient", "area_illumination", "area_sampling", "inverse_square", "translate", "rotate",
-        "scale", "matrix"};
+        "circular", "orient", "area_illumination", "area_sampling", "inverse_square", "media_interaction",
+        "media_attenuation", "translate", "rotate", "scale", "matrix"};
     const Token keyword = current_;
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'light_source'");
@@ -186,6 +186,8 @@ void Parser::lightSource() {
         else if (w == "orient") area.orient = booleanOr(true);
         else if (w == "area_illumination") light.areaIllumination = booleanOr(true);
         else if (w == "inverse_square") light.inverseSquare = booleanOr(true);
+        else if (w == "media_interaction") light.mediaInteraction = booleanOr(true);
+        else if (w == "media_attenuation") light.mediaAttenuation = booleanOr(true);
         else if (w == "area_sampling") {
             const Token name = current_;
             if (name.kind == TokenKind::Identifier && name.text == "stratified") area.sampling = AreaSampling::Stratified;

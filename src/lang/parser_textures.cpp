@@ -82,7 +82,7 @@ Pigment Parser::pigment() {
             if (const Value* v = lookup(current_.text))
                 fail(current_.loc, "'" + current_.text + "' is " + kindName(*v) + ", not a pigment or colour");
             std::vector<std::string> known{"color",    "rgb",       "checker", "hexagon",   "brick",
-                                           "brick_size", "mortar", "gradient", "radial",  "onion",
+                                           "brick_size", "mortar", "gradient", "radial",  "onion", "spherical",
                                            "color_map", "turbulence", "octaves", "omega", "lambda",
                                            "translate", "rotate",   "scale",   "matrix"};
             known.insert(known.end(), kNoiseWords.begin(), kNoiseWords.end());
@@ -146,14 +146,17 @@ bool Parser::pigmentItem(Pigment& p) {
         const SourceLoc vloc = current_.loc;
         p.mortar = floatExpr();
         if (p.mortar < 0) error(vloc, "'mortar' must not be negative");
-    } else if (w == "gradient" || w == "radial" || w == "onion") {
+    } else if (w == "gradient" || w == "radial" || w == "onion" || w == "spherical") {
         advance();
         if (w == "gradient") {
             const SourceLoc vloc = current_.loc;
             p.gradientAxis = vectorExpr("the gradient axis");
             requireNonZero(p.gradientAxis, vloc, "gradient axis");
         }
-        p.pattern = w == "gradient" ? PatternKind::Gradient : w == "radial" ? PatternKind::Radial : PatternKind::Onion;
+        p.pattern = w == "gradient"   ? PatternKind::Gradient
+                    : w == "radial"   ? PatternKind::Radial
+                    : w == "onion"    ? PatternKind::Onion
+                                      : PatternKind::Spherical;
         p.children.clear();
         if (p.colorMap.empty()) {
             if (w == "radial") {
@@ -358,6 +361,10 @@ Interior Parser::interior() {
     }
     while (!match(TokenKind::RightBrace)) {
         if (!check(TokenKind::Identifier)) failExpected("an interior keyword or '}'");
+        if (checkWord("media")) {
+            in.media.push_back(media());
+            continue;
+        }
         const Token word = current_;
         advance();
         const SourceLoc loc = current_.loc;
@@ -373,7 +380,7 @@ Interior Parser::interior() {
         } else if (word.text == "fade_color" || word.text == "fade_colour") {
             in.fadeColor = rgbExpr();
         } else {
-            failUnknown(word, {"ior", "fade_distance", "fade_power", "fade_color"});
+            failUnknown(word, {"ior", "fade_distance", "fade_power", "fade_color", "media"});
         }
     }
     return in;

@@ -174,6 +174,8 @@ void SceneWriter::settings(const Scene& scene) {
                      number(f.turbulence->lambda) + " turb_depth " + number(f.turbDepth);
         line(0, "fog {" + items + " }");
     }
+    for (const Media& m : scene.media)
+        line(0, "media {" + mediaBody(m, problems_) + " }");
     out_ += "\n";
 }
 
@@ -231,6 +233,10 @@ void SceneWriter::light(const Light& l) {
         line(1, items.substr(1));
     if (l.shadowless)
         line(1, "shadowless");
+    if (!l.mediaInteraction)
+        line(1, "media_interaction off");
+    if (!l.mediaAttenuation)
+        line(1, "media_attenuation off");
     if (l.area) {
         const AreaLight& a = *l.area;
         std::string area = "area_light " + vector(a.axis1) + ", " + vector(a.axis2) + ", " +
@@ -344,7 +350,7 @@ void SceneWriter::object(const Object& o, int indent) {
     if (!textureBefore)
         texture(t, after, normalAfter, indent + 1);
     if (!isDefaultInterior(o.interior))
-        line(indent + 1, "interior {" + interiorBody(o.interior) + " }");
+        line(indent + 1, "interior {" + interiorBody(o.interior, problems_) + " }");
     std::string flags;
     if (o.noShadow)
         flags += " no_shadow";

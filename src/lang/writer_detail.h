@@ -62,7 +62,8 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
 // The inside of `normal { ... }`, placed like pigmentBody.
 std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& exact);
 std::string finishBody(const Finish& f);     // the non-default items, each after a space
-std::string interiorBody(const Interior& i); // the same
+std::string interiorBody(const Interior& i, std::set<std::string>& problems); // the same, media included
+std::string mediaBody(const Media& m, std::set<std::string>& problems);       // the inside of `media { }`
 
 // ------------------------------------------------------------ writer_extrusion.cpp
 

@@ -92,7 +92,7 @@ bool isDefaultFinish(const Finish& f) {
 bool isDefaultInterior(const Interior& i) {
     const Interior d;
     return i.ior == d.ior && i.fadeDistance == d.fadeDistance && i.fadePower == d.fadePower &&
-           i.fadeColor == d.fadeColor;
+           i.fadeColor == d.fadeColor && i.media.empty();
 }
 
 // The inside of `pigment { ... }` for `p`, given the transform items the
@@ -164,6 +164,10 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         text += " onion";
         colorMap();
         break;
+    case PatternKind::Spherical:
+        text += " spherical";
+        colorMap();
+        break;
     default:
         text += std::string(" ") + noiseKeyword(p.pattern);
         colorMap();
@@ -225,7 +229,36 @@ std::string finishBody(const Finish& f) {
     return text;
 }
 
-std::string interiorBody(const Interior& i) {
+std::string mediaBody(const Media& m, std::set<std::string>& problems) {
+    const Media d;
+    std::string text;
+    if (!(m.absorption == d.absorption))
+        text += " absorption " + colorText(m.absorption);
+    if (!(m.emission == d.emission))
+        text += " emission " + colorText(m.emission);
+    if (m.scatteringType != 0) {
+        text += " scattering { " + std::to_string(m.scatteringType) + ", " + colorText(m.scattering);
+        if (m.eccentricity != d.eccentricity)
+            text += " eccentricity " + number(m.eccentricity);
+        if (m.extinction != d.extinction)
+            text += " extinction " + number(m.extinction);
+        text += " }";
+    }
+    if (m.intervals != d.intervals)
+        text += " intervals " + std::to_string(m.intervals);
+    if (m.samples != d.samples)
+        text += " samples " + std::to_string(m.samples);
+    for (const Pigment& p : m.densities) {
+        // Densities are in world space, written after every transform of the
+        // object; when no text rebuilds the matrix to the last bit, the nearest
+        // one is written, as for textures (SceneWriter::object).
+        bool exact = true;
+        text += " density {" + pigmentBody(p, {}, exact, problems) + " }";
+    }
+    return text;
+}
+
+std::string interiorBody(const Interior& i, std::set<std::string>& problems) {
     const Interior d;
     std::string text;
     if (i.ior != d.ior)
@@ -236,6 +269,8 @@ std::string interiorBody(const Interior& i) {
         text += " fade_power " + number(i.fadePower);
     if (!(i.fadeColor == d.fadeColor))
         text += " fade_color " + colorText(i.fadeColor);
+    for (const Media& m : i.media)
+        text += " media {" + mediaBody(m, problems) + " }";
     return text;
 }
 

@@ -30,6 +30,7 @@ const char* kindName(Kind kind) {
     case Kind::Macro: return "macro";
     case Kind::Opaque: return "unsupported item";
     case Kind::SkySphere: return "sky_sphere";
+    case Kind::Media: return "media";
     }
     return "value";
 }

@@ -35,6 +35,7 @@ void transformLight(Light& l, const Transform& t) {
 
 void transformPigments(PovObject& o, const Transform& t) {
     transformTextureSpaces(o.object.texture, t);
+    transformInteriorSpaces(o.object.interior, t);
     for (PovObject& c : o.children) transformPigments(c, t);
 }
 

@@ -86,6 +86,11 @@ public:
     Pigment pigment(const Pigment& base);  // after 'pigment'
     Finish finish(const Finish& base);     // after 'finish'
     Interior interior(const Interior& base);
+    // media.cpp
+    Media media(const Media& base); // after 'media'
+    void scattering(Media& m);      // after 'scattering'
+    Pigment density();              // after 'density': POV-Ray's default density is 1
+    Pigment density(const Pigment& base);
     PovMaterial material(const PovMaterial& base);
     // After 'normal': the bump pattern, or none (then a warning says why).
     std::optional<Normal> normalBlock(SourceLoc keyword);

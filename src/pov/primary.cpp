@@ -232,6 +232,18 @@ PovValue PovParser::rvalue() {
             v.interior = std::make_shared<Interior>(interior(Interior{}));
             return v;
         }
+        if (w == "media") {
+            next();
+            v.kind = Kind::Media;
+            v.media = std::make_shared<Media>(media(Media{}));
+            return v;
+        }
+        if (w == "density") { // kept as the pigment it is evaluated as
+            next();
+            v.kind = Kind::Pigment;
+            v.pigment = std::make_shared<Pigment>(density());
+            return v;
+        }
         if (w == "material") {
             next();
             v.kind = Kind::Material;
@@ -274,7 +286,7 @@ PovValue PovParser::rvalue() {
         }
         static const std::set<std::string> opaque = {
             "function", "spline", "pigment_map", "normal_map", "texture_map", "slope_map", "density_map",
-            "material_map", "media", "density", "interior_texture", "rainbow", "fog", "photons",
+            "material_map", "interior_texture", "rainbow", "fog", "photons",
             "radiosity"};
         if (opaque.count(w)) {
             next();

@@ -143,6 +143,7 @@ Light PovParser::lightSource(SourceLoc loc) {
     expectSymbol("{", "after 'light_source'");
     Light l;
     l.loc = loc;
+    l.mediaAttenuation = false; // POV-Ray's default
     AreaLight early; // area-light modifiers given before area_light
     const Tok first = peek();
     const Cell id = first.kind == TokKind::Word ? use(first.text) : nullptr;
@@ -225,7 +226,8 @@ Light PovParser::lightSource(SourceLoc loc) {
             warnOnce("light-" + w, t.loc, "'" + w + "' lights are not supported; treated as a point light");
         } else if (w == "media_interaction" || w == "media_attenuation") {
             const Tok n = peekOperator();
-            if (n.kind == TokKind::Number || n.isWord("on") || n.isWord("off")) floatExpr();
+            const bool on = n.kind == TokKind::Number || n.isWord("on") || n.isWord("off") ? floatExpr() != 0 : true;
+            (w == "media_interaction" ? l.mediaInteraction : l.mediaAttenuation) = on;
         } else {
             failExpected(t, "a light_source item or '}'");
         }
@@ -298,7 +300,9 @@ void PovParser::statement(const Tok& t) {
         fog(t);
     } else if (w == "default") {
         defaultBlock();
-    } else if (w == "rainbow" || w == "media" || w == "photons" || w == "radiosity") {
+    } else if (w == "media") {
+        scene_.media.push_back(media(Media{}));
+    } else if (w == "rainbow" || w == "photons" || w == "radiosity") {
         warnOnce(w, t.loc, "'" + w + "' is not supported and is ignored");
         expectSymbol("{", ("after '" + w + "'").c_str());
         skipBlock();

@@ -68,7 +68,7 @@ namespace {
 const std::set<std::string>& noisePatterns() {
     static const std::set<std::string> words = {
         "agate", "bozo", "granite", "marble", "wood", "spotted", "leopard", "crackle", "ripples", "waves",
-        "wrinkles", "bumps", "dents", "spiral1", "spiral2", "mandel", "julia", "cells", "planar", "spherical",
+        "wrinkles", "bumps", "dents", "spiral1", "spiral2", "mandel", "julia", "cells", "planar",
         "cylindrical", "boxed", "quilted", "average", "cubic", "tiling", "pavement", "facets", "function",
         "density_file", "object", "aoi", "slope", "pigment_pattern", "magnet", "fractal", "wave", "noise"};
     return words;
@@ -302,6 +302,11 @@ Pigment PovParser::pigment(const Pigment& base) {
         } else if (w == "onion") {
             next();
             p.pattern = PatternKind::Onion;
+        } else if (w == "spherical") {
+            next();
+            p.pattern = PatternKind::Spherical;
+        } else if (w == "ramp_wave") { // the default wave: nothing to change
+            next();
         } else if (w == "color_map" || w == "colour_map") {
             next();
             p.colorMap = colorMap();
@@ -322,8 +327,12 @@ Pigment PovParser::pigment(const Pigment& base) {
             patternLoc = t.loc;
             if (w == "function" || w == "pigment_pattern" || w == "object") {
                 if (peek().is("{")) next(), skipBlock();
-            } else if (w == "wave" || w == "density_file") {
-                // followed by a type word / file: skipped with the rest
+            } else if (w == "density_file") { // density_file df3 "file" [interpolate n]
+                if (peek().isWord("df3")) next();
+                stringExpr();
+                if (peek().isWord("interpolate")) next(), floatExpr();
+            } else if (w == "wave") {
+                // followed by a type word: skipped with the rest
             }
             if (w == "mandel" || w == "julia" || w == "magnet") {
                 // julia <c>, n; mandel n
@@ -490,9 +499,7 @@ Interior PovParser::interior(const Interior& base) {
             floatExpr();
             warnOnce("interior-" + w, t.loc, "'" + w + "' is not supported and is ignored");
         } else if (w == "media") {
-            warnOnce("media", t.loc, "'media' is not supported and is ignored");
-            expectSymbol("{", "after 'media'");
-            skipBlock();
+            in.media.push_back(media(Media{}));
         } else {
             failExpected(t, "an interior item or '}'");
         }
@@ -587,7 +594,8 @@ Texture PovParser::texture(const Texture& base) {
             pushBack(t);
             transformTextureSpaces(tex, *transformItem());
         } else if (w == "texture_map" || w == "material_map" || noisePatterns().count(w) || w == "checker" ||
-                   w == "hexagon" || w == "brick" || w == "gradient" || w == "radial" || w == "onion") {
+                   w == "hexagon" || w == "brick" || w == "gradient" || w == "radial" || w == "onion" ||
+                   w == "spherical") {
             warnOnce("texture-pattern", t.loc, "patterned textures (texture_map) are not supported; the first texture is used");
             // Skip to the end of this texture, keeping the first nested texture if there is one.
             int depth = 1;

@@ -63,7 +63,7 @@ struct PovArray {
 struct PovValue {
     enum class Kind {
         Float, Vector, Color, String, Array, Object, Texture, Pigment, Finish, Interior, Material,
-        Normal, Camera, Light, Transform, ColorMap, Macro, Opaque, SkySphere,
+        Normal, Camera, Light, Transform, ColorMap, Macro, Opaque, SkySphere, Media,
     };
     Kind kind = Kind::Float;
     double number = 0;
@@ -77,6 +77,7 @@ struct PovValue {
     std::shared_ptr<const std::vector<Pigment>> sky; // SkySphere: its pigments, transformed
     std::shared_ptr<const Finish> finish;
     std::shared_ptr<const Interior> interior;
+    std::shared_ptr<const Media> media;
     std::shared_ptr<const PovMaterial> material;
     std::shared_ptr<const CameraSpec> camera;
     std::shared_ptr<const Transform> transform;

@@ -2,6 +2,7 @@
 
 #include "render/atmosphere.h"
 #include "render/directions.h"
+#include "render/media.h"
 #include "render/noise.h"
 #include "render/pigment.h"
 #include "render/shading.h"
@@ -17,7 +18,10 @@ static_assert(kTraceLevelLimit < kMaxLightDepth, "extra lights' sampler dimensio
 Integrator::Integrator(const Scene& scene, const Accelerator& accel)
     : scene_(scene), accel_(accel),
       maxTraceLevel_(std::clamp(scene.global.maxTraceLevel, 1, kTraceLevelLimit)),
-      adcBailout_(std::isfinite(scene.global.adcBailout) ? std::max(0.0, scene.global.adcBailout) : 0.0) {}
+      adcBailout_(std::isfinite(scene.global.adcBailout) ? std::max(0.0, scene.global.adcBailout) : 0.0),
+      hasMedia_(sceneHasMedia(scene)) {
+    if (hasMedia_) mediaBounds(scene, accel, mediaLower_, mediaUpper_);
+}
 
 Color Integrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounts& counts) const {
     thread_local std::vector<PendingRay> stack;
@@ -41,6 +45,20 @@ Color Integrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounts& count
                                             found ? hit.t * speed : kFogMissDistance);
             result += pending.weight * fog.add;
             seen.weight = pending.weight * fog.scale;
+        }
+        if (hasMedia_) { // the media in front of what the ray sees
+            thread_local MediaList media;
+            media.clear();
+            segmentMedia(scene_, pending.medium, found ? &hit : nullptr, pending.ray.direction, media);
+            const double speed = length(pending.ray.direction);
+            const Vec3 unit = pending.ray.direction / speed;
+            const double distance =
+                found ? hit.t * speed : mediaMissDistance(mediaLower_, mediaUpper_, pending.ray.origin, unit);
+            const MediaEffect effect = integrateMedia(media, pending.ray.origin, unit, distance,
+                                                      {&scene_, &accel_, pending.ray.time}, sampler,
+                                                      mediaDimension(pending.depth), counts);
+            result += seen.weight * effect.add;
+            seen.weight *= effect.scale;
         }
         if (!found) {
             const Color sky = scene_.sky.empty() ? scene_.background
@@ -125,7 +143,7 @@ void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampl
         const Vec3 direction = lobeDirection(mirror, finish.reflectionBlur, sampler,
                                              bounceDimension(pending.depth, kOffsetLobe));
         if (dot(direction, normal) > 0) // below the surface: weight 0
-            stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth});
+            stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth, pending.medium});
     }
 
     const Color transmittedWeight = weight * transmitted;
@@ -142,7 +160,8 @@ void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampl
                                              bounceDimension(pending.depth, kOffsetRefractionLobe));
         const double side = dot(direction, normal);
         if (internalReflection ? side > 0 : side < 0)
-            stack.push_back({spawn(hit, direction, pending.ray.time), transmittedWeight, childDepth});
+            stack.push_back({spawn(hit, direction, pending.ray.time), transmittedWeight, childDepth,
+                             internalReflection ? pending.medium : mediumAfterCrossing(pending.medium, object, entering)});
     }
 }
 

@@ -49,6 +49,7 @@ private:
         Ray ray;
         Color weight;
         int depth = 0;
+        const Object* medium = nullptr; // the media-holding object the ray is inside (render/media.h)
     };
     void shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
                std::vector<PendingRay>& stack) const;
@@ -57,6 +58,8 @@ private:
     const Accelerator& accel_;
     int maxTraceLevel_;
     double adcBailout_;
+    bool hasMedia_; // render/media.h; misses see atmospheric media inside this box:
+    Vec3 mediaLower_{0, 0, 0}, mediaUpper_{0, 0, 0};
 };
 
 } // namespace drt

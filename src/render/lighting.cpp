@@ -1,6 +1,7 @@
 #include "render/lighting.h"
 
 #include "sampling/warp.h"
+#include "render/media.h"
 #include "render/pigment.h"
 #include "render/shading.h"
 
@@ -11,7 +12,7 @@
 namespace drt {
 
 Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
-                          RayCounts& counts) {
+                          RayCounts& counts, const Scene* mediaScene) {
     Ray ray;
     ray.origin = Accelerator::offsetOrigin(from, target - from.point);
     ray.direction = target - ray.origin; // the light sits at t = 1
@@ -19,19 +20,29 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
     ray.tMax = 1;
     ray.time = time;
     ++counts.shadow;
-    if (!accel.occluded(ray)) return Color(1);
+    // Media between ray.origin and the end of the segment (hit == nullptr: the light).
+    thread_local MediaList media;
+    const auto throughMedia = [&](const Hit* hit, double t) {
+        media.clear();
+        if (mediaScene) segmentMedia(*mediaScene, nullptr, hit, ray.direction, media);
+        if (media.empty()) return Color(1);
+        const double speed = length(ray.direction);
+        return mediaTransmittance(media, ray.origin, ray.direction / speed, t * speed);
+    };
+    if (!accel.occluded(ray)) return mediaScene && !mediaScene->media.empty() ? throughMedia(nullptr, 1) : Color(1);
 
     // Something is in the way: walk through it, filtering by each surface.
     Color transmittance(1);
     for (int crossed = 0; crossed < kMaxShadowBlockers; ++crossed) {
         Hit blocker;
         ++counts.shadow;
-        if (!accel.intersect(ray, blocker)) return transmittance;
+        if (!accel.intersect(ray, blocker)) return mediaScene ? transmittance * throughMedia(nullptr, 1) : transmittance;
+        if (mediaScene) transmittance *= throughMedia(&blocker, blocker.t);
         if (!blocker.object->noShadow) {
             const ColorFT p = evaluatePigment(blocker.object->texture.pigment, blocker.point);
             transmittance *= p.rgb * p.filter + Color(p.transmit);
-            if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
+        if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         ray.origin = Accelerator::offsetOrigin(blocker, ray.direction);
         ray.direction = target - ray.origin;
         if (!(dot(ray.direction, target - from.point) > 0)) return transmittance; // passed the light
@@ -79,7 +90,8 @@ Color lightIntensityAt(const Light& light, const Vec3& lightPosition, const Vec3
 // Diffuse and highlights from a point light at `lightPosition` whose colour is
 // scaled by `scale` (and by 1/r^2 when `inverseSquare`), shadowed unless shadowless.
 Color shadePointLight(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
-                      const Vec3& lightPosition, double scale, bool inverseSquare, RayCounts& counts) {
+                      const Vec3& lightPosition, double scale, bool inverseSquare, RayCounts& counts,
+                      const Scene* mediaScene) {
     const Vec3 toLight = lightPosition - sp.hit.point;
     const double distance = length(toLight);
     if (!(distance > 0)) return Color(0);
@@ -89,7 +101,7 @@ Color shadePointLight(const Accelerator& accel, const ShadingPoint& sp, const Li
     Color intensity = lightIntensityAt(light, lightPosition, sp.hit.point) * scale;
     if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return Color(0);
     if (!light.shadowless) {
-        intensity *= shadowTransmittance(accel, sp.hit, lightPosition, sp.time, counts);
+        intensity *= shadowTransmittance(accel, sp.hit, lightPosition, sp.time, counts, mediaScene);
         if (isBlack(intensity)) return Color(0);
     }
     return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity);
@@ -192,7 +204,7 @@ private:
 
 // areaIllumination off: a point light at the centre times the mean visibility.
 Color shadeAreaLightShadowOnly(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
-                               int lightIndex, Sampler& sampler, RayCounts& counts) {
+                               int lightIndex, Sampler& sampler, RayCounts& counts, const Scene* mediaScene) {
     const Vec3 toCenter = light.position - sp.hit.point;
     const double distance = length(toCenter);
     if (!(distance > 0)) return Color(0);
@@ -206,7 +218,8 @@ Color shadeAreaLightShadowOnly(const Accelerator& accel, const ShadingPoint& sp,
         const AreaSampler points(light, sp.hit.point, sp.depth, lightIndex);
         visibility = Color(0);
         for (int k = 0; k < points.count(); ++k)
-            visibility += shadowTransmittance(accel, sp.hit, points.sample(sampler, k).position, sp.time, counts);
+            visibility += shadowTransmittance(accel, sp.hit, points.sample(sampler, k).position, sp.time, counts,
+                                              mediaScene);
         visibility = visibility / points.count();
         if (isBlack(visibility)) return Color(0);
     }
@@ -215,12 +228,12 @@ Color shadeAreaLightShadowOnly(const Accelerator& accel, const ShadingPoint& sp,
 
 // areaIllumination on: each sample point shades as a weighted point light.
 Color shadeAreaLightFull(const Accelerator& accel, const ShadingPoint& sp, const Light& light, int lightIndex,
-                         Sampler& sampler, RayCounts& counts) {
+                         Sampler& sampler, RayCounts& counts, const Scene* mediaScene) {
     const AreaSampler points(light, sp.hit.point, sp.depth, lightIndex);
     Color sum(0);
     for (int k = 0; k < points.count(); ++k) {
         const AreaSample s = points.sample(sampler, k);
-        if (s.weight > 0) sum += shadePointLight(accel, sp, light, s.position, s.weight, false, counts);
+        if (s.weight > 0) sum += shadePointLight(accel, sp, light, s.position, s.weight, false, counts, mediaScene);
     }
     return sum;
 }
@@ -234,12 +247,14 @@ Color directLighting(const Scene& scene, const Accelerator& accel, const Shading
         const Light& light = scene.lights[i];
         if (isBlack(light.color)) continue;
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
+        // Shadow rays through media: only for lights that interact with media (POV-Ray).
+        const Scene* media = light.mediaAttenuation && light.mediaInteraction ? &scene : nullptr;
         if (!light.area)
-            sum += shadePointLight(accel, point, light, light.position, 1.0, light.inverseSquare, counts);
+            sum += shadePointLight(accel, point, light, light.position, 1.0, light.inverseSquare, counts, media);
         else if (light.areaIllumination)
-            sum += shadeAreaLightFull(accel, point, light, index, sampler, counts);
+            sum += shadeAreaLightFull(accel, point, light, index, sampler, counts, media);
         else
-            sum += shadeAreaLightShadowOnly(accel, point, light, index, sampler, counts);
+            sum += shadeAreaLightShadowOnly(accel, point, light, index, sampler, counts, media);
     }
     return sum;
 }

@@ -64,9 +64,10 @@ inline constexpr int kMaxShadowBlockers = 64;
 
 // The light reaching `target` from `from` (a surface hit): 1 if nothing casts a
 // shadow in between, else the product of P*filter + transmit over every
-// shadow-casting surface crossed (0 at the first opaque one).
+// shadow-casting surface crossed (0 at the first opaque one). With `mediaScene`,
+// also the transmittance of the media along the way (render/media.h).
 Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
-                          RayCounts& counts);
+                          RayCounts& counts, const Scene* mediaScene = nullptr);
 
 struct ShadingPoint {
     Hit hit;

@@ -91,6 +91,8 @@ double radialValue(const Vec3& p) {
 
 double onionValue(const Vec3& p) { return rampWave(length(p)); }
 
+double sphericalValue(const Vec3& p) { return std::max(0.0, 1.0 - length(p)); }
+
 ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value) {
     if (map.empty()) return ColorFT{Color(value), 0, 0};
     if (value <= map.front().value) return map.front().color;
@@ -118,6 +120,7 @@ ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
     case PatternKind::Gradient: return lookupColorMap(pigment.colorMap, gradientValue(p, pigment.gradientAxis));
     case PatternKind::Radial: return lookupColorMap(pigment.colorMap, radialValue(p));
     case PatternKind::Onion: return lookupColorMap(pigment.colorMap, onionValue(p));
+    case PatternKind::Spherical: return lookupColorMap(pigment.colorMap, sphericalValue(p));
     default: break;
     }
     return pigment.color;

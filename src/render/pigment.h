@@ -20,6 +20,7 @@ int brickIndex(const Vec3& p, const Vec3& brickSize, double mortar); // 0 mortar
 double gradientValue(const Vec3& p, const Vec3& axis); // in [0, 1)
 double radialValue(const Vec3& p);          // in [0, 1)
 double onionValue(const Vec3& p);           // in [0, 1)
+double sphericalValue(const Vec3& p);       // max(0, 1 - |p|), in [0, 1]
 ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value);
 
 } // namespace drt

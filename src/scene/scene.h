@@ -30,6 +30,7 @@ enum class PatternKind {
     Gradient, // colour map along `gradientAxis`
     Radial,   // colour map around y
     Onion,    // colour map by distance from the origin
+    Spherical, // colour map of max(0, 1 - distance from the origin) (POV-Ray's spherical)
     // Noise patterns (render/noise.h): drt's own gradient noise, shaped like
     // POV-Ray's documented patterns but not value-for-value equal to them.
     Bozo,     // colour map of plain noise (POV-Ray's bozo and spotted)
@@ -126,12 +127,39 @@ inline void transformTextureSpaces(Texture& texture, const Transform& t) {
     if (texture.normal) texture.normal->toWorld = texture.normal->toWorld.then(t);
 }
 
+// POV-Ray participating media (`media { }`; render/media.h has the estimator).
+// At a point p with density D(p) (the product of the densities' colours, 1
+// without any), the medium absorbs D a, emits D e and scatters D s per unit
+// length; the extinction is D (a + extinction s). Scattering types are
+// POV-Ray's: 1 isotropic, 2 Mie haze, 3 Mie murky, 4 Rayleigh, 5
+// Henyey-Greenstein with `eccentricity`. N = intervals x samples stratified
+// jittered samples per ray segment; POV-Ray's method, confidence, variance,
+// ratio, jitter and aa_* are accepted by the front ends but not kept.
+struct Media {
+    Color absorption{0};
+    Color emission{0};
+    int scatteringType = 0; // 0: no scattering block
+    Color scattering{0};
+    double eccentricity = 0;
+    double extinction = 1;
+    int intervals = 1;
+    int samples = 1;
+    std::vector<Pigment> densities; // evaluated as colours, multiplied
+};
+
 struct Interior {
     double ior = 1;
     double fadeDistance = 0; // 0: no attenuation inside
     double fadePower = 0;
     Color fadeColor{0};
+    std::vector<Media> media; // seen along rays inside the object (POV-Ray: the object must be hollow)
 };
+
+// Applies a transform after the pattern spaces of an interior's media densities.
+inline void transformInteriorSpaces(Interior& interior, const Transform& t) {
+    for (Media& m : interior.media)
+        for (Pigment& d : m.densities) transformPigmentSpaces(d, t);
+}
 
 // ---------------------------------------------------------------- shapes
 // Every shape is given in object space; Object::transform maps it to world space.
@@ -258,6 +286,11 @@ struct Light {
     // irradiance C cos(theta) / r^2; an area light is a two-sided Lambertian
     // rectangle of radiance C / area. Off: POV-Ray's lights, no distance falloff.
     bool inverseSquare = false;
+    // POV-Ray media_interaction: the light scatters in media. media_attenuation:
+    // media on the way dim the light (drt's default; POV-Ray's is off, which
+    // the POV front end sets).
+    bool mediaInteraction = true;
+    bool mediaAttenuation = true;
     SourceLoc loc;
 };
 
@@ -342,6 +375,7 @@ struct Scene {
     // through shows the background colour. Empty: the background alone.
     std::vector<Pigment> sky;
     std::vector<Fog> fogs; // each over the whole ray segment: colours add, transmittances multiply (POV-Ray)
+    std::vector<Media> media; // atmospheric media: everywhere outside non-hollow objects
     GlobalSettings global;
     RenderSettings render;
 };
