@@ -30,7 +30,7 @@ public:
     // ------------------------------------------------------------ tokens (reader.cpp)
     Tok next();          // directives run, macros expanded
     Tok peek();          // the same token next() will return
-    Tok peekOperator();  // stops at a directive (returned unconsumed, kind Directive)
+    Tok peekOperator();  // stops at a directive or a macro name (returned unconsumed, unexpanded)
     void pushBack(Tok t) { pushed_.push_back(std::move(t)); }
     bool acceptSymbol(const char* s);
     Tok expectSymbol(const char* s, const char* context);
