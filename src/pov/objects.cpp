@@ -119,6 +119,7 @@ bool PovParser::isObjectWord(const Tok& t) const {
 
 void PovParser::applyTransform(PovObject& o, const Transform& t) {
     o.object.transform = o.object.transform.then(t);
+    for (Object& clip : o.object.clippedBy) clip.transform = clip.transform.then(t);
     transformPigments(o, t);
     for (Light& l : o.lights) transformLight(l, t);
 }
@@ -395,6 +396,7 @@ PovObject PovParser::object(const Tok& keyword) {
     }
     // ---- modifiers
     int textures = 0;
+    std::vector<Object> boundedBy; // for `clipped_by { bounded_by }`
     for (;;) {
         const Tok t = peek();
         if (t.is("}")) {
@@ -403,6 +405,7 @@ PovObject PovParser::object(const Tok& keyword) {
         }
         if (std::optional<Transform> tr = transformItem()) {
             applyTransform(po, *tr);
+            for (Object& b : boundedBy) b.transform = b.transform.then(*tr);
             continue;
         }
         next();
@@ -461,14 +464,19 @@ PovObject PovParser::object(const Tok& keyword) {
             vectorExpr();
         } else if (m == "bounded_by" || m == "clipped_by") {
             // POV-Ray treats bounded_by as an optimisation (it can only cut an
-            // object it does not enclose), so ignoring it is a note, not a warning.
+            // object it does not enclose), so ignoring it is a note; the
+            // objects are kept for `clipped_by { bounded_by }`.
+            std::vector<Object> objects = clipObjects(t);
             if (m == "bounded_by") {
                 if (warned_.insert("note-bounded_by").second)
                     note(t.loc, "'bounded_by' is ignored: drt builds its own bounds");
-            } else
-                warnOnce(m, t.loc, "'clipped_by' is not supported; the object is not clipped");
-            expectSymbol("{", ("after '" + m + "'").c_str());
-            skipBlock();
+                boundedBy = std::move(objects);
+            } else if (objects.empty()) {
+                // `clipped_by { bounded_by }`: clip by the bounding objects.
+                o.clippedBy.insert(o.clippedBy.end(), boundedBy.begin(), boundedBy.end());
+            } else {
+                o.clippedBy.insert(o.clippedBy.end(), objects.begin(), objects.end());
+            }
         } else if (m == "photons" || m == "radiosity" || m == "interior_texture") {
             warnOnce(m, t.loc, "'" + m + "' is not supported and is ignored");
             expectSymbol("{", ("after '" + m + "'").c_str());
@@ -496,6 +504,30 @@ PovObject PovParser::object(const Tok& keyword) {
     }
     (void)open;
     return po;
+}
+
+// The objects of `bounded_by { ... }` or `clipped_by { ... }` in the space
+// the enclosing object's transform maps to. Empty for `clipped_by {
+// bounded_by }` and `bounded_by { clipped_by }` (the other block's objects).
+std::vector<Object> PovParser::clipObjects(const Tok& word) {
+    const std::string& keyword = word.text;
+    expectSymbol("{", ("after '" + keyword + "'").c_str());
+    std::vector<Object> objects;
+    const char* other = keyword == "clipped_by" ? "bounded_by" : "clipped_by";
+    for (;;) {
+        const Tok t = next();
+        if (t.is("}")) break;
+        if (t.isWord(other) && objects.empty()) {
+            expectSymbol("}", ("after '" + std::string(other) + "'").c_str());
+            return objects;
+        }
+        if (!isObjectWord(t)) failExpected(t, "an object or '}' in " + keyword);
+        PovObject clip = object(t);
+        if (clip.lightOnly) continue;
+        objects.push_back(toObject(clip));
+    }
+    if (objects.empty()) fail(word.loc, "'" + keyword + "' needs at least one object");
+    return objects;
 }
 
 } // namespace drt::pov

@@ -98,6 +98,7 @@ public:
     // ------------------------------------------------------------ objects (objects.cpp)
     bool isObjectWord(const Tok& t) const;
     PovObject object(const Tok& keyword); // keyword consumed
+    std::vector<Object> clipObjects(const Tok& word); // after bounded_by / clipped_by
     void applyTransform(PovObject& o, const Transform& t);
 
     // ------------------------------------------------------------ scene (scene_items.cpp)
@@ -189,6 +190,8 @@ private:
 // The world-space bounding box of an object (POV-Ray's min_extent / max_extent);
 // unbounded shapes give +-1e10 as POV-Ray's BOUND_HUGE/2 does.
 void objectBounds(const PovObject& o, Vec3& lower, Vec3& upper);
+// The scene-model object (CSG members included).
+Object toObject(const PovObject& po);
 
 // POV-Ray colour (r g b filter transmit) -> scene colour.
 ColorFT toColorFT(const std::array<double, 5>& c);

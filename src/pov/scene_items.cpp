@@ -54,6 +54,8 @@ void decodeObject(Object& o, double gamma) {
         for (Object& c : csg->children) decodeObject(c, gamma);
 }
 
+} // namespace
+
 Object toObject(const PovObject& po) {
     Object o = po.object;
     if (Csg* csg = std::get_if<Csg>(&o.shape)) {
@@ -62,8 +64,6 @@ Object toObject(const PovObject& po) {
     }
     return o;
 }
-
-} // namespace
 
 CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
     expectSymbol("{", "after 'camera'");

@@ -206,6 +206,13 @@ struct Object {
     bool noShadow = false;
     bool hollow = false;
     bool inverse = false;
+    // clipped_by (POV-Ray): the object's surface is kept only where it lies
+    // inside every one of these; their own surfaces are not added, so the
+    // object may be left open. As for insideness (CSG), the object counts as
+    // inside only where it is inside every clip too. Clip objects live in the
+    // space Object::transform maps to (world for a top-level object, the CSG's
+    // space for a member); transforms written after clipped_by move them too.
+    std::vector<Object> clippedBy;
     SourceLoc loc;
 };
 
