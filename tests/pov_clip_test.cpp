@@ -58,6 +58,15 @@ TEST(PovClip, CsgMembersAndDeclaredObjectsKeepTheirClips) {
     EXPECT_EQ(s.objects[1].clippedBy[0].transform, Transform::translate({2, 0, 0}));
 }
 
+TEST(PovClip, UnsupportedClipShapeIsLeftOutWithItsWarning) {
+    Diagnostics diags;
+    const auto s = load("sphere { 0, 1 clipped_by { quadric { <1, 1, 1>, <0, 0, 0>, <0, 0, 0>, -1 } } }", diags);
+    ASSERT_TRUE(s) << diags.formatAll();
+    ASSERT_EQ(s->objects.size(), 1u);
+    EXPECT_TRUE(s->objects[0].clippedBy.empty());
+    EXPECT_EQ(diags.warningCount(), 1) << diags.formatAll();
+}
+
 TEST(PovClip, EmptyOrWrongBlocksAreErrors) {
     struct Case {
         const char* text;

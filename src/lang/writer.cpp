@@ -181,6 +181,8 @@ void SceneWriter::settings(const Scene& scene) {
 void SceneWriter::camera(const CameraSpec& c) {
     const CameraSpec d;
     line(0, "camera {");
+    if (c.orthographic)
+        line(1, "orthographic");
     line(1, "location " + vector(c.location));
     if (!(c.direction == d.direction))
         line(1, "direction " + vector(c.direction));

@@ -466,16 +466,16 @@ PovObject PovParser::object(const Tok& keyword) {
             // POV-Ray treats bounded_by as an optimisation (it can only cut an
             // object it does not enclose), so ignoring it is a note; the
             // objects are kept for `clipped_by { bounded_by }`.
-            std::vector<Object> objects = clipObjects(t);
+            const std::optional<std::vector<Object>> objects = clipObjects(t);
             if (m == "bounded_by") {
                 if (warned_.insert("note-bounded_by").second)
                     note(t.loc, "'bounded_by' is ignored: drt builds its own bounds");
-                boundedBy = std::move(objects);
-            } else if (objects.empty()) {
+                if (objects) boundedBy = *objects;
+            } else if (!objects) {
                 // `clipped_by { bounded_by }`: clip by the bounding objects.
                 o.clippedBy.insert(o.clippedBy.end(), boundedBy.begin(), boundedBy.end());
             } else {
-                o.clippedBy.insert(o.clippedBy.end(), objects.begin(), objects.end());
+                o.clippedBy.insert(o.clippedBy.end(), objects->begin(), objects->end());
             }
         } else if (m == "photons" || m == "radiosity" || m == "interior_texture") {
             warnOnce(m, t.loc, "'" + m + "' is not supported and is ignored");
@@ -507,26 +507,29 @@ PovObject PovParser::object(const Tok& keyword) {
 }
 
 // The objects of `bounded_by { ... }` or `clipped_by { ... }` in the space
-// the enclosing object's transform maps to. Empty for `clipped_by {
+// the enclosing object's transform maps to; nothing for `clipped_by {
 // bounded_by }` and `bounded_by { clipped_by }` (the other block's objects).
-std::vector<Object> PovParser::clipObjects(const Tok& word) {
+// Unsupported shapes (already warned about) are left out.
+std::optional<std::vector<Object>> PovParser::clipObjects(const Tok& word) {
     const std::string& keyword = word.text;
     expectSymbol("{", ("after '" + keyword + "'").c_str());
     std::vector<Object> objects;
     const char* other = keyword == "clipped_by" ? "bounded_by" : "clipped_by";
+    bool any = false;
     for (;;) {
         const Tok t = next();
         if (t.is("}")) break;
-        if (t.isWord(other) && objects.empty()) {
+        if (t.isWord(other) && !any) {
             expectSymbol("}", ("after '" + std::string(other) + "'").c_str());
-            return objects;
+            return std::nullopt;
         }
         if (!isObjectWord(t)) failExpected(t, "an object or '}' in " + keyword);
+        any = true;
         PovObject clip = object(t);
         if (clip.lightOnly) continue;
         objects.push_back(toObject(clip));
     }
-    if (objects.empty()) fail(word.loc, "'" + keyword + "' needs at least one object");
+    if (!any) fail(word.loc, "'" + keyword + "' needs at least one object");
     return objects;
 }
 

@@ -98,7 +98,7 @@ public:
     // ------------------------------------------------------------ objects (objects.cpp)
     bool isObjectWord(const Tok& t) const;
     PovObject object(const Tok& keyword); // keyword consumed
-    std::vector<Object> clipObjects(const Tok& word); // after bounded_by / clipped_by
+    std::optional<std::vector<Object>> clipObjects(const Tok& word); // after bounded_by / clipped_by
     void applyTransform(PovObject& o, const Transform& t);
 
     // ------------------------------------------------------------ scene (scene_items.cpp)

@@ -276,6 +276,12 @@ struct CameraSpec {
     Vec3 sky{0, 1, 0};
     std::optional<Vec3> lookAt;
     std::optional<double> angle; // horizontal field of view, degrees
+    // Orthographic projection (POV-Ray): rays parallel to direction, starting
+    // on the plane through location spanned by right and up, whose lengths are
+    // the view's width and height. With angle, right and up are scaled
+    // together so that the width is 2 d tan(angle / 2), d the distance from
+    // location to look_at (|direction| without look_at). No lens (aperture 0).
+    bool orthographic = false;
     // Thin lens (issue 3). aperture is the lens *diameter* in scene units; 0 is a pinhole.
     double aperture = 0;
     std::optional<Vec3> focalPoint;
