@@ -142,8 +142,11 @@ PovObject PovParser::object(const Tok& keyword) {
     po.object.loc = keyword.loc;
     po.object.texture = defaultTexture_;
     if (w == "light_source") {
-        po.lightOnly = true;
-        po.lights.push_back(lightSource(keyword.loc));
+        std::optional<PovObject> looksLike;
+        const Light light = lightSource(keyword.loc, &looksLike);
+        if (looksLike) po = std::move(*looksLike); // the shape carries the light
+        else po.lightOnly = true;
+        po.lights.push_back(light);
         return po;
     }
     const Tok open = expectSymbol("{", ("after '" + w + "'").c_str());

@@ -104,7 +104,8 @@ public:
     // ------------------------------------------------------------ scene (scene_items.cpp)
     void statement(const Tok& t);
     CameraSpec camera(const CameraSpec& base, SourceLoc loc);
-    Light lightSource(SourceLoc loc);
+    // `looksLike`, if given, receives the looks_like object (placed, no_shadow).
+    Light lightSource(SourceLoc loc, std::optional<PovObject>* looksLike = nullptr);
     void globalSettings();
     void fog(const Tok& keyword); // after 'fog'
     void resolveParallelSky(CameraSpec& cam);

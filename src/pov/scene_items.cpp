@@ -192,16 +192,22 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
     return c;
 }
 
-Light PovParser::lightSource(SourceLoc loc) {
+Light PovParser::lightSource(SourceLoc loc, std::optional<PovObject>* looksLike) {
     expectSymbol("{", "after 'light_source'");
     Light l;
     l.loc = loc;
     AreaLight early; // area-light modifiers given before area_light
     const Tok first = peek();
     const Cell id = first.kind == TokKind::Word ? use(first.text) : nullptr;
-    if (id && id->kind == Kind::Object && id->object->lightOnly && !id->object->lights.empty()) {
+    if (id && id->kind == Kind::Object && id->object->lights.size() == 1 &&
+        (id->object->lightOnly || looksLike)) {
+        // A declared light; one with looks_like is its shape carrying the light.
         next();
         l = id->object->lights.front();
+        if (!id->object->lightOnly) {
+            *looksLike = *id->object;
+            (*looksLike)->lights.clear();
+        }
     } else {
         l.position = vectorExpr();
         acceptSymbol(",");
@@ -221,6 +227,7 @@ Light PovParser::lightSource(SourceLoc loc) {
             break;
         }
         if (std::optional<Transform> tr = transformItem()) {
+            if (looksLike && *looksLike) applyTransform(**looksLike, *tr);
             l.position = tr->point(l.position);
             l.pointAt = tr->point(l.pointAt);
             if (l.area) {
@@ -243,7 +250,15 @@ Light PovParser::lightSource(SourceLoc loc) {
         else if (w == "shadowless") l.shadowless = true;
         else if (w == "fade_distance") l.fadeDistance = floatExpr();
         else if (w == "fade_power") l.fadePower = floatExpr();
-        else if (w == "area_light") {
+        else if (w == "looks_like" && looksLike) {
+            // POV-Ray: the object is moved to the light's position, moves with
+            // the light's later transforms and casts no shadow.
+            if (*looksLike) fail(t.loc, "only one looks_like is allowed per light_source");
+            PovObject shape = object(Tok{TokKind::Word, "object", 0, t.loc}); // reads `{ object modifiers }`
+            applyTransform(shape, Transform::translate(l.position));
+            shape.object.noShadow = true;
+            *looksLike = std::move(shape);
+        } else if (w == "area_light") {
             AreaLight a = early; // modifiers may come first (POV-Ray keeps them as flags)
             a.axis1 = vectorExpr();
             acceptSymbol(",");
