@@ -302,7 +302,7 @@ mesh { triangle { <0, 0, 0>, <1, 0, 0>, <1, 1, 0> } smooth_triangle { <0, 0, 0>,
 sphere { 0, 1 texture { pigment { rgb 1 } finish { ambient rgb <0.1, 0.2, 0.3> emission 0.2 diffuse 0.5 brilliance 2
    phong 0.6 phong_size 60 specular 0.2 roughness 0.02 metallic 0.7
    reflection { 0.05, rgb <0.6, 0.5, 0.4> fresnel on falloff 2 metallic 0.5 } conserve_energy
-   reflection_blur 0.1 refraction_blur 0.3 } }
+   reflection_blur 0.1 refraction_blur 0.3 crand 0.05 } }
    interior { ior 1.5 fade_distance 2 fade_power 1 fade_color rgb <0, 0.3, 0.4> } }
 sphere { 0, 0.5 pigment { rgb <1, 0, 0> } finish { reflection 0.3 } translate <-1, 1, 0> motion { translate <2, 0, 0> rotate <0, 30, 0> scale 1.5 } }
 union { sphere { <-1, 0, 0>, 0.3 } sphere { <1, 0, 0>, 0.3 pigment { rgb <0, 0, 1> } } pigment { checker scale 0.1 }

@@ -222,6 +222,8 @@ std::string finishBody(const Finish& f) {
         text += " reflection_blur " + number(f.reflectionBlur);
     if (f.refractionBlur != d.refractionBlur)
         text += " refraction_blur " + number(f.refractionBlur);
+    if (f.crand != d.crand)
+        text += " crand " + number(f.crand);
     return text;
 }
 

@@ -46,7 +46,18 @@ int lightDimension(int depth, int lightIndex) {
     return kFirstExtraLightDimension + static_cast<int>((2 * slot) % (int64_t(1) << 30));
 }
 
+int crandDimension(int depth, int lightIndex) {
+    const int64_t slot = int64_t(std::max(lightIndex, 0)) * kMaxLightDepth + std::clamp(depth, 0, kMaxLightDepth - 1);
+    return kFirstExtraLightDimension + (1 << 30) + static_cast<int>(slot % (int64_t(1) << 29));
+}
+
 namespace {
+
+// U for crand (lighting.h crandDimension); 0 without crand, so no sample is drawn.
+double crandNoise(const ShadingPoint& sp, int lightIndex, Sampler& sampler) {
+    if (!(sp.finish->crand > 0)) return 0;
+    return sampler.get1D(crandDimension(sp.depth, lightIndex));
+}
 
 struct AreaFrame {
     Vec3 axis1, axis2;
@@ -79,7 +90,7 @@ Color lightIntensityAt(const Light& light, const Vec3& lightPosition, const Vec3
 // Diffuse and highlights from a point light at `lightPosition` whose colour is
 // scaled by `scale` (and by 1/r^2 when `inverseSquare`), shadowed unless shadowless.
 Color shadePointLight(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
-                      const Vec3& lightPosition, double scale, bool inverseSquare, RayCounts& counts) {
+                      const Vec3& lightPosition, double scale, bool inverseSquare, double crandU, RayCounts& counts) {
     const Vec3 toLight = lightPosition - sp.hit.point;
     const double distance = length(toLight);
     if (!(distance > 0)) return Color(0);
@@ -92,7 +103,7 @@ Color shadePointLight(const Accelerator& accel, const ShadingPoint& sp, const Li
         intensity *= shadowTransmittance(accel, sp.hit, lightPosition, sp.time, counts);
         if (isBlack(intensity)) return Color(0);
     }
-    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity);
+    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity, crandU);
 }
 
 // One sample point of an area light and the weight of its point light
@@ -210,7 +221,8 @@ Color shadeAreaLightShadowOnly(const Accelerator& accel, const ShadingPoint& sp,
         visibility = visibility / points.count();
         if (isBlack(visibility)) return Color(0);
     }
-    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity * visibility);
+    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity * visibility,
+                     crandNoise(sp, lightIndex, sampler));
 }
 
 // areaIllumination on: each sample point shades as a weighted point light.
@@ -220,7 +232,9 @@ Color shadeAreaLightFull(const Accelerator& accel, const ShadingPoint& sp, const
     Color sum(0);
     for (int k = 0; k < points.count(); ++k) {
         const AreaSample s = points.sample(sampler, k);
-        if (s.weight > 0) sum += shadePointLight(accel, sp, light, s.position, s.weight, false, counts);
+        if (s.weight > 0)
+            sum += shadePointLight(accel, sp, light, s.position, s.weight, false, crandNoise(sp, lightIndex, sampler),
+                                   counts);
     }
     return sum;
 }
@@ -235,7 +249,8 @@ Color directLighting(const Scene& scene, const Accelerator& accel, const Shading
         if (isBlack(light.color)) continue;
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
         if (!light.area)
-            sum += shadePointLight(accel, point, light, light.position, 1.0, light.inverseSquare, counts);
+            sum += shadePointLight(accel, point, light, light.position, 1.0, light.inverseSquare,
+                                   crandNoise(point, index, sampler), counts);
         else if (light.areaIllumination)
             sum += shadeAreaLightFull(accel, point, light, index, sampler, counts);
         else

@@ -95,6 +95,10 @@ struct Finish {
     // perfect refraction; larger values widen the lobe around the ideal direction.
     double reflectionBlur = 0;
     double refractionBlur = 0;
+    // POV-Ray crand: each light's diffuse term loses U crand before it is
+    // multiplied by the pigment and light colours, U uniform in [0, 1) and
+    // drawn anew per light, bounce and pixel sample (graininess).
+    double crand = 0;
 };
 
 // A bump pattern (POV-Ray `normal { bumps 0.4 scale 0.2 }`): the shading
