@@ -20,5 +20,27 @@ TEST(PovFeatures, CrandIsReadWithoutAWarning) {
     EXPECT_EQ(s->objects.at(0).texture.finish.diffuse, 0.7);
 }
 
+TEST(PovFeatures, MinAndMaxExtent) {
+    Diagnostics diags;
+    const auto s = load("#declare B = box { <1, 2, 3>, <4, 5, 6> translate x }\n"
+                        "#declare D = difference { object { B } sphere { 0, 10 } }\n"
+                        "#warning vstr(3, min_extent(B), \",\", 0, 0)\n"
+                        "#warning vstr(3, max_extent(D), \",\", 0, 0)\n"
+                        "#warning vstr(3, max_extent(plane { y, 0 }), \",\", 0, 0)\n"
+                        "#declare T = isosurface { function { x * x + y * y + z * z - 1 } }\n"
+                        "#warning vstr(3, min_extent(T) + max_extent(T), \",\", 0, 0)\n",
+                        diags);
+    ASSERT_TRUE(s) << diags.formatAll();
+    std::vector<std::string> messages;
+    for (const Diagnostic& d : diags.all())
+        if (d.message.rfind("#warning: ", 0) == 0) messages.push_back(d.message.substr(10));
+    // A shape the front end leaves out (with its own warning) is unbounded, as
+    // POV-Ray's infinite objects: the centring idiom min + (max - min) / 2 gives 0.
+    EXPECT_EQ(messages, (std::vector<std::string>{"2,2,3", "5,5,6", "10000000000,10000000000,10000000000", "0,0,0"}));
+    Diagnostics light;
+    EXPECT_FALSE(load("#declare L = light_source { 0, 1 }\n#declare M = min_extent(L);", light));
+    EXPECT_NE(light.formatAll().find("'min_extent' needs an object"), std::string::npos) << light.formatAll();
+}
+
 } // namespace
 } // namespace drt

@@ -1,6 +1,7 @@
 // Objects: the primitives the scene model has, meshes, CSG, `object { Name }`
 // and the object modifiers. Unsupported shapes are skipped with a warning.
 #include "pov/parser.h"
+#include "scene/bounds.h"
 
 #include <fmt/format.h>
 
@@ -64,53 +65,7 @@ void setInterior(PovObject& o, const Interior& in) {
 
 } // namespace
 
-void objectBounds(const PovObject& po, Vec3& lower, Vec3& upper) {
-    constexpr double kHuge = 1e10;
-    const Object& o = po.object;
-    Vec3 lo(-kHuge), hi(kHuge);
-    bool local = true; // lo/hi are in object space
-    if (const Sphere* s = std::get_if<Sphere>(&o.shape)) {
-        lo = s->center - Vec3(s->radius), hi = s->center + Vec3(s->radius);
-    } else if (const Box* b = std::get_if<Box>(&o.shape)) {
-        lo = min(b->corner1, b->corner2), hi = max(b->corner1, b->corner2);
-    } else if (const Cylinder* c = std::get_if<Cylinder>(&o.shape)) {
-        lo = min(c->base, c->cap) - Vec3(c->radius), hi = max(c->base, c->cap) + Vec3(c->radius);
-    } else if (const Cone* c = std::get_if<Cone>(&o.shape)) {
-        const double r = std::max(c->baseRadius, c->capRadius);
-        lo = min(c->base, c->cap) - Vec3(r), hi = max(c->base, c->cap) + Vec3(r);
-    } else if (const Disc* d = std::get_if<Disc>(&o.shape)) {
-        lo = d->center - Vec3(d->radius), hi = d->center + Vec3(d->radius);
-    } else if (const Torus* t = std::get_if<Torus>(&o.shape)) {
-        const double r = t->majorRadius + t->minorRadius;
-        lo = {-r, -t->minorRadius, -r}, hi = {r, t->minorRadius, r};
-    } else if (const Mesh* m = std::get_if<Mesh>(&o.shape)) {
-        if (!m->vertices.empty()) {
-            lo = hi = m->vertices.front();
-            for (const Vec3& v : m->vertices) lo = min(lo, v), hi = max(hi, v);
-        }
-    } else if (const Csg* csg = std::get_if<Csg>(&o.shape)) {
-        bool any = false;
-        for (size_t i = 0; i < po.children.size(); ++i) {
-            Vec3 cl, ch;
-            objectBounds(po.children[i], cl, ch);
-            if (!any) lo = cl, hi = ch, any = true;
-            else if (csg->op == Csg::Op::Intersection) lo = max(lo, cl), hi = min(hi, ch);
-            else if (csg->op != Csg::Op::Difference) lo = min(lo, cl), hi = max(hi, ch);
-        }
-    } else {
-        local = false; // plane: unbounded
-    }
-    if (o.inverse) local = false, lo = Vec3(-kHuge), hi = Vec3(kHuge);
-    if (!local || maxComponent(abs(lo)) >= kHuge || maxComponent(abs(hi)) >= kHuge) {
-        lower = lo, upper = hi;
-        return;
-    }
-    lower = Vec3(kHuge), upper = Vec3(-kHuge);
-    for (int c = 0; c < 8; ++c) {
-        const Vec3 p = o.transform.point({(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z});
-        lower = min(lower, p), upper = max(upper, p);
-    }
-}
+void objectBounds(const PovObject& po, Vec3& lower, Vec3& upper) { drt::objectBounds(toObject(po), lower, upper); }
 
 bool PovParser::isObjectWord(const Tok& t) const {
     return t.kind == TokKind::Word && !lookup(t.text) &&
