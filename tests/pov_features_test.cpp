@@ -1,8 +1,10 @@
-// Smaller POV-Ray front-end features: finish crand and the bounds behind
-// min_extent / max_extent.
+// Smaller POV-Ray front-end features: finish crand, the bounds behind
+// min_extent / max_extent, and files a scene writes.
 #include "pov/load.h"
 
 #include <gtest/gtest.h>
+
+#include <filesystem>
 
 namespace drt {
 namespace {
@@ -40,6 +42,33 @@ TEST(PovFeatures, MinAndMaxExtent) {
     Diagnostics light;
     EXPECT_FALSE(load("#declare L = light_source { 0, 1 }\n#declare M = min_extent(L);", light));
     EXPECT_NE(light.formatAll().find("'min_extent' needs an object"), std::string::npos) << light.formatAll();
+}
+
+TEST(PovFeatures, WrittenFilesAreDroppedAndReadingIsAnError) {
+    // The portfolio scenes write HTML through html_gen.inc.
+    Diagnostics diags;
+    const auto s = load("#declare Name = \"drt_pov_features_test.html\";\n"
+                        "#fopen Out Name write\n#write(Out \"<p>\", str(2, 0, 0) \"</p>\\n\")\n"
+                        "#write (Out, Name)\n#fclose Out\n#fopen Log \"drt_pov_features_test.log\" append\n"
+                        "#warning \"done\"\n",
+                        diags);
+    ASSERT_TRUE(s) << diags.formatAll();
+    EXPECT_EQ(diags.warningCount(), 1) << diags.formatAll(); // the #warning only
+    EXPECT_FALSE(std::filesystem::exists("drt_pov_features_test.html"));
+    struct Case {
+        const char* text;
+        const char* message;
+        int column;
+    };
+    for (const Case& c : {Case{"#fopen In \"data.txt\" read", "#fopen ... read (file input) is not supported", 22},
+                          Case{"#read (In, V)", "#read (file input) is not supported", 1},
+                          Case{"#fopen In \"data.txt\" writ", "expected 'read', 'write' or 'append' after the file name", 22}}) {
+        Diagnostics bad;
+        EXPECT_FALSE(load(c.text, bad)) << c.text;
+        ASSERT_GE(bad.errorCount(), 1);
+        EXPECT_NE(bad.all()[0].message.find(c.message), std::string::npos) << bad.formatAll();
+        EXPECT_EQ(bad.all()[0].loc.column, c.column) << c.text;
+    }
 }
 
 } // namespace

@@ -166,6 +166,7 @@ private:
     void macroDefinition(const Tok& t);
     void invokeMacro(const Tok& t);
     void messageDirective(const Tok& t);
+    void fileDirective(const Tok& t);
     void versionDirective(const Tok& t);
     // Skips raw tokens until a directive in `stops` at nesting depth 0; returns it.
     Tok skipTo(const std::set<std::string>& stops, const Tok& start);
