@@ -67,7 +67,7 @@ struct Differ {
                eq(a.reflectionMetallic, b.reflectionMetallic, p + ".reflectionMetallic") &&
                eq(a.conserveEnergy, b.conserveEnergy, p + ".conserveEnergy") &&
                eq(a.reflectionBlur, b.reflectionBlur, p + ".reflectionBlur") &&
-               eq(a.refractionBlur, b.refractionBlur, p + ".refractionBlur");
+               eq(a.refractionBlur, b.refractionBlur, p + ".refractionBlur") && eq(a.crand, b.crand, p + ".crand");
     }
     bool shape(const Shape& a, const Shape& b, const std::string& p) {
         if (!eq(a.index(), b.index(), p + ".kind"))
