@@ -105,6 +105,8 @@ const std::vector<CrossCheckScene>& scenes() {
         {"focalblur", "camera/focalblur.pov", {"camera/camera-context.inc"}, 120},
         {"arealit1", "lights/arealit1.pov", {}, 4},
         {"arealit2", "lights/arealit2.pov", {}, 4},
+        {"orthographic", "camera/orthographic.pov", {"camera/camera-context.inc"}, 4},
+        {"soft", "lights/soft.pov", {}, 4}, // clipped_by
     };
     return list;
 }
