@@ -144,12 +144,39 @@ TEST(Clip, InvertedMemberOfAnIntersectionIsAShell) {
     expectHit(trace(accel, {0, 0, 0}, {1, 0, 0}), 0.5, {0.5, 0, 0}, {-1, 0, 0});
 }
 
-TEST(Clip, MeshClipIsARenderError) {
+TEST(Clip, ClippedMeshIsFilteredAndCastsShadowsOnlyWhereKept) {
+    Mesh mesh;
+    mesh.vertices = {{-2, -2, 0}, {2, -2, 0}, {0, 2, 0}};
+    mesh.triangles = {{0, 1, 2}};
+    Object tri = makeObject(mesh);
+    tri.clippedBy.push_back(makeObject(Sphere{{0, 0, 0}, 1}));
+    // The same triangle unclipped at z = 1, behind it: seen through the cut.
+    const Scene scene = sceneOf({tri, makeObject(mesh, Transform::translate({0, 0, 1}))});
+    Accelerator accel(scene);
+    auto inside = trace(accel, {0, 0.5, -5}, {0, 0, 1});
+    ASSERT_TRUE(inside);
+    EXPECT_NEAR(inside->t, 5, 1e-9);
+    EXPECT_EQ(inside->object, &scene.objects[0]);
+    auto cut = trace(accel, {0, 1.5, -5}, {0, 0, 1}); // in the triangle, outside the sphere
+    ASSERT_TRUE(cut);
+    EXPECT_NEAR(cut->t, 6, 1e-9);
+    EXPECT_EQ(cut->object, &scene.objects[1]);
+    Ray shadow;
+    shadow.direction = {0, 0, 1};
+    shadow.tMax = 5.5; // stops before the back triangle
+    shadow.origin = {0, 0.5, -5};
+    EXPECT_TRUE(accel.occluded(shadow));
+    shadow.origin = {0, 1.5, -5};
+    EXPECT_FALSE(accel.occluded(shadow));
+}
+
+TEST(Clip, MovingClippedMeshIsARenderError) {
     Mesh mesh;
     mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     mesh.triangles = {{0, 1, 2}};
     Object tri = makeObject(mesh);
     tri.clippedBy.push_back(makeObject(Sphere{{0, 0, 0}, 1}));
+    tri.motion = Motion{{1, 0, 0}, {0, 0, 0}, {1, 1, 1}};
     EXPECT_THROW(Accelerator(sceneOf({tri})), RenderError);
 }
 

@@ -131,10 +131,11 @@ struct Builder {
     }
 
     void addMesh(Level& level, LevelBounds& bounds, const Object& object, const Transform& toLevel, bool inverse,
-                 bool noShadow) {
+                 bool noShadow, std::vector<CsgNode> clips = {}) {
         MeshRecord record;
         record.object = &object;
         record.inverse = inverse;
+        record.clips = std::move(clips);
         const bool mirrored = determinant3(toLevel.matrix()) < 0;
         if (const auto* box = std::get_if<Box>(&object.shape)) {
             const Vec3 lo = min(box->corner1, box->corner2), hi = max(box->corner1, box->corner2);
@@ -228,8 +229,10 @@ struct Builder {
         for (CsgNode& clip : clipNodes(object, parentToLevel, motionAt)) clips.push_back(std::move(clip));
         // A clipped box is traced as an analytic shape, so that its hits can be filtered.
         if (!isAnalytic(object.shape) && !(!clips.empty() && std::holds_alternative<Box>(object.shape))) {
-            if (!clips.empty()) fail(object, "clipped_by on a mesh or triangle is not supported yet");
-            addMesh(level, bounds, object, toLevel, inverse, noShadow);
+            // Clipped meshes are filtered by Embree (embree_geometry.cpp), in the top level only.
+            if (!clips.empty() && &level != &impl.top)
+                fail(object, "clipped_by on a moving mesh or triangle is not supported yet");
+            addMesh(level, bounds, object, toLevel, inverse, noShadow, std::move(clips));
             return;
         }
         Primitive p;

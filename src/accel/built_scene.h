@@ -95,6 +95,8 @@ struct MeshRecord {
     std::vector<std::array<int, 3>> normalIndices;
     bool inverse = false;
     double extent = 0; // largest side of the level-space bounds
+    // clipped_by (level space): Embree's filter functions drop hits outside them.
+    std::vector<CsgNode> clips;
 };
 
 enum class GeometryKind { Analytic, Mesh, Instance };
