@@ -181,6 +181,12 @@ const ErrorCase kCases[] = {
     {"MotionNotWord", "sphere { 0, 1 motion { 1 } }", "expected 'translate', 'rotate', 'scale' or '}' in motion, found '1'", 1, 24},
     {"TransformAfterRotatingMotion", "sphere { 0, 1 motion { rotate y } translate x }", "a transform after 'motion' needs a motion with translation only; put 'motion' last", 1, 35},
     {"RotatingMotionInTransformedUnion", "union { sphere { 0, 1 motion { rotate y } } translate x }", "'motion' with rotate or scale inside a transformed union is not supported", 1, 9},
+    {"CrandNegative", "sphere { 0, 1 finish { crand -0.1 } }", "'crand' must not be negative", 1, 30},
+    {"OrthographicAperture", "camera { orthographic aperture 0.5 }", "an orthographic camera has no lens: 'aperture' must be 0", 1, 32},
+    {"ClipEmpty", "sphere { 0, 1 clipped_by { } }", "clipped_by needs at least one object", 1, 15},
+    {"ClipNotAnObject", "sphere { 0, 1 clipped_by { pigment { rgb 1 } } }", "expected an object or '}' in clipped_by, found 'pigment'", 1, 28},
+    {"ClipNoBrace", "sphere { 0, 1 clipped_by box { 0, 1 } }", "expected '{' after 'clipped_by', found 'box'", 1, 26},
+    {"ClipWithMotion", "sphere { 0, 1 clipped_by { box { 0, 1 motion { translate x } } } }", "'motion' on a clipped_by object is not supported", 1, 28},
     {"MotionInRotatingUnion", "union { sphere { 0, 1 motion { translate y } } motion { rotate y } }", "a moving object inside a union moving with rotate or scale is not supported", 1, 9},
     // textures
     {"TextureUnknown", "sphere { 0, 1 texture { pigmnt { } } }", "unknown keyword 'pigmnt'; did you mean 'pigment'?", 1, 25},

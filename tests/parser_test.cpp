@@ -380,6 +380,24 @@ TEST(Parser, UnionIsFlattenedWithTransformsAndInheritedTexture) {
     EXPECT_TRUE(s.objects[0].noShadow && s.objects[1].noShadow);
 }
 
+TEST(Parser, ClipsMoveOnlyWithLaterTransformsAndReachUnionMembers) {
+    const Scene s = parseOk("sphere { 0, 1 translate x clipped_by { box { 0, 1 } plane { y, 0 } } scale 2 }\n"
+                            "union { sphere { 0, 1 clipped_by { sphere { 0, 2 translate z } } translate x }\n"
+                            "        box { 0, 1 } clipped_by { box { 0, 1 } } translate y }\n");
+    ASSERT_EQ(s.objects.size(), 3u);
+    // The translate before clipped_by does not move the clips; the scale after it does.
+    ASSERT_EQ(s.objects[0].clippedBy.size(), 2u);
+    EXPECT_EQ(s.objects[0].clippedBy[0].transform, Transform::scale({2, 2, 2}));
+    EXPECT_TRUE(std::holds_alternative<Plane>(s.objects[0].clippedBy[1].shape));
+    // Union members: the union's clip, then their own clips (moved by the
+    // member's translate after clipped_by and by the union's), in world space.
+    ASSERT_EQ(s.objects[1].clippedBy.size(), 2u);
+    expectNear(s.objects[1].clippedBy[0].transform.point({0, 0, 0}), {0, 1, 0});
+    expectNear(s.objects[1].clippedBy[1].transform.point({0, 0, 0}), {1, 1, 1});
+    ASSERT_EQ(s.objects[2].clippedBy.size(), 1u);
+    expectNear(s.objects[2].clippedBy[0].transform.point({0, 0, 0}), {0, 1, 0});
+}
+
 TEST(Parser, NestedDeclaredUnion) {
     const Scene s = parseOk("#declare Pair = union { sphere { 0, 1 } sphere { x * 3, 1 } }\n"
                             "union { object { Pair } object { Pair translate z * 3 } scale 2 }");

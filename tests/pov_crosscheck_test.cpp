@@ -107,6 +107,8 @@ const std::vector<CrossCheckScene>& scenes() {
         {"arealit2", "lights/arealit2.pov", {}, 4},
         {"foglyr2", "interior/foglyr2.pov", {}, 4}, // two turbulent ground fogs
         {"ttf1", "objects/ttf1.pov", {}, 4},        // assumed_gamma 1.9: shading in the working space
+        {"orthographic", "camera/orthographic.pov", {"camera/camera-context.inc"}, 4},
+        {"soft", "lights/soft.pov", {}, 4}, // clipped_by
     };
     return list;
 }

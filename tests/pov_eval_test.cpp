@@ -126,6 +126,22 @@ TEST(PovEval, MacrosScopesAndReferenceParameters) {
     EXPECT_EQ(r->messages, (std::vector<std::string>{"10", "7", "99", "1", "120"}));
 }
 
+// A declaration without ';' ends before a macro call on the next line: the
+// call must see the new identifier (portfolio scenes: `#declare Comment=""`).
+TEST(PovEval, DeclarationWithoutSemicolonEndsBeforeAMacroCall) {
+    auto r = run("#macro M(A, B) #warning concat(\"[\", A, B, \"]\") #end\n"
+                 "#declare Comment=\"\"\n"
+                 "M(\"x\", Comment)\n"
+                 "#declare C2=\"y\"\n"
+                 "M(\"x\", C2)\n"
+                 "#declare F = 2\n"
+                 "M(str(F, 0, 0), \"!\")\n"
+                 "#declare V = <1, 2, 3>\n"
+                 "M(str(V.y, 0, 0), \"\")\n");
+    ASSERT_FALSE(r->diags.hasErrors()) << r->diags.formatAll();
+    EXPECT_EQ(r->messages, (std::vector<std::string>{"[x]", "[xy]", "[2!]", "[2]"}));
+}
+
 TEST(PovEval, RandIsDeterministicAndInRange) {
     auto r = run("#declare S = seed(42); #declare T = seed(42);\n"
                  "#declare Ok = 1; #for (I, 1, 200) #declare A = rand(S); #declare B = rand(T);\n"

@@ -84,7 +84,7 @@ struct Differ {
                eq(a.reflectionMetallic, b.reflectionMetallic, p + ".reflectionMetallic") &&
                eq(a.conserveEnergy, b.conserveEnergy, p + ".conserveEnergy") &&
                eq(a.reflectionBlur, b.reflectionBlur, p + ".reflectionBlur") &&
-               eq(a.refractionBlur, b.refractionBlur, p + ".refractionBlur");
+               eq(a.refractionBlur, b.refractionBlur, p + ".refractionBlur") && eq(a.crand, b.crand, p + ".crand");
     }
     bool shape(const Shape& a, const Shape& b, const std::string& p) {
         if (!eq(a.index(), b.index(), p + ".kind"))
@@ -188,7 +188,16 @@ struct Differ {
                eq(a.interior.fadeColor, b.interior.fadeColor, p + ".fadeColor") &&
                media(a.interior.media, b.interior.media, p + ".media") &&
                eq(a.noShadow, b.noShadow, p + ".noShadow") && eq(a.hollow, b.hollow, p + ".hollow") &&
-               eq(a.inverse, b.inverse, p + ".inverse");
+               eq(a.inverse, b.inverse, p + ".inverse") && clips(a.clippedBy, b.clippedBy, p + ".clippedBy");
+    }
+    bool clips(const std::vector<Object>& a, const std::vector<Object>& b, const std::string& p) {
+        bool ok = eq(a.size(), b.size(), p + ".size");
+        for (size_t i = 0; ok && i < a.size(); ++i) {
+            const std::string q = p + "[" + std::to_string(i) + "]";
+            ok = shape(a[i].shape, b[i].shape, q + ".shape") && transform(a[i].transform, b[i].transform, q) &&
+                 eq(a[i].inverse, b[i].inverse, q + ".inverse") && clips(a[i].clippedBy, b[i].clippedBy, q);
+        }
+        return ok;
     }
     bool light(const Light& a, const Light& b, const std::string& p) {
         bool ok = eq(a.position, b.position, p + ".position") && eq(a.color, b.color, p + ".color") &&
@@ -352,11 +361,14 @@ mesh { triangle { <0, 0, 0>, <1, 0, 0>, <1, 1, 0> } smooth_triangle { <0, 0, 0>,
 sphere { 0, 1 texture { pigment { rgb 1 } finish { ambient rgb <0.1, 0.2, 0.3> emission 0.2 diffuse 0.5 brilliance 2
    phong 0.6 phong_size 60 specular 0.2 roughness 0.02 metallic 0.7
    reflection { 0.05, rgb <0.6, 0.5, 0.4> fresnel on falloff 2 metallic 0.5 } conserve_energy
-   reflection_blur 0.1 refraction_blur 0.3 } }
+   reflection_blur 0.1 refraction_blur 0.3 crand 0.05 } }
    interior { ior 1.5 fade_distance 2 fade_power 1 fade_color rgb <0, 0.3, 0.4> } }
 sphere { 0, 0.5 pigment { rgb <1, 0, 0> } finish { reflection 0.3 } translate <-1, 1, 0> motion { translate <2, 0, 0> rotate <0, 30, 0> scale 1.5 } }
 union { sphere { <-1, 0, 0>, 0.3 } sphere { <1, 0, 0>, 0.3 pigment { rgb <0, 0, 1> } } pigment { checker scale 0.1 }
         rotate 30 * x translate y * 2.5 no_shadow }
+sphere { 0, 1 scale 2 clipped_by { box { -1, <1, 0.5, 1> } plane { x, 0.3 inverse } } translate <4, 1, 0> }
+union { sphere { 0, 1 clipped_by { plane { y, 0 } } } box { -1, 1 translate 3 * x } clipped_by { sphere { x, 1.5 } } rotate 20 * z }
+difference { box { -1, 1 translate -4 * x } sphere { 0, 1.2 clipped_by { box { 0, 2 } } translate <-4, 1, 0> } clipped_by { plane { -z, 0.5 } } }
 )");
     ASSERT_TRUE(scene);
     std::string text;

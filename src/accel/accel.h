@@ -25,6 +25,13 @@
 // exactly along the ray (inside/outside classification of every analytic
 // leaf, `inverse` honoured); meshes inside them are not supported yet.
 //
+// clipped_by (Object::clippedBy): a clipped analytic shape or CSG (and a
+// clipped box, traced as an analytic shape) keeps only the crossings inside
+// every clip; inside a merge, difference or intersection a clipped member's
+// clips change its inside state without adding surfaces; a clipped static
+// mesh is filtered by Embree's filter functions (moving: RenderError).
+// Shadow rays see the same surfaces.
+//
 // Frame: a scene whose centre is farther from the origin than its size is
 // traced in coordinates re-centred on its bounds (Hit::frameOrigin): geometry
 // and ray origins are shifted in double before Embree rounds them to float, so

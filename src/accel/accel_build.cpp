@@ -79,12 +79,32 @@ struct Builder {
         }
     };
 
-    // `placed`, if given, replaces object.transform (a motion baked in).
-    CsgNode csgNode(const Object& object, const Transform& parentToLevel, const Transform* placed = nullptr) {
-        if (object.motion && !placed) fail(object, "motion on an object inside a CSG is not supported yet");
+    // An object's transform into level space; `motionAt`, if given, is its
+    // motion baked in at one time (applied after object.transform).
+    static Transform placement(const Object& object, const Transform& parentToLevel, const Transform* motionAt) {
+        return (motionAt ? object.transform.then(*motionAt) : object.transform).then(parentToLevel);
+    }
+
+    // The clipped_by objects of `object` in level space (they live in the
+    // object's parent space and move with its motion).
+    std::vector<CsgNode> clipNodes(const Object& object, const Transform& parentToLevel, const Transform* motionAt) {
+        std::vector<CsgNode> clips;
+        if (object.clippedBy.empty()) return clips;
+        const Transform clipToLevel = motionAt ? motionAt->then(parentToLevel) : parentToLevel;
+        for (const Object& clip : object.clippedBy) {
+            if (std::holds_alternative<Mesh>(clip.shape))
+                fail(clip, "a mesh or triangle as a clipped_by object is not supported yet");
+            clips.push_back(csgNode(clip, clipToLevel));
+        }
+        return clips;
+    }
+
+    CsgNode csgNode(const Object& object, const Transform& parentToLevel, const Transform* motionAt = nullptr) {
+        if (object.motion && !motionAt) fail(object, "motion on an object inside a CSG is not supported yet");
         CsgNode node;
         node.inverse = object.inverse;
-        const Transform toLevel = (placed ? *placed : object.transform).then(parentToLevel);
+        node.clips = clipNodes(object, parentToLevel, motionAt);
+        const Transform toLevel = placement(object, parentToLevel, motionAt);
         if (const auto* csg = std::get_if<Csg>(&object.shape)) {
             if (csg->children.empty()) fail(object, "CSG with no children");
             node.leaf = false;
@@ -111,10 +131,11 @@ struct Builder {
     }
 
     void addMesh(Level& level, LevelBounds& bounds, const Object& object, const Transform& toLevel, bool inverse,
-                 bool noShadow) {
+                 bool noShadow, std::vector<CsgNode> clips = {}) {
         MeshRecord record;
         record.object = &object;
         record.inverse = inverse;
+        record.clips = std::move(clips);
         const bool mirrored = determinant3(toLevel.matrix()) < 0;
         if (const auto* box = std::get_if<Box>(&object.shape)) {
             const Vec3 lo = min(box->corner1, box->corner2), hi = max(box->corner1, box->corner2);
@@ -175,17 +196,21 @@ struct Builder {
         impl.device.throwIfFailed("adding a mesh");
     }
 
-    // `placed`, if given, replaces object.transform (a motion baked in).
+    // `motionAt`: see placement(). `parentClips`: the clipped_by objects of
+    // enclosing unions, in level space.
     void addObject(Level& level, LevelBounds& bounds, const Object& object, const Transform& parentToLevel,
-                   bool parentInverse, bool parentNoShadow, const Transform* placed = nullptr) {
-        const Transform toLevel = (placed ? *placed : object.transform).then(parentToLevel);
+                   bool parentInverse, bool parentNoShadow, const Transform* motionAt = nullptr,
+                   const std::vector<CsgNode>& parentClips = {}) {
+        const Transform toLevel = placement(object, parentToLevel, motionAt);
         const bool inverse = object.inverse != parentInverse;
         const bool noShadow = object.noShadow || parentNoShadow;
+        std::vector<CsgNode> clips = parentClips;
         if (const auto* csg = std::get_if<Csg>(&object.shape)) {
             if (csg->op == Csg::Op::Union) {
+                for (CsgNode& clip : clipNodes(object, parentToLevel, motionAt)) clips.push_back(std::move(clip));
                 for (const Object& child : csg->children) {
                     if (child.motion) fail(child, "motion on an object inside a union is not supported yet");
-                    addObject(level, bounds, child, toLevel, inverse, noShadow);
+                    addObject(level, bounds, child, toLevel, inverse, noShadow, nullptr, clips);
                 }
                 return;
             }
@@ -193,14 +218,21 @@ struct Builder {
             p.object = &object;
             p.noShadow = noShadow;
             // The tree's root carries the inherited inversion; leaves keep their own.
-            p.csg = std::make_unique<CsgNode>(csgNode(object, parentToLevel, placed));
+            p.csg = std::make_unique<CsgNode>(csgNode(object, parentToLevel, motionAt));
             p.csg->inverse = inverse;
             p.bounded = csgBounds(*p.csg, p.lower, p.upper);
+            p.clips = std::move(clips);
+            p.bounded = clipBounds(p.clips, p.bounded, p.lower, p.upper);
             addPrimitive(level, bounds, std::move(p));
             return;
         }
-        if (!isAnalytic(object.shape)) {
-            addMesh(level, bounds, object, toLevel, inverse, noShadow);
+        for (CsgNode& clip : clipNodes(object, parentToLevel, motionAt)) clips.push_back(std::move(clip));
+        // A clipped box is traced as an analytic shape, so that its hits can be filtered.
+        if (!isAnalytic(object.shape) && !(!clips.empty() && std::holds_alternative<Box>(object.shape))) {
+            // Clipped meshes are filtered by Embree (embree_geometry.cpp), in the top level only.
+            if (!clips.empty() && &level != &impl.top)
+                fail(object, "clipped_by on a moving mesh or triangle is not supported yet");
+            addMesh(level, bounds, object, toLevel, inverse, noShadow, std::move(clips));
             return;
         }
         Primitive p;
@@ -211,6 +243,8 @@ struct Builder {
         p.noShadow = noShadow;
         p.bounded = shapeBounds(p.shape, p.lower, p.upper);
         if (p.bounded) transformBounds(toLevel, p.lower, p.upper);
+        p.clips = std::move(clips);
+        p.bounded = clipBounds(p.clips, p.bounded, p.lower, p.upper);
         addPrimitive(level, bounds, std::move(p));
     }
 
@@ -232,8 +266,8 @@ struct Builder {
     // object whose transform is object.transform.then(motion at time) would be,
     // so the two build bit for bit the same.
     void addObjectAtTime(Level& level, LevelBounds& bounds, const Object& object, double time) {
-        const Transform placed = object.transform.then(motionOf(object).at(time));
-        addObject(level, bounds, object, toLevel(Transform()), false, false, &placed);
+        const Transform motionAt = motionOf(object).at(time);
+        addObject(level, bounds, object, toLevel(Transform()), false, false, &motionAt);
     }
 
     void addMovingObject(const Object& object) {

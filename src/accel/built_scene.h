@@ -66,6 +66,9 @@ struct CsgNode {
     const Object* object = nullptr;
     // Operation:
     std::vector<CsgNode> children;
+    // clipped_by: the node counts as inside only where every clip does too, and
+    // the clips' own crossings change that state without being surfaces.
+    std::vector<CsgNode> clips;
 };
 
 // One analytic Embree user-geometry primitive: a single shape or a CSG tree.
@@ -76,6 +79,9 @@ struct Primitive {
     bool inverse = false;  // normals flipped
     bool noShadow = false;
     std::unique_ptr<CsgNode> csg; // set for Merge, Difference, Intersection
+    // clipped_by on the primitive as a whole: a crossing counts only if its
+    // point is inside every one of these (level space).
+    std::vector<CsgNode> clips;
     Vec3 lower, upper;            // level-space bounds (huge for planes)
     bool bounded = true;
 };
@@ -89,6 +95,8 @@ struct MeshRecord {
     std::vector<std::array<int, 3>> normalIndices;
     bool inverse = false;
     double extent = 0; // largest side of the level-space bounds
+    // clipped_by (level space): Embree's filter functions drop hits outside them.
+    std::vector<CsgNode> clips;
 };
 
 enum class GeometryKind { Analytic, Mesh, Instance };
@@ -131,6 +139,11 @@ bool closestCrossingTo(const Primitive& primitive, const Vec3& o, const Vec3& d,
 void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out);
 // Level-space bounds of a CSG tree; false if unbounded.
 bool csgBounds(const CsgNode& node, Vec3& lower, Vec3& upper);
+// Narrows [lower, upper] to the bounds of the clips; returns whether the
+// result is bounded (`bounded` says whether the input was).
+bool clipBounds(const std::vector<CsgNode>& clips, bool bounded, Vec3& lower, Vec3& upper);
+// Whether the level-space point is inside the tree (clips included).
+bool insideNode(const CsgNode& node, const Vec3& p);
 
 // Level-space bounds of an object-space box under an affine transform.
 void transformBounds(const Transform& transform, Vec3& lower, Vec3& upper);

@@ -29,13 +29,20 @@ struct LeafEvent {
     Vec3 normal; // object space
 };
 
-void collectLeaves(const CsgNode& node, std::vector<const CsgNode*>& leaves) {
-    if (node.leaf) leaves.push_back(&node);
-    else
-        for (const CsgNode& child : node.children) collectLeaves(child, leaves);
+// Leaves in DFS order (children, then clips); a leaf under a clip is silent:
+// its crossings change the state but are not surfaces.
+void collectLeaves(const CsgNode& node, bool silent, std::vector<const CsgNode*>& leaves,
+                   std::vector<char>& silentLeaves) {
+    if (node.leaf) {
+        leaves.push_back(&node);
+        silentLeaves.push_back(silent);
+    }
+    for (const CsgNode& child : node.children) collectLeaves(child, silent, leaves, silentLeaves);
+    for (const CsgNode& clip : node.clips) collectLeaves(clip, true, leaves, silentLeaves);
 }
 
-// Evaluates the tree on the leaves' current states (leaves in DFS order).
+// Evaluates the tree on the leaves' current states (leaves in collectLeaves'
+// order). A leaf's state already includes its inversion.
 bool evaluate(const CsgNode& node, const std::vector<char>& state, int& nextLeaf) {
     bool inside = false;
     if (node.leaf) {
@@ -52,17 +59,45 @@ bool evaluate(const CsgNode& node, const std::vector<char>& state, int& nextLeaf
             }
             first = false;
         }
+        inside = inside != node.inverse;
     }
-    return inside != node.inverse;
+    for (const CsgNode& clip : node.clips) {
+        const bool c = evaluate(clip, state, nextLeaf); // always: it advances nextLeaf
+        inside = inside && c;
+    }
+    return inside;
 }
 
 
 } // namespace
 
+bool insideNode(const CsgNode& node, const Vec3& p) {
+    bool inside = false;
+    if (node.leaf) {
+        inside = isSolidShape(node.shape) && insideShape(node.shape, node.toLevel.inversePoint(p));
+    } else {
+        bool first = true;
+        for (const CsgNode& child : node.children) {
+            const bool c = insideNode(child, p);
+            switch (node.op) {
+            case Csg::Op::Union:
+            case Csg::Op::Merge: inside = first ? c : (inside || c); break;
+            case Csg::Op::Intersection: inside = first ? c : (inside && c); break;
+            case Csg::Op::Difference: inside = first ? c : (inside && !c); break;
+            }
+            first = false;
+        }
+    }
+    inside = inside != node.inverse;
+    for (const CsgNode& clip : node.clips) inside = inside && insideNode(clip, p);
+    return inside;
+}
+
 void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out) {
     out.clear();
     std::vector<const CsgNode*> leaves;
-    collectLeaves(root, leaves);
+    std::vector<char> silent;
+    collectLeaves(root, false, leaves, silent);
     std::vector<LeafEvent> events;
     std::vector<char> state(leaves.size(), 0);
     for (size_t i = 0; i < leaves.size(); ++i) {
@@ -90,6 +125,7 @@ void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector
         const bool now = evaluate(root, state, cursor);
         if (now == inside) continue;
         inside = now;
+        if (silent[e.leaf]) continue;
         Vec3 n = unitOrZero(leaf.toLevel.normal(e.normal));
         // Outward from the combined solid: against the ray when entering it.
         if ((dot(n, d) < 0) != now) n = -n;
@@ -97,7 +133,21 @@ void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector
     }
 }
 
-bool csgBounds(const CsgNode& node, Vec3& lower, Vec3& upper) {
+bool clipBounds(const std::vector<CsgNode>& clips, bool bounded, Vec3& lower, Vec3& upper) {
+    for (const CsgNode& clip : clips) {
+        Vec3 lo, hi;
+        if (!csgBounds(clip, lo, hi)) continue;
+        lower = bounded ? max(lower, lo) : lo;
+        upper = bounded ? min(upper, hi) : hi;
+        bounded = true;
+    }
+    if (bounded) upper = max(upper, lower); // nothing left: a point-sized box
+    return bounded;
+}
+
+namespace {
+// Bounds of the node without its clips.
+bool unclippedBounds(const CsgNode& node, Vec3& lower, Vec3& upper) {
     if (node.inverse) return false;
     if (node.leaf) {
         if (!shapeBounds(node.shape, lower, upper)) return false;
@@ -135,6 +185,11 @@ bool csgBounds(const CsgNode& node, Vec3& lower, Vec3& upper) {
     if (any) upper = max(upper, lower); // an empty intersection: a point-sized box
     return any;
 }
+} // namespace
+
+bool csgBounds(const CsgNode& node, Vec3& lower, Vec3& upper) {
+    return clipBounds(node.clips, unclippedBounds(node, lower, upper), lower, upper);
+}
 
 void transformBounds(const Transform& transform, Vec3& lower, Vec3& upper) {
     Vec3 lo(INFINITY), hi(-INFINITY);
@@ -149,11 +204,33 @@ void transformBounds(const Transform& transform, Vec3& lower, Vec3& upper) {
     upper = hi;
 }
 
+namespace {
+bool insideClips(const Primitive& p, const Vec3& o, const Vec3& d, double t) {
+    for (const CsgNode& clip : p.clips)
+        if (!insideNode(clip, o + t * d)) return false;
+    return true;
+}
+
+// Every crossing of the primitive along the whole line, sorted, clips applied.
+void primitiveCrossings(const Primitive& p, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out) {
+    if (p.csg) {
+        csgCrossings(*p.csg, o, d, out);
+    } else {
+        out.clear();
+        Crossing c[kMaxCrossings];
+        const int n = intersectShape(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), c);
+        for (int i = 0; i < n; ++i) out.push_back(toLevel(p, c[i]));
+    }
+    if (!p.clips.empty())
+        std::erase_if(out, [&](const SurfaceCrossing& c) { return !insideClips(p, o, d, c.t); });
+}
+} // namespace
+
 bool nearestCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tMin, double tMax,
                      SurfaceCrossing& out) {
-    if (p.csg) {
+    if (p.csg || !p.clips.empty()) {
         thread_local std::vector<SurfaceCrossing> all;
-        csgCrossings(*p.csg, o, d, all);
+        primitiveCrossings(p, o, d, all);
         for (const SurfaceCrossing& c : all)
             if (c.t > tMin && c.t < tMax) {
                 out = c;
@@ -176,9 +253,9 @@ bool nearestCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tM
 bool closestCrossingTo(const Primitive& p, const Vec3& o, const Vec3& d, double tGuess, SurfaceCrossing& out) {
     bool found = false;
     double best = INFINITY;
-    if (p.csg) {
+    if (p.csg || !p.clips.empty()) {
         thread_local std::vector<SurfaceCrossing> all;
-        csgCrossings(*p.csg, o, d, all);
+        primitiveCrossings(p, o, d, all);
         for (const SurfaceCrossing& c : all)
             if (std::fabs(c.t - tGuess) < best) {
                 best = std::fabs(c.t - tGuess);

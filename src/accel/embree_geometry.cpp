@@ -137,6 +137,26 @@ void attachPrimitives(RTCDevice device, Level& level) {
 
 // ---------------------------------------------------------------- triangles
 
+// A clipped mesh: a hit counts only where it lies inside every clip. Only
+// static meshes are clipped, so the ray is in the level's space.
+static void clipFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* level = static_cast<const Level*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        const unsigned geomID = RTCHitN_geomID(args->hit, args->N, i);
+        const MeshRecord& mesh = level->meshes[level->geometries[geomID].index];
+        RTCRayN* ray = args->ray;
+        const Vec3 o{RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i)};
+        const Vec3 d{RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i)};
+        const Vec3 point = o + double(RTCRayN_tfar(ray, args->N, i)) * d; // tfar holds the candidate hit
+        for (const CsgNode& clip : mesh.clips)
+            if (!insideNode(clip, point)) {
+                args->valid[i] = 0;
+                break;
+            }
+    }
+}
+
 void attachMesh(RTCDevice device, Level& level, MeshRecord mesh, bool noShadow) {
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geometry) return;
@@ -155,6 +175,11 @@ void attachMesh(RTCDevice device, Level& level, MeshRecord mesh, bool noShadow) 
     for (size_t i = 0; i < mesh.triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) indices[3 * i + k] = static_cast<unsigned>(mesh.triangles[i][k]);
     rtcSetGeometryMask(geometry, noShadow ? kCameraMask : (kCameraMask | kShadowMask));
+    if (!mesh.clips.empty()) {
+        rtcSetGeometryUserData(geometry, &level);
+        rtcSetGeometryIntersectFilterFunction(geometry, clipFilter);
+        rtcSetGeometryOccludedFilterFunction(geometry, clipFilter);
+    }
     rtcCommitGeometry(geometry);
     const unsigned id = rtcAttachGeometry(level.scene, geometry);
     rtcReleaseGeometry(geometry);

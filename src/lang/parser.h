@@ -131,7 +131,8 @@ private:
     void applyTransform(ParsedObject& po, const Transform& t, const SourceLoc& loc);
     void addObjectToScene(ParsedObject po);
     void flatten(ParsedObject& po, const Transform& parent, const std::optional<Motion>& parentMotion,
-                 bool noShadow, bool hollow);
+                 bool noShadow, bool hollow, const std::vector<Object>& parentClips = {});
+    void clippedBy(Object& clipped);
     std::vector<Object> csgChildren(ParsedObject& po, const Transform& csgToWorld);
     double positiveRadius(const char* what);
     // parser_algebraic.cpp

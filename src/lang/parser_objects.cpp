@@ -19,7 +19,7 @@ static const std::vector<std::string>& objectWords() {
 static const std::vector<std::string>& modifierWords() {
     static const std::vector<std::string> words{"translate", "rotate", "scale",  "matrix",    "texture",
                                                 "pigment",   "finish", "normal", "interior", "no_shadow", "hollow",
-                                                "inverse",   "motion", "open"};
+                                                "inverse",   "motion", "open", "clipped_by"};
     return words;
 }
 
@@ -308,6 +308,8 @@ bool Parser::objectModifier(ParsedObject& po) {
         o.inverse = !o.inverse;
     } else if (w == "motion") {
         motion(o);
+    } else if (w == "clipped_by") {
+        clippedBy(o);
     } else if (w == "open") {
         advance();
         if (Cylinder* c = std::get_if<Cylinder>(&o.shape)) c->open = true;
@@ -344,6 +346,26 @@ void Parser::motion(Object& object) {
     object.motion = m;
 }
 
+// clipped_by = "clipped_by" "{" object { object } "}". The clips are kept in
+// the object's parent space: the object's own transforms so far do not move
+// them, those written after this block do (applyTransform).
+void Parser::clippedBy(Object& clipped) {
+    const SourceLoc loc = current_.loc;
+    advance();
+    expect(TokenKind::LeftBrace, "'{' after 'clipped_by'");
+    size_t count = 0;
+    while (!match(TokenKind::RightBrace)) {
+        if (!atObjectWord()) failExpected("an object or '}' in clipped_by");
+        ParsedObject po = object();
+        Object clip = std::move(po.object);
+        if (clip.motion) error(clip.loc, "'motion' on a clipped_by object is not supported");
+        if (isCsg(po)) std::get<Csg>(clip.shape).children = csgChildren(po, clip.transform);
+        clipped.clippedBy.push_back(std::move(clip));
+        ++count;
+    }
+    if (count == 0) error(loc, "clipped_by needs at least one object");
+}
+
 static bool isPureTranslation(const Motion& m) { return m.rotate == Vec3(0) && m.scale == Vec3(1); }
 
 // A transform after `motion`: world(t) = T * M(t) * O. That is again of the
@@ -361,6 +383,7 @@ void Parser::applyTransform(ParsedObject& po, const Transform& t, const SourceLo
     o.transform = o.transform.then(t);
     transformTextureSpaces(o.texture, t);
     transformInteriorSpaces(o.interior, t);
+    for (Object& clip : o.clippedBy) clip.transform = clip.transform.then(t);
 }
 
 static void inheritTexture(ParsedObject& po, const Texture& texture) {
@@ -401,7 +424,7 @@ void Parser::addObjectToScene(ParsedObject po) {
 // Motion again when P is the identity or M is a translation (then by P's
 // linear part applied to M's translation).
 void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optional<Motion>& worldMotion,
-                     bool noShadow, bool hollow) {
+                     bool noShadow, bool hollow, const std::vector<Object>& parentClips) {
     Object& o = po.object;
     std::optional<Motion> motion = o.motion;
     if (motion && !parent.isIdentity()) {
@@ -417,6 +440,13 @@ void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optio
     noShadow = noShadow || o.noShadow;
     hollow = hollow || o.hollow;
     const Transform toWorld = o.transform.then(parent);
+    // Clips go to world space; an enclosing union's clips apply to every leaf.
+    std::vector<Object> clips = parentClips;
+    for (Object& clip : o.clippedBy) {
+        clip.transform = clip.transform.then(parent);
+        clips.push_back(std::move(clip));
+    }
+    o.clippedBy.clear();
     if (isSolidCsg(po)) {
         if (motion) error(o.loc, "'motion' on merge, difference or intersection is not supported");
         std::get<Csg>(o.shape).children = csgChildren(po, toWorld);
@@ -425,11 +455,12 @@ void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optio
         transformInteriorSpaces(o.interior, parent);
         o.noShadow = noShadow;
         o.hollow = hollow;
+        o.clippedBy = std::move(clips);
         scene_.objects.push_back(std::move(o));
         return;
     }
     if (isCsg(po)) {
-        for (ParsedObject& child : po.children) flatten(child, toWorld, motion, noShadow, hollow);
+        for (ParsedObject& child : po.children) flatten(child, toWorld, motion, noShadow, hollow, clips);
         return;
     }
     o.transform = toWorld;
@@ -438,6 +469,7 @@ void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optio
     o.motion = motion;
     o.noShadow = noShadow;
     o.hollow = hollow;
+    o.clippedBy = std::move(clips);
     scene_.objects.push_back(std::move(o));
 }
 

@@ -62,22 +62,23 @@ std::optional<Transform> Parser::transformItem() {
 // camera = "camera" "{" { camera-item } "}"
 void Parser::camera() {
     static const std::vector<std::string> known{
-        "perspective", "location",    "look_at",        "up",           "sky",          "right", "direction",
+        "perspective", "orthographic", "location",    "look_at",        "up",           "sky",          "right", "direction",
         "angle",       "aperture",    "focal_point",    "focal_distance", "shutter_open", "shutter_close"};
     const Token keyword = current_;
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'camera'");
     CameraSpec cam;
     cam.loc = keyword.loc;
-    SourceLoc lookAtLoc, focalPointLoc, shutterLoc;
+    SourceLoc lookAtLoc, focalPointLoc, shutterLoc, apertureLoc;
     while (!match(TokenKind::RightBrace)) {
         if (!check(TokenKind::Identifier)) failExpected("a camera keyword or '}'");
         const Token word = current_;
         const std::string& w = word.text;
         advance();
         const SourceLoc loc = current_.loc;
-        if (w == "perspective") continue;
-        if (w == "location") cam.location = vectorExpr();
+        if (w == "perspective") cam.orthographic = false;
+        else if (w == "orthographic") cam.orthographic = true;
+        else if (w == "location") cam.location = vectorExpr();
         else if (w == "look_at") lookAtLoc = loc, cam.lookAt = vectorExpr();
         else if (w == "up") requireNonZero(cam.up = vectorExpr(), loc, "'up'");
         else if (w == "sky") requireNonZero(cam.sky = vectorExpr(), loc, "'sky'");
@@ -87,6 +88,7 @@ void Parser::camera() {
             cam.angle = floatExpr();
             if (!(*cam.angle > 0 && *cam.angle < 180)) error(loc, "'angle' must be between 0 and 180 degrees");
         } else if (w == "aperture") {
+            apertureLoc = loc;
             cam.aperture = floatExpr();
             if (cam.aperture < 0) error(loc, "'aperture' must not be negative");
         } else if (w == "focal_point") focalPointLoc = loc, cam.focalPoint = vectorExpr();
@@ -100,6 +102,8 @@ void Parser::camera() {
     if (cam.lookAt && *cam.lookAt == cam.location) error(lookAtLoc, "'look_at' is the same point as 'location'");
     if (cam.focalPoint && *cam.focalPoint == cam.location)
         error(focalPointLoc, "'focal_point' is the same point as 'location'");
+    if (cam.orthographic && cam.aperture > 0)
+        error(apertureLoc, "an orthographic camera has no lens: 'aperture' must be 0");
     if (cam.shutterClose < cam.shutterOpen) error(shutterLoc, "'shutter_close' is before 'shutter_open'");
     scene_.camera = cam;
 }

@@ -271,7 +271,7 @@ Normal Parser::normal() {
 Finish Parser::finish() {
     static const std::vector<std::string> known{
         "ambient",  "diffuse",  "brilliance", "phong",    "phong_size", "specular",        "roughness",
-        "metallic", "emission", "reflection", "conserve_energy", "reflection_blur", "refraction_blur"};
+        "metallic", "emission", "reflection", "conserve_energy", "reflection_blur", "refraction_blur", "crand"};
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'finish'");
     Finish f;
@@ -300,6 +300,7 @@ Finish Parser::finish() {
         else if (w == "phong") nonNegative(f.phong);
         else if (w == "phong_size") nonNegative(f.phongSize);
         else if (w == "specular") nonNegative(f.specular);
+        else if (w == "crand") nonNegative(f.crand);
         else if (w == "roughness") {
             f.roughness = floatExpr();
             if (f.roughness <= 0) error(loc, "'roughness' must be positive");

@@ -72,7 +72,8 @@ class SceneWriter {
     void light(const Light& l);
     void topLevelObject(const Object& o);
     void flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow, bool hollow,
-                      const std::optional<Motion>& motion);
+                      const std::optional<Motion>& motion, const std::vector<Object>& clips);
+    void clips(const std::vector<Object>& clippedBy, int indent);
     void object(const Object& o, int indent);
     std::string shapeHead(const Object& o, int indent);
     std::string meshText(const Mesh& m, int indent);
@@ -182,6 +183,8 @@ void SceneWriter::settings(const Scene& scene) {
 void SceneWriter::camera(const CameraSpec& c) {
     const CameraSpec d;
     line(0, "camera {");
+    if (c.orthographic)
+        line(1, "orthographic");
     line(1, "location " + vector(c.location));
     if (!(c.direction == d.direction))
         line(1, "direction " + vector(c.direction));
@@ -265,7 +268,7 @@ void SceneWriter::light(const Light& l) {
 
 void SceneWriter::topLevelObject(const Object& o) {
     if (const Csg* csg = std::get_if<Csg>(&o.shape); csg && csg->op == Csg::Op::Union) {
-        flattenUnion(o, Transform{}, false, false, false, std::nullopt);
+        flattenUnion(o, Transform{}, false, false, false, std::nullopt, {});
         return;
     }
     out_ += "\n";
@@ -275,9 +278,16 @@ void SceneWriter::topLevelObject(const Object& o) {
 // The .drt parser stores a union as its members, each with the union's
 // transforms after its own; the renderer treats both forms alike.
 void SceneWriter::flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow,
-                               bool hollow, const std::optional<Motion>& motion) {
+                               bool hollow, const std::optional<Motion>& motion,
+                               const std::vector<Object>& parentClips) {
     Object leaf = o;
     leaf.transform = o.transform.then(parent);
+    // Clips live in the object's parent space: take them to world space.
+    leaf.clippedBy = parentClips;
+    for (const Object& clip : o.clippedBy) {
+        leaf.clippedBy.push_back(clip);
+        leaf.clippedBy.back().transform = clip.transform.then(parent);
+    }
     leaf.inverse = o.inverse != inverse;
     leaf.noShadow = o.noShadow || noShadow;
     leaf.hollow = o.hollow || hollow;
@@ -291,7 +301,8 @@ void SceneWriter::flattenUnion(const Object& o, const Transform& parent, bool in
         if (leaf.motion && !parent.isIdentity())
             problems_.insert("motion inside a transformed union");
         for (const Object& child : csg->children)
-            flattenUnion(child, leaf.transform, leaf.inverse, leaf.noShadow, leaf.hollow, leaf.motion);
+            flattenUnion(child, leaf.transform, leaf.inverse, leaf.noShadow, leaf.hollow, leaf.motion,
+                         leaf.clippedBy);
         return;
     }
     out_ += "\n";
@@ -311,8 +322,10 @@ void SceneWriter::object(const Object& o, int indent) {
         for (const Object& child : csg->children) {
             Object baked = child;
             baked.transform = child.transform.then(o.transform);
+            for (Object& clip : baked.clippedBy) clip.transform = clip.transform.then(o.transform);
             object(baked, indent + 1);
         }
+        clips(o.clippedBy, indent + 1);
         if (o.inverse)
             line(indent + 1, "inverse");
         if (o.noShadow)
@@ -362,6 +375,22 @@ void SceneWriter::object(const Object& o, int indent) {
         line(indent + 1, flags.substr(1));
     if (o.motion)
         line(indent + 1, motionText(*o.motion));
+    clips(o.clippedBy, indent + 1);
+    line(indent, "}");
+}
+
+// After the object's transforms, so that none of them moves the clips again.
+void SceneWriter::clips(const std::vector<Object>& clippedBy, int indent) {
+    if (clippedBy.empty())
+        return;
+    line(indent, "clipped_by {");
+    for (const Object& clip : clippedBy) {
+        // A clip's texture is never seen: write none.
+        Object shape = clip;
+        shape.texture = Texture{};
+        transformTextureSpaces(shape.texture, clip.transform);
+        object(shape, indent + 1);
+    }
     line(indent, "}");
 }
 

@@ -86,7 +86,7 @@ bool isDefaultFinish(const Finish& f) {
            f.reflectionMin == d.reflectionMin && f.reflectionMax == d.reflectionMax &&
            f.reflectionFresnel == d.reflectionFresnel && f.reflectionFalloff == d.reflectionFalloff &&
            f.reflectionMetallic == d.reflectionMetallic && f.conserveEnergy == d.conserveEnergy &&
-           f.reflectionBlur == d.reflectionBlur && f.refractionBlur == d.refractionBlur;
+           f.reflectionBlur == d.reflectionBlur && f.refractionBlur == d.refractionBlur && f.crand == d.crand;
 }
 
 bool isDefaultInterior(const Interior& i) {
@@ -226,6 +226,8 @@ std::string finishBody(const Finish& f) {
         text += " reflection_blur " + number(f.reflectionBlur);
     if (f.refractionBlur != d.refractionBlur)
         text += " refraction_blur " + number(f.refractionBlur);
+    if (f.crand != d.crand)
+        text += " crand " + number(f.crand);
     return text;
 }
 

@@ -87,9 +87,45 @@ void PovParser::directive(const Tok& t) {
     else if (d == "default") {
         defaultBlock();
     } else if (d == "fopen" || d == "fclose" || d == "read" || d == "write") {
-        fail(t.loc, "#" + d + " (file input/output) is not supported");
+        fileDirective(t);
     } else {
         fail(t.loc, "unknown directive '#" + d + "'");
+    }
+}
+
+// Files: what a scene writes (#fopen .. write/append, #write, #fclose) is
+// read and dropped, so scenes that write HTML or logs still render; reading
+// (#fopen .. read, #read) needs the file's contents and is an error.
+void PovParser::fileDirective(const Tok& t) {
+    const std::string& d = t.text;
+    if (d == "read") fail(t.loc, "#read (file input) is not supported");
+    noExpand_ = true;
+    const Tok handle = d == "write" ? Tok{} : expectWord("a file identifier");
+    noExpand_ = false;
+    if (d == "fclose") return;
+    if (d == "fopen") {
+        stringExpr(); // the file name
+        const Tok mode = expectWord("'read', 'write' or 'append' after the file name");
+        if (mode.text == "read") fail(mode.loc, "#fopen ... read (file input) is not supported");
+        if (mode.text != "write" && mode.text != "append")
+            failExpected(mode, "'read', 'write' or 'append' after the file name");
+        if (warned_.insert("note-fopen").second)
+            note(t.loc, "#fopen ... " + mode.text + ": drt does not create the files a scene writes");
+        PovValue file;
+        file.kind = PovValue::Kind::Opaque;
+        file.text = "file";
+        declare(handle.text, file, false);
+        return;
+    }
+    // #write (handle, item, item ...): the commas are optional.
+    expectSymbol("(", "after #write");
+    noExpand_ = true;
+    expectWord("a file identifier");
+    noExpand_ = false;
+    while (!acceptSymbol(")")) {
+        acceptSymbol(",");
+        if (peek().is(")")) continue;
+        rvalue();
     }
 }
 

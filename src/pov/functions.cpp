@@ -1,5 +1,6 @@
 // Built-in constants and functions of POV-Ray's language.
 #include "pov/parser.h"
+#include "scene/bounds.h"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -106,9 +107,10 @@ bool PovParser::builtin(const Tok& name, PovValue& out) {
         const SourceLoc at = peek().loc;
         const PovValue v = rvalue();
         expectSymbol(")", "after the object");
-        if (v.kind != Kind::Object || v.object->lightOnly) fail(at, "'" + w + "' needs an object");
-        Vec3 lo, hi;
-        objectBounds(*v.object, lo, hi);
+        if (v.kind != Kind::Object || (v.object->lightOnly && !v.object->lights.empty()))
+            fail(at, "'" + w + "' needs an object");
+        Vec3 lo(-kUnboundedExtent), hi(kUnboundedExtent); // a shape left out (warned about): unbounded
+        if (!v.object->lightOnly) objectBounds(*v.object, lo, hi);
         out = PovValue::makeVector(w == "min_extent" ? lo : hi);
         return true;
     }

@@ -1,6 +1,7 @@
 // Objects: the primitives the scene model has, meshes, CSG, `object { Name }`
 // and the object modifiers. Unsupported shapes are skipped with a warning.
 #include "pov/parser.h"
+#include "scene/bounds.h"
 
 #include <fmt/format.h>
 
@@ -51,22 +52,6 @@ void inheritInterior(PovObject& o, const Interior& in) {
     for (PovObject& c : o.children) inheritInterior(c, in);
 }
 
-// Object-space bounds of an extrusion (conic sweeps scale the outline by the height).
-void extrusionBounds(const Extrusion& e, Vec3& lower, Vec3& upper) {
-    Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
-    for (const auto& contour : e.contours)
-        for (const Vec2& p : contour) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-    if (e.text) lo = e.text->boxLower, hi = e.text->boxUpper; // POV-Ray's glyph boxes
-    const double h1 = std::min(e.height1, e.height2), h2 = std::max(e.height1, e.height2);
-    if (e.conic) {
-        const double s = std::max(std::fabs(h1), std::fabs(h2));
-        const double r = s * std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(hi.x), std::fabs(hi.y)});
-        lo = {-r, -r}, hi = {r, r};
-    }
-    lower = e.plane == Extrusion::Plane::XZ ? Vec3{lo.x, h1, lo.y} : Vec3{lo.x, lo.y, h1};
-    upper = e.plane == Extrusion::Plane::XZ ? Vec3{hi.x, h2, hi.y} : Vec3{hi.x, hi.y, h2};
-}
-
 void setTexture(PovObject& o, const Texture& tex) {
     o.textured = false;
     inheritTexture(o, tex);
@@ -81,57 +66,7 @@ void setInterior(PovObject& o, const Interior& in) {
 
 } // namespace
 
-void objectBounds(const PovObject& po, Vec3& lower, Vec3& upper) {
-    constexpr double kHuge = 1e10;
-    const Object& o = po.object;
-    Vec3 lo(-kHuge), hi(kHuge);
-    bool local = true; // lo/hi are in object space
-    if (const Sphere* s = std::get_if<Sphere>(&o.shape)) {
-        lo = s->center - Vec3(s->radius), hi = s->center + Vec3(s->radius);
-    } else if (const Box* b = std::get_if<Box>(&o.shape)) {
-        lo = min(b->corner1, b->corner2), hi = max(b->corner1, b->corner2);
-    } else if (const Cylinder* c = std::get_if<Cylinder>(&o.shape)) {
-        lo = min(c->base, c->cap) - Vec3(c->radius), hi = max(c->base, c->cap) + Vec3(c->radius);
-    } else if (const Cone* c = std::get_if<Cone>(&o.shape)) {
-        const double r = std::max(c->baseRadius, c->capRadius);
-        lo = min(c->base, c->cap) - Vec3(r), hi = max(c->base, c->cap) + Vec3(r);
-    } else if (const Disc* d = std::get_if<Disc>(&o.shape)) {
-        lo = d->center - Vec3(d->radius), hi = d->center + Vec3(d->radius);
-    } else if (const Torus* t = std::get_if<Torus>(&o.shape)) {
-        const double r = t->majorRadius + t->minorRadius;
-        lo = {-r, -t->minorRadius, -r}, hi = {r, t->minorRadius, r};
-    } else if (std::holds_alternative<Superellipsoid>(o.shape)) {
-        lo = Vec3(-1), hi = Vec3(1);
-    } else if (const Mesh* m = std::get_if<Mesh>(&o.shape)) {
-        if (!m->vertices.empty()) {
-            lo = hi = m->vertices.front();
-            for (const Vec3& v : m->vertices) lo = min(lo, v), hi = max(hi, v);
-        }
-    } else if (const Extrusion* e = std::get_if<Extrusion>(&o.shape)) {
-        extrusionBounds(*e, lo, hi);
-    } else if (const Csg* csg = std::get_if<Csg>(&o.shape)) {
-        bool any = false;
-        for (size_t i = 0; i < po.children.size(); ++i) {
-            Vec3 cl, ch;
-            objectBounds(po.children[i], cl, ch);
-            if (!any) lo = cl, hi = ch, any = true;
-            else if (csg->op == Csg::Op::Intersection) lo = max(lo, cl), hi = min(hi, ch);
-            else if (csg->op != Csg::Op::Difference) lo = min(lo, cl), hi = max(hi, ch);
-        }
-    } else {
-        local = false; // plane: unbounded
-    }
-    if (o.inverse) local = false, lo = Vec3(-kHuge), hi = Vec3(kHuge);
-    if (!local || maxComponent(abs(lo)) >= kHuge || maxComponent(abs(hi)) >= kHuge) {
-        lower = lo, upper = hi;
-        return;
-    }
-    lower = Vec3(kHuge), upper = Vec3(-kHuge);
-    for (int c = 0; c < 8; ++c) {
-        const Vec3 p = o.transform.point({(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z});
-        lower = min(lower, p), upper = max(upper, p);
-    }
-}
+void objectBounds(const PovObject& po, Vec3& lower, Vec3& upper) { drt::objectBounds(toObject(po), lower, upper); }
 
 bool PovParser::isObjectWord(const Tok& t) const {
     return t.kind == TokKind::Word && !lookup(t.text) &&
@@ -140,6 +75,7 @@ bool PovParser::isObjectWord(const Tok& t) const {
 
 void PovParser::applyTransform(PovObject& o, const Transform& t) {
     o.object.transform = o.object.transform.then(t);
+    for (Object& clip : o.object.clippedBy) clip.transform = clip.transform.then(t);
     transformPigments(o, t);
     for (Light& l : o.lights) transformLight(l, t);
 }
@@ -162,8 +98,11 @@ PovObject PovParser::object(const Tok& keyword) {
     po.object.loc = keyword.loc;
     po.object.texture = defaultTexture_;
     if (w == "light_source") {
-        po.lightOnly = true;
-        po.lights.push_back(lightSource(keyword.loc));
+        std::optional<PovObject> looksLike;
+        const Light light = lightSource(keyword.loc, &looksLike);
+        if (looksLike) po = std::move(*looksLike); // the shape carries the light
+        else po.lightOnly = true;
+        po.lights.push_back(light);
         return po;
     }
     const Tok open = expectSymbol("{", ("after '" + w + "'").c_str());
@@ -424,6 +363,7 @@ PovObject PovParser::object(const Tok& keyword) {
     }
     // ---- modifiers
     int textures = 0;
+    std::vector<Object> boundedBy; // for `clipped_by { bounded_by }`
     for (;;) {
         const Tok t = peek();
         if (t.is("}")) {
@@ -432,6 +372,7 @@ PovObject PovParser::object(const Tok& keyword) {
         }
         if (std::optional<Transform> tr = transformItem()) {
             applyTransform(po, *tr);
+            for (Object& b : boundedBy) b.transform = b.transform.then(*tr);
             continue;
         }
         next();
@@ -494,14 +435,19 @@ PovObject PovParser::object(const Tok& keyword) {
             vectorExpr();
         } else if (m == "bounded_by" || m == "clipped_by") {
             // POV-Ray treats bounded_by as an optimisation (it can only cut an
-            // object it does not enclose), so ignoring it is a note, not a warning.
+            // object it does not enclose), so ignoring it is a note; the
+            // objects are kept for `clipped_by { bounded_by }`.
+            const std::optional<std::vector<Object>> objects = clipObjects(t);
             if (m == "bounded_by") {
                 if (warned_.insert("note-bounded_by").second)
                     note(t.loc, "'bounded_by' is ignored: drt builds its own bounds");
-            } else
-                warnOnce(m, t.loc, "'clipped_by' is not supported; the object is not clipped");
-            expectSymbol("{", ("after '" + m + "'").c_str());
-            skipBlock();
+                if (objects) boundedBy = *objects;
+            } else if (!objects) {
+                // `clipped_by { bounded_by }`: clip by the bounding objects.
+                o.clippedBy.insert(o.clippedBy.end(), boundedBy.begin(), boundedBy.end());
+            } else {
+                o.clippedBy.insert(o.clippedBy.end(), objects->begin(), objects->end());
+            }
         } else if (m == "photons" || m == "radiosity" || m == "interior_texture") {
             warnOnce(m, t.loc, "'" + m + "' is not supported and is ignored");
             expectSymbol("{", ("after '" + m + "'").c_str());
@@ -529,6 +475,33 @@ PovObject PovParser::object(const Tok& keyword) {
     }
     (void)open;
     return po;
+}
+
+// The objects of `bounded_by { ... }` or `clipped_by { ... }` in the space
+// the enclosing object's transform maps to; nothing for `clipped_by {
+// bounded_by }` and `bounded_by { clipped_by }` (the other block's objects).
+// Unsupported shapes (already warned about) are left out.
+std::optional<std::vector<Object>> PovParser::clipObjects(const Tok& word) {
+    const std::string& keyword = word.text;
+    expectSymbol("{", ("after '" + keyword + "'").c_str());
+    std::vector<Object> objects;
+    const char* other = keyword == "clipped_by" ? "bounded_by" : "clipped_by";
+    bool any = false;
+    for (;;) {
+        const Tok t = next();
+        if (t.is("}")) break;
+        if (t.isWord(other) && !any) {
+            expectSymbol("}", ("after '" + std::string(other) + "'").c_str());
+            return std::nullopt;
+        }
+        if (!isObjectWord(t)) failExpected(t, "an object or '}' in " + keyword);
+        any = true;
+        PovObject clip = object(t);
+        if (clip.lightOnly) continue;
+        objects.push_back(toObject(clip));
+    }
+    if (!any) fail(word.loc, "'" + keyword + "' needs at least one object");
+    return objects;
 }
 
 } // namespace drt::pov

@@ -30,7 +30,7 @@ public:
     // ------------------------------------------------------------ tokens (reader.cpp)
     Tok next();          // directives run, macros expanded
     Tok peek();          // the same token next() will return
-    Tok peekOperator();  // stops at a directive (returned unconsumed, kind Directive)
+    Tok peekOperator();  // stops at a directive or a macro name (returned unconsumed, unexpanded)
     void pushBack(Tok t) { pushed_.push_back(std::move(t)); }
     bool acceptSymbol(const char* s);
     Tok expectSymbol(const char* s, const char* context);
@@ -107,6 +107,7 @@ public:
     // extrusion.cpp: the bodies of prism and text, after '{'.
     Extrusion prismShape(SourceLoc keyword);
     std::optional<Extrusion> textShape();
+    std::optional<std::vector<Object>> clipObjects(const Tok& word); // after bounded_by / clipped_by
     void applyTransform(PovObject& o, const Transform& t);
     // ------------------------------------------------------------ algebraic.cpp
     static bool isAlgebraicWord(const std::string& w);
@@ -116,7 +117,8 @@ public:
     // ------------------------------------------------------------ scene (scene_items.cpp)
     void statement(const Tok& t);
     CameraSpec camera(const CameraSpec& base, SourceLoc loc);
-    Light lightSource(SourceLoc loc);
+    // `looksLike`, if given, receives the looks_like object (placed, no_shadow).
+    Light lightSource(SourceLoc loc, std::optional<PovObject>* looksLike = nullptr);
     void globalSettings();
     void fog(const Tok& keyword); // after 'fog'
     void resolveParallelSky(CameraSpec& cam);
@@ -180,6 +182,7 @@ private:
     void macroDefinition(const Tok& t);
     void invokeMacro(const Tok& t);
     void messageDirective(const Tok& t);
+    void fileDirective(const Tok& t);
     void versionDirective(const Tok& t);
     // Skips raw tokens until a directive in `stops` at nesting depth 0; returns it.
     Tok skipTo(const std::set<std::string>& stops, const Tok& start);
@@ -205,6 +208,8 @@ private:
 // The world-space bounding box of an object (POV-Ray's min_extent / max_extent);
 // unbounded shapes give +-1e10 as POV-Ray's BOUND_HUGE/2 does.
 void objectBounds(const PovObject& o, Vec3& lower, Vec3& upper);
+// The scene-model object (CSG members included).
+Object toObject(const PovObject& po);
 
 // POV-Ray colour (r g b filter transmit) -> scene colour.
 ColorFT toColorFT(const std::array<double, 5>& c);

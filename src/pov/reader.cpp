@@ -256,6 +256,9 @@ Tok PovParser::peekOperator() {
             continue;
         }
         if (t.kind == TokKind::Directive) return t;
+        // A macro name cannot continue an expression: return it unexpanded, or
+        // `#declare S = "" M(S)` would run M before S is declared.
+        if (t.kind == TokKind::Word && isMacro(t.text)) return t;
         return peek();
     }
 }

@@ -13,7 +13,12 @@ namespace {
 
 // The camera vectors after POV-Ray's angle and look_at rules (the same as
 // render/camera.cpp's resolveCamera), so that a transform can act on them.
-void resolveCameraVectors(CameraSpec& c) {
+// `orthoScale`: POV-Ray's orthographic rule (parse.cpp Parse_Camera): with
+// angle, or with neither up nor right given, right and up are scaled by
+// |look_at - location| / |direction| (look_at defaults to <0, 0, 1>), which
+// gives the view the perspective camera has at the look_at point.
+void resolveCameraVectors(CameraSpec& c, bool orthoScale = false) {
+    const double lookAtDistance = length(c.lookAt.value_or(Vec3(0, 0, 1)) - c.location);
     Vec3 right = c.right.value_or(Vec3(1.33, 0, 0));
     Vec3 dir = c.direction, up = c.up;
     if (c.angle && *c.angle > 0 && *c.angle < 180 && length(dir) > 0)
@@ -30,12 +35,21 @@ void resolveCameraVectors(CameraSpec& c) {
             up = cross(d, ru) * length(up);
         }
     }
+    if (orthoScale) {
+        const double k = lookAtDistance / length(dir);
+        if (lookAtDistance > 1e-10 && std::isfinite(k)) {
+            right = right * k;
+            up = up * k;
+        }
+    }
     c.direction = dir;
     c.right = right;
     c.up = up;
     c.angle.reset();
     c.lookAt.reset();
 }
+
+} // namespace
 
 Object toObject(const PovObject& po) {
     Object o = po.object;
@@ -46,8 +60,6 @@ Object toObject(const PovObject& po) {
     return o;
 }
 
-} // namespace
-
 CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
     expectSymbol("{", "after 'camera'");
     CameraSpec c = base;
@@ -57,6 +69,14 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
     int blurSamples = aperture > 0 ? 1 : 0;
     SourceLoc apertureLoc = loc;
     bool nonPerspective = false;
+    // Orthographic: POV-Ray's scaling rule is applied once, when the vectors
+    // are first resolved (at a transform or at the end).
+    bool hadUp = false, hadRight = false, hadAngle = false, orthoPending = true;
+    auto resolve = [&] {
+        const bool scale = c.orthographic && orthoPending && ((!hadUp && !hadRight) || hadAngle);
+        resolveCameraVectors(c, scale);
+        if (c.orthographic) orthoPending = false;
+    };
     for (;;) {
         const Tok t = peek();
         if (t.is("}")) {
@@ -64,7 +84,7 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
             break;
         }
         if (std::optional<Transform> tr = transformItem()) {
-            resolveCameraVectors(c);
+            resolve();
             c.location = tr->point(c.location);
             c.direction = tr->vector(c.direction);
             c.right = tr->vector(*c.right);
@@ -79,10 +99,15 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
         if (id && id->kind == Kind::Camera) {
             c = *id->camera;
             aperture = c.aperture * 2;
+            if (c.orthographic) orthoPending = false; // resolved when it was declared
             continue;
         }
         if (w == "perspective") continue;
-        if (w == "orthographic" || w == "fisheye" || w == "ultra_wide_angle" || w == "omnimax" || w == "panoramic" ||
+        if (w == "orthographic") {
+            c.orthographic = true;
+            continue;
+        }
+        if (w == "fisheye" || w == "ultra_wide_angle" || w == "omnimax" || w == "panoramic" ||
             w == "cylinder" || w == "spherical" || w == "mesh_camera") {
             warnOnce("camera-" + w, t.loc, "'" + w + "' camera is not supported; a perspective camera is used");
             nonPerspective = true;
@@ -91,17 +116,22 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
         } else if (w == "location") c.location = vectorExpr();
         else if (w == "look_at") c.lookAt = vectorExpr();
         else if (w == "direction") c.direction = vectorExpr();
-        else if (w == "right") c.right = vectorExpr();
-        else if (w == "up") c.up = vectorExpr();
+        else if (w == "right") c.right = vectorExpr(), hadRight = true;
+        else if (w == "up") c.up = vectorExpr(), hadUp = true;
         else if (w == "sky") c.sky = vectorExpr();
         else if (w == "angle") {
             const SourceLoc at = peek().loc;
+            hadAngle = true;
+            // The orthographic camera's angle is optional (POV-Ray: 0, which
+            // only triggers the scaling rule).
+            if (c.orthographic && !startsFloat(peekOperator())) continue;
             const double a = floatExpr();
             if (acceptSymbol(",")) {
                 floatExpr();
                 warnOnce("angle-vertical", at, "the vertical camera angle is ignored (it follows from up/right)");
             }
             if (a > 0 && a < 180) c.angle = a;
+            else if (c.orthographic && a == 0) c.angle.reset();
             else if (!nonPerspective) fail(at, "camera angle must be in (0, 180) degrees for a perspective camera");
         } else if (w == "aperture") {
             apertureLoc = t.loc;
@@ -132,6 +162,12 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
         aperture = 0;
     }
     c.aperture = std::fabs(aperture) / 2;
+    if (c.orthographic) {
+        if (c.aperture > 0)
+            warnOnce("ortho-aperture", apertureLoc, "focal blur with an orthographic camera is not supported; ignored");
+        c.aperture = 0;
+        if (orthoPending) resolve();
+    }
     if (c.aperture > 0) {
         const int spp = std::max(blurSamples, scene_.render.samplesPerPixel.value_or(0));
         scene_.render.samplesPerPixel = spp;
@@ -139,7 +175,7 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
     return c;
 }
 
-Light PovParser::lightSource(SourceLoc loc) {
+Light PovParser::lightSource(SourceLoc loc, std::optional<PovObject>* looksLike) {
     expectSymbol("{", "after 'light_source'");
     Light l;
     l.loc = loc;
@@ -147,9 +183,15 @@ Light PovParser::lightSource(SourceLoc loc) {
     AreaLight early; // area-light modifiers given before area_light
     const Tok first = peek();
     const Cell id = first.kind == TokKind::Word ? use(first.text) : nullptr;
-    if (id && id->kind == Kind::Object && id->object->lightOnly && !id->object->lights.empty()) {
+    if (id && id->kind == Kind::Object && id->object->lights.size() == 1 &&
+        (id->object->lightOnly || looksLike)) {
+        // A declared light; one with looks_like is its shape carrying the light.
         next();
         l = id->object->lights.front();
+        if (!id->object->lightOnly) {
+            *looksLike = *id->object;
+            (*looksLike)->lights.clear();
+        }
     } else {
         l.position = vectorExpr();
         acceptSymbol(",");
@@ -169,6 +211,7 @@ Light PovParser::lightSource(SourceLoc loc) {
             break;
         }
         if (std::optional<Transform> tr = transformItem()) {
+            if (looksLike && *looksLike) applyTransform(**looksLike, *tr);
             l.position = tr->point(l.position);
             l.pointAt = tr->point(l.pointAt);
             if (l.area) {
@@ -191,7 +234,15 @@ Light PovParser::lightSource(SourceLoc loc) {
         else if (w == "shadowless") l.shadowless = true;
         else if (w == "fade_distance") l.fadeDistance = floatExpr();
         else if (w == "fade_power") l.fadePower = floatExpr();
-        else if (w == "area_light") {
+        else if (w == "looks_like" && looksLike) {
+            // POV-Ray: the object is moved to the light's position, moves with
+            // the light's later transforms and casts no shadow.
+            if (*looksLike) fail(t.loc, "only one looks_like is allowed per light_source");
+            PovObject shape = object(Tok{TokKind::Word, "object", 0, t.loc}); // reads `{ object modifiers }`
+            applyTransform(shape, Transform::translate(l.position));
+            shape.object.noShadow = true;
+            *looksLike = std::move(shape);
+        } else if (w == "area_light") {
             AreaLight a = early; // modifiers may come first (POV-Ray keeps them as flags)
             a.axis1 = vectorExpr();
             acceptSymbol(",");

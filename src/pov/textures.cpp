@@ -467,8 +467,7 @@ Finish PovParser::finish(const Finish& base) {
             expectSymbol("{", "after 'subsurface'");
             skipBlock();
         } else if (w == "crand") {
-            floatExpr();
-            warnOnce("crand", t.loc, "'crand' is not supported and is ignored");
+            f.crand = floatExpr();
         } else if (w == "refraction" || w == "ior" || w == "caustics" || w == "fade_distance" || w == "fade_power") {
             floatExpr();
             warnOnce("finish-" + w, t.loc, "'" + w + "' inside finish is POV-Ray 3.1 syntax; ignored (use interior)");

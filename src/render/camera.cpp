@@ -34,6 +34,8 @@ ResolvedCamera resolveCamera(const CameraSpec& spec, int width, int height) {
     requireUsable(cam.up, "up");
     requireUsable(cam.right, "right");
 
+    // Orthographic: the distance the angle's view width is measured at.
+    const double orthoDistance = spec.lookAt ? length(*spec.lookAt - spec.location) : length(spec.direction);
     if (spec.angle) {
         const double angle = *spec.angle;
         if (!(angle > 0 && angle < 180)) throw RenderError("camera: angle must be in (0, 180) degrees");
@@ -58,6 +60,19 @@ ResolvedCamera resolveCamera(const CameraSpec& spec, int width, int height) {
         cam.direction = d * length(cam.direction);
         cam.right = rightUnit * (handedness > 0 ? length(cam.right) : -length(cam.right));
         cam.up = upUnit * length(cam.up);
+    }
+
+    if (spec.orthographic) {
+        cam.orthographic = true;
+        if (spec.aperture != 0) throw RenderError("camera: an orthographic camera has no lens (aperture must be 0)");
+        if (spec.angle) {
+            // |direction| is now |right| / (2 tan(angle / 2)); scaling right by
+            // d / |direction| makes the width 2 d tan(angle / 2) (POV-Ray's rule).
+            const double k = orthoDistance / length(cam.direction);
+            if (!(k > 0) || !std::isfinite(k)) throw RenderError("camera: look_at must differ from location");
+            cam.right = cam.right * k;
+            cam.up = cam.up * k;
+        }
     }
 
     cam.viewAxis = normalize(cam.direction);
@@ -93,10 +108,15 @@ Ray ResolvedCamera::generateRay(double px, double py, Vec2 lens, double time) co
     const double x0 = px / width - 0.5;
     const double y0 = 0.5 - py / height;
     Ray ray;
-    ray.origin = location;
-    ray.direction = direction + x0 * right + y0 * up;
     // Motion spans time 0..1; outside it objects hold their end positions.
     ray.time = std::clamp(time, 0.0, 1.0);
+    if (orthographic) {
+        ray.origin = location + x0 * right + y0 * up;
+        ray.direction = direction;
+        return ray;
+    }
+    ray.origin = location;
+    ray.direction = direction + x0 * right + y0 * up;
     if (lensRadius > 0) {
         // Thin lens: every ray through the lens point meets the pinhole ray where it
         // crosses the focal plane, at depth focalDistance along the view axis.

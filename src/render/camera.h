@@ -1,4 +1,5 @@
-// The POV-Ray perspective camera with Cook's thin lens and shutter.
+// The POV-Ray perspective camera with Cook's thin lens and shutter, and the
+// orthographic camera.
 //
 // Parameters (scene.h CameraSpec) and their meaning here:
 //   location, direction, up, right  POV-Ray's camera vectors (left-handed: x right, y up, z in).
@@ -9,6 +10,10 @@
 //   aperture                        lens *diameter* in scene units (0: pinhole, draws no lens sample).
 //   focal_distance / focal_point    the focal plane, perpendicular to the view axis at focal_distance, else at
 //                                   |focal_point - location| (Euclidean, as POV-Ray 3.7), else at |direction|.
+//   orthographic                    parallel rays along direction, from location + x0 right + y0 up (the view is
+//                                   |right| x |up|); with angle, right and up scale so the width is
+//                                   2 d tan(angle/2), d = |look_at - location| (|direction| without look_at).
+//                                   No lens: aperture must be 0.
 //   shutter_open / shutter_close    ray time = lerp(open, close, u), clamped to Motion's [0, 1] (objects hold
 //                                   their end poses outside it); equal values draw no time sample.
 #pragma once
@@ -33,6 +38,8 @@ struct ResolvedCamera {
     Vec3 lensU{1, 0, 0}, lensV{0, 1, 0};
     double shutterOpen = 0;
     double shutterClose = 0;
+    // Parallel rays along direction from location + x0 right + y0 up.
+    bool orthographic = false;
 
     bool hasLens() const { return lensRadius > 0; }
     bool hasShutter() const { return shutterOpen != shutterClose; }

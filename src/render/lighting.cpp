@@ -57,7 +57,18 @@ int lightDimension(int depth, int lightIndex) {
     return kFirstExtraLightDimension + static_cast<int>((2 * slot) % (int64_t(1) << 30));
 }
 
+int crandDimension(int depth, int lightIndex) {
+    const int64_t slot = int64_t(std::max(lightIndex, 0)) * kMaxLightDepth + std::clamp(depth, 0, kMaxLightDepth - 1);
+    return kFirstExtraLightDimension + (1 << 30) + static_cast<int>(slot % (int64_t(1) << 29));
+}
+
 namespace {
+
+// U for crand (lighting.h crandDimension); 0 without crand, so no sample is drawn.
+double crandNoise(const ShadingPoint& sp, int lightIndex, Sampler& sampler) {
+    if (!(sp.finish->crand > 0)) return 0;
+    return sampler.get1D(crandDimension(sp.depth, lightIndex));
+}
 
 struct AreaFrame {
     Vec3 axis1, axis2;
@@ -90,7 +101,7 @@ Color lightIntensityAt(const Light& light, const Vec3& lightPosition, const Vec3
 // Diffuse and highlights from a point light at `lightPosition` whose colour is
 // scaled by `scale` (and by 1/r^2 when `inverseSquare`), shadowed unless shadowless.
 Color shadePointLight(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
-                      const Vec3& lightPosition, double scale, bool inverseSquare, RayCounts& counts,
+                      const Vec3& lightPosition, double scale, bool inverseSquare, double crandU, RayCounts& counts,
                       const Scene* mediaScene) {
     const Vec3 toLight = lightPosition - sp.hit.point;
     const double distance = length(toLight);
@@ -104,7 +115,7 @@ Color shadePointLight(const Accelerator& accel, const ShadingPoint& sp, const Li
         intensity *= shadowTransmittance(accel, sp.hit, lightPosition, sp.time, counts, mediaScene);
         if (isBlack(intensity)) return Color(0);
     }
-    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity);
+    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity, crandU);
 }
 
 // One sample point of an area light and the weight of its point light
@@ -223,7 +234,8 @@ Color shadeAreaLightShadowOnly(const Accelerator& accel, const ShadingPoint& sp,
         visibility = visibility / points.count();
         if (isBlack(visibility)) return Color(0);
     }
-    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity * visibility);
+    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity * visibility,
+                     crandNoise(sp, lightIndex, sampler));
 }
 
 // areaIllumination on: each sample point shades as a weighted point light.
@@ -233,7 +245,9 @@ Color shadeAreaLightFull(const Accelerator& accel, const ShadingPoint& sp, const
     Color sum(0);
     for (int k = 0; k < points.count(); ++k) {
         const AreaSample s = points.sample(sampler, k);
-        if (s.weight > 0) sum += shadePointLight(accel, sp, light, s.position, s.weight, false, counts, mediaScene);
+        if (s.weight > 0)
+            sum += shadePointLight(accel, sp, light, s.position, s.weight, false, crandNoise(sp, lightIndex, sampler),
+                                   counts, mediaScene);
     }
     return sum;
 }
@@ -250,7 +264,8 @@ Color directLighting(const Scene& scene, const Accelerator& accel, const Shading
         // Shadow rays through media: only for lights that interact with media (POV-Ray).
         const Scene* media = light.mediaAttenuation && light.mediaInteraction ? &scene : nullptr;
         if (!light.area)
-            sum += shadePointLight(accel, point, light, light.position, 1.0, light.inverseSquare, counts, media);
+            sum += shadePointLight(accel, point, light, light.position, 1.0, light.inverseSquare,
+                                   crandNoise(point, index, sampler), counts, media);
         else if (light.areaIllumination)
             sum += shadeAreaLightFull(accel, point, light, index, sampler, counts, media);
         else

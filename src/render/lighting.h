@@ -87,6 +87,9 @@ inline constexpr int kFirstExtraLightDimension = bounceDimension(kMaxLightDepth,
 
 // The 2D sampler dimension of light `lightIndex` at trace depth `depth`.
 int lightDimension(int depth, int lightIndex);
+// The 1D sampler dimension of crand's noise for light `lightIndex` at depth
+// `depth`: past every lightDimension (which span 2^30 from kFirstExtraLightDimension).
+int crandDimension(int depth, int lightIndex);
 
 // Sum over the scene's lights of the diffuse and highlight terms at `point`.
 Color directLighting(const Scene& scene, const Accelerator& accel, const ShadingPoint& point, Sampler& sampler,

@@ -30,12 +30,13 @@ Color ambientTerm(const Finish& finish, const ColorFT& pigment, const Color& amb
 }
 
 Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
-                const Vec3& toLight, const Color& lightIntensity) {
+                const Vec3& toLight, const Color& lightIntensity, double crandU) {
     const double cosNL = dot(normal, toLight);
     if (!(cosNL > 0)) return Color(0);
     Color result(0);
     if (finish.diffuse != 0) {
-        const double d = finish.diffuse * std::pow(cosNL, finish.brilliance) * pigment.opacity();
+        const double d =
+            (finish.diffuse * std::pow(cosNL, finish.brilliance) - crandU * finish.crand) * pigment.opacity();
         result += d * pigment.rgb * lightIntensity;
     }
     double highlight = 0;

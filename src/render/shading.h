@@ -19,8 +19,10 @@ namespace drt {
 Color ambientTerm(const Finish& finish, const ColorFT& pigment, const Color& ambientLight);
 
 // Diffuse + Phong + specular from one light, or black when N.L <= 0.
+// `crandU` in [0, 1): POV-Ray's crand noise, the diffuse factor becomes
+// (diffuse (N.L)^brilliance - crandU crand) alpha (it may go negative, as in POV-Ray).
 Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
-                const Vec3& toLight, const Color& lightIntensity);
+                const Vec3& toLight, const Color& lightIntensity, double crandU = 0);
 
 // How much of a ray is reflected: reflection min..max blended by Fresnel
 // (reflection_fresnel, with eta = n_incident / n_transmitted) or by

@@ -98,6 +98,10 @@ struct Finish {
     // perfect refraction; larger values widen the lobe around the ideal direction.
     double reflectionBlur = 0;
     double refractionBlur = 0;
+    // POV-Ray crand: each light's diffuse term loses U crand before it is
+    // multiplied by the pigment and light colours, U uniform in [0, 1) and
+    // drawn anew per light, bounce and pixel sample (graininess).
+    double crand = 0;
 };
 
 // A bump pattern (POV-Ray `normal { bumps 0.4 scale 0.2 }`): the shading
@@ -238,6 +242,13 @@ struct Object {
     bool noShadow = false;
     bool hollow = false;
     bool inverse = false;
+    // clipped_by (POV-Ray): the object's surface is kept only where it lies
+    // inside every one of these; their own surfaces are not added, so the
+    // object may be left open. As for insideness (CSG), the object counts as
+    // inside only where it is inside every clip too. Clip objects live in the
+    // space Object::transform maps to (world for a top-level object, the CSG's
+    // space for a member); transforms written after clipped_by move them too.
+    std::vector<Object> clippedBy;
     SourceLoc loc;
 };
 
@@ -306,6 +317,12 @@ struct CameraSpec {
     Vec3 sky{0, 1, 0};
     std::optional<Vec3> lookAt;
     std::optional<double> angle; // horizontal field of view, degrees
+    // Orthographic projection (POV-Ray): rays parallel to direction, starting
+    // on the plane through location spanned by right and up, whose lengths are
+    // the view's width and height. With angle, right and up are scaled
+    // together so that the width is 2 d tan(angle / 2), d the distance from
+    // location to look_at (|direction| without look_at). No lens (aperture 0).
+    bool orthographic = false;
     // Thin lens (issue 3). aperture is the lens *diameter* in scene units; 0 is a pinhole.
     double aperture = 0;
     std::optional<Vec3> focalPoint;
