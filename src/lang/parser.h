@@ -138,7 +138,15 @@ private:
     // --------------------------------------------------- parser_textures.cpp
     Texture texture();
     Pigment pigment();
+    // The items of a texture / pigment up to `closer` (`}`, or `]` in a map entry).
+    Texture textureBody(TokenKind closer, const char* where);
+    Pigment pigmentBody(TokenKind closer, const char* where);
     bool pigmentItem(Pigment& p);
+    // parser_texture_maps.cpp: texture patterns, texture_map, pigment_map.
+    bool atTexturePattern() const;
+    Texture patternedTexture(TokenKind closer, const char* where);
+    std::vector<Texture::MapEntry> textureMap(bool average);
+    void pigmentMap(Pigment& p);
     Pigment pigmentOrColor();
     void colorMap(Pigment& p);
     Finish finish();

@@ -244,9 +244,16 @@ void Parser::meshTriangle(Mesh& mesh, bool smooth) {
 }
 
 void Parser::objectModifiers(ParsedObject& po, const Token& keyword) {
+    int textures = 0; // a second `texture` is a layer on top of the first (POV-Ray)
     while (!match(TokenKind::RightBrace)) {
         if (isCsg(po) && atObjectWord()) {
             addChild(po, object());
+            continue;
+        }
+        if (checkWord("texture") && textures++ > 0) {
+            Texture layered = po.object.texture;
+            addLayerOnTop(layered, texture());
+            setTexture(po, layered);
             continue;
         }
         if (objectModifier(po)) continue;

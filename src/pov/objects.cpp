@@ -415,9 +415,10 @@ PovObject PovParser::object(const Tok& keyword) {
                             " { " + m + " }");
         }
         if (m == "texture") {
-            if (++textures > 1) {
-                warnOnce("layered", t.loc, "layered textures are not supported; only the first (bottom) layer is used");
-                texture(Texture{});
+            if (++textures > 1) { // `texture {A} texture {B}`: B is a layer on top of A
+                Texture layered = o.texture;
+                addLayerOnTop(layered, texture(defaultTexture_));
+                setTexture(po, layered);
                 continue;
             }
             setTexture(po, texture(po.textured ? o.texture : defaultTexture_));

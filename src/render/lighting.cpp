@@ -3,6 +3,7 @@
 #include "sampling/warp.h"
 #include "render/pigment.h"
 #include "render/shading.h"
+#include "render/texture_shading.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,8 +29,7 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
         ++counts.shadow;
         if (!accel.intersect(ray, blocker)) return transmittance;
         if (!blocker.object->noShadow) {
-            const ColorFT p = evaluatePigment(blocker.object->texture.pigment, blocker.point);
-            transmittance *= p.rgb * p.filter + Color(p.transmit);
+            transmittance *= textureFilter(blocker.object->texture, blocker.point);
             if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
         ray.origin = Accelerator::offsetOrigin(blocker, ray.direction);
