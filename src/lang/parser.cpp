@@ -263,7 +263,7 @@ void Parser::declare() {
     bool block = true;
     if (checkWord("texture")) { // `texture {A} texture {B}`: B layered on top of A
         Texture layered = texture();
-        while (checkWord("texture")) addLayerOnTop(layered, texture());
+        while (checkWord("texture")) layerTexture(layered, current_.loc);
         value = std::move(layered);
     }
     else if (checkWord("pigment")) value = pigment();

@@ -147,6 +147,8 @@ private:
     Texture patternedTexture(TokenKind closer, const char* where);
     std::vector<Texture::MapEntry> textureMap(bool average);
     void pigmentMap(Pigment& p);
+    // After a `texture` keyword at `loc`: parses it and layers it on top of `below`.
+    void layerTexture(Texture& below, SourceLoc loc);
     Pigment pigmentOrColor();
     void colorMap(Pigment& p);
     Finish finish();

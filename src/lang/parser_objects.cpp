@@ -252,7 +252,7 @@ void Parser::objectModifiers(ParsedObject& po, const Token& keyword) {
         }
         if (checkWord("texture") && textures++ > 0) {
             Texture layered = po.object.texture;
-            addLayerOnTop(layered, texture());
+            layerTexture(layered, current_.loc);
             setTexture(po, layered);
             continue;
         }

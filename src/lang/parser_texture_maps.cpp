@@ -24,6 +24,14 @@ const std::vector<std::string>& texturePatternWords() {
 
 } // namespace
 
+// POV-Ray layers only plain textures; so does .drt (the scene model could do more).
+void Parser::layerTexture(Texture& below, SourceLoc loc) {
+    Texture top = texture();
+    if (hasPatternedLayer(below)) fail(loc, "cannot layer over a patterned texture (as POV-Ray)");
+    if (hasPatternedLayer(top)) fail(loc, "cannot layer a patterned texture over another texture (as POV-Ray)");
+    addLayerOnTop(below, std::move(top));
+}
+
 bool Parser::atTexturePattern() const {
     if (!check(TokenKind::Identifier) || lookup(current_.text)) return false;
     for (const std::string& w : texturePatternWords())
@@ -65,7 +73,7 @@ Texture Parser::patternedTexture(TokenKind closer, const char* where) {
         for (int tile = 0; tile < 2; ++tile) {
             if (!checkWord("texture")) failExpected(tile == 0 ? "'texture' in tiles" : "'texture' after 'tile2'");
             Texture stack = texture();
-            while (checkWord("texture")) addLayerOnTop(stack, texture());
+            while (checkWord("texture")) layerTexture(stack, current_.loc);
             tex.map.push_back({double(tile), std::move(stack)});
             if (tile == 0) {
                 if (!checkWord("tile2")) failExpected("'tile2' or another 'texture' in tiles");
@@ -73,6 +81,8 @@ Texture Parser::patternedTexture(TokenKind closer, const char* where) {
             }
         }
         expect(TokenKind::RightBrace, "'}' to end tiles");
+        // As POV-Ray 3.7 (measured): tile2 lies where `checker` puts its first texture.
+        std::swap(tex.map[0].texture, tex.map[1].texture);
     } else if (w == "gradient") {
         pattern.pattern = PatternKind::Gradient;
         const SourceLoc vloc = current_.loc;

@@ -240,7 +240,7 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
     const bool layeredEntry = std::any_of(t.map.begin(), t.map.end(),
                                           [](const Texture::MapEntry& e) { return !e.texture.layersAbove.empty(); });
     if (block && p.pattern == PatternKind::Checker && t.map.size() == 2 && layeredEntry) {
-        text += " tiles {" + blocks(t.map[0].texture) + " tile2" + blocks(t.map[1].texture) + " }";
+        text += " tiles {" + blocks(t.map[1].texture) + " tile2" + blocks(t.map[0].texture) + " }"; // see the parser
     } else if (block) {
         const size_t count = p.pattern == PatternKind::Hexagon ? 3 : 2;
         if (t.map.size() != count)
@@ -270,6 +270,8 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
 std::vector<std::string> textureBlocks(const Texture& t, const std::vector<Step>& suffix, bool& exact,
                                        std::set<std::string>& problems) {
     std::vector<std::string> out;
+    if (!t.layersAbove.empty() && hasPatternedLayer(t))
+        problems.insert("a layered texture with a patterned layer (the parser refuses it, as POV-Ray)");
     out.push_back("texture {" + textureBody(t, suffix, exact, problems) + " }");
     for (const Texture& layer : t.layersAbove)
         for (std::string& block : textureBlocks(layer, suffix, exact, problems))

@@ -417,7 +417,7 @@ PovObject PovParser::object(const Tok& keyword) {
         if (m == "texture") {
             if (++textures > 1) { // `texture {A} texture {B}`: B is a layer on top of A
                 Texture layered = o.texture;
-                addLayerOnTop(layered, texture(defaultTexture_));
+                layerOnTop(layered, texture(defaultTexture_), t.loc);
                 setTexture(po, layered);
                 continue;
             }

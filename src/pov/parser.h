@@ -91,6 +91,8 @@ public:
     Texture patternedTexture(const Tok& patternWord, const char* closer); // pattern word consumed
     std::vector<Texture::MapEntry> textureMap();                          // after 'texture_map'
     std::vector<Pigment::MapEntry> pigmentMap();                          // after 'pigment_map'
+    // addLayerOnTop, with POV-Ray's errors for layers over or of patterned textures.
+    void layerOnTop(Texture& below, Texture top, SourceLoc loc);
     Finish finish(const Finish& base);     // after 'finish'
     Interior interior(const Interior& base);
     PovMaterial material(const PovMaterial& base);

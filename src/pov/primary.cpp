@@ -202,8 +202,8 @@ PovValue PovParser::rvalue() {
             Texture layered = texture(Texture{});
             // `texture {A} texture {B}`: a layered texture, B on top of A.
             while (peekOperator().isWord("texture")) {
-                next();
-                addLayerOnTop(layered, texture(Texture{}));
+                const Tok keyword = next();
+                layerOnTop(layered, texture(Texture{}), keyword.loc);
             }
             v.texture = std::make_shared<Texture>(std::move(layered));
             return v;

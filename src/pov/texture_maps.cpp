@@ -12,6 +12,12 @@ bool PovParser::isTexturePatternWord(const std::string& w) {
            noisePatterns().count(w) > 0 || noiseKind(w).has_value();
 }
 
+void PovParser::layerOnTop(Texture& below, Texture top, SourceLoc loc) {
+    if (hasPatternedLayer(below)) fail(loc, "cannot layer over a patterned texture (as POV-Ray)");
+    if (hasPatternedLayer(top)) fail(loc, "cannot layer a patterned texture over another texture (as POV-Ray)");
+    addLayerOnTop(below, std::move(top));
+}
+
 std::vector<Texture::MapEntry> PovParser::textureMap() {
     expectSymbol("{", "after 'texture_map'");
     std::vector<Texture::MapEntry> map;
@@ -73,9 +79,9 @@ Texture PovParser::patternedTexture(const Tok& word, const char* closer) {
             Texture stack;
             bool any = false;
             while (peek().isWord("texture")) {
-                next();
+                const Tok keyword = next();
                 Texture layer = texture(defaultTexture_);
-                if (any) addLayerOnTop(stack, std::move(layer));
+                if (any) layerOnTop(stack, std::move(layer), keyword.loc);
                 else stack = std::move(layer);
                 any = true;
             }
@@ -84,6 +90,8 @@ Texture PovParser::patternedTexture(const Tok& word, const char* closer) {
             if (tile == 0 && !acceptWord("tile2")) failExpected(peek(), "'tile2' in tiles");
         }
         expectSymbol("}", "to end tiles");
+        // Measured against POV-Ray 3.7: tile2 lies where `checker` puts its first texture.
+        std::swap(tex.map[0].texture, tex.map[1].texture);
     } else if (w == "gradient") {
         pattern.pattern = PatternKind::Gradient;
         pattern.gradientAxis = vectorExpr();
@@ -128,7 +136,7 @@ Texture PovParser::patternedTexture(const Tok& word, const char* closer) {
         approximated = w;
         if (w == "function" || w == "pigment_pattern" || w == "object") {
             if (peek().is("{")) next(), skipBlock();
-        } else if (w == "mandel" || w == "magnet") {
+        } else if (w == "mandel" || w == "magnet" || w == "spiral1" || w == "spiral2") {
             floatExpr();
         } else if (w == "julia") {
             vectorExpr(), acceptSymbol(","), floatExpr();

@@ -6,7 +6,7 @@
 //   F *= P.rgb f + t, and with conserve_energy F *= 1 - reflectivity. Layers
 //   stop once min(1, |grey(F)|) < adc_bailout. The transmitted ray has weight F
 //   and bends at the top layer's normal.
-// - A patterned texture shades the entries its pattern picks (one for block
+// - A patterned texture (texture_map, block patterns of textures) shades the entries its pattern picks (one for block
 //   patterns, the two around the value for texture_map, all for Average), each
 //   fully (lights and rays) with its blend weight.
 // - A shadow ray through a surface is filtered by the product over layers of
@@ -29,8 +29,10 @@ inline double greyValue(const Color& c) { return 0.297 * c.r + 0.589 * c.g + 0.1
 void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint,
                         const std::function<void(const Texture&, double)>& visit);
 
-// The layers of a non-patterned texture, top first (a patterned layer ends the
-// list where it stands: it shades everything below itself). Appends to `out`.
+// The layers of a layered texture, top first, appended to `out`. A patterned
+// layer (the front ends refuse them, as POV-Ray does; the model allows them)
+// ends the list: its entries are whole textures, seen through the layers
+// above it, and the layers below it are not shaded.
 void layersTopFirst(const Texture& texture, std::vector<const Texture*>& out);
 
 // What a shadow ray keeps after crossing the surface at worldPoint.

@@ -143,6 +143,16 @@ struct Texture::MapEntry {
     Texture texture;
 };
 
+// True if the texture or any of its layers is a patterned texture. POV-Ray
+// layers only plain textures ("Cannot layer over a patterned texture"); both
+// front ends refuse the same.
+inline bool hasPatternedLayer(const Texture& t) {
+    if (!t.map.empty()) return true;
+    for (const Texture& layer : t.layersAbove)
+        if (hasPatternedLayer(layer)) return true;
+    return false;
+}
+
 // Puts `top` (with its own layers) on top of `bottom`'s layers.
 inline void addLayerOnTop(Texture& bottom, Texture top) {
     std::vector<Texture> above = std::move(top.layersAbove);
