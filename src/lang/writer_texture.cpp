@@ -141,6 +141,14 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         std::vector<ColorMapEntry> map = p.colorMap;
         if (map.empty())
             map = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // the renderer's empty-map ramp
+        // .drt takes values in [0, 1], not decreasing; POV-Ray takes any: clamp them.
+        double previous = 0;
+        for (ColorMapEntry& e : map) {
+            const double v = std::max(previous, std::clamp(e.value, 0.0, 1.0));
+            if (v != e.value)
+                problems.insert("color_map values outside [0, 1] or decreasing (clamped)");
+            e.value = previous = v;
+        }
         text += " color_map {";
         for (const ColorMapEntry& e : map)
             text += " [" + number(e.value) + " " + colorText(e.color) + "]";

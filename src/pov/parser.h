@@ -90,6 +90,7 @@ public:
     static bool isTexturePatternWord(const std::string& w);
     Texture patternedTexture(const Tok& patternWord, const char* closer); // pattern word consumed
     std::vector<Texture::MapEntry> textureMap();                          // after 'texture_map'
+    double mapEntryValue(); // after '[' in a map
     std::vector<Pigment::MapEntry> pigmentMap();                          // after 'pigment_map'
     // addLayerOnTop, with POV-Ray's errors for layers over or of patterned textures.
     void layerOnTop(Texture& below, Texture top, SourceLoc loc);

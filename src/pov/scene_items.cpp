@@ -46,10 +46,17 @@ void decodePigment(Pigment& p, double gamma) {
     p.color.rgb = decodeGamma(p.color.rgb, gamma);
     for (ColorMapEntry& e : p.colorMap) e.color.rgb = decodeGamma(e.color.rgb, gamma);
     for (Pigment& c : p.children) decodePigment(c, gamma);
+    for (Pigment::MapEntry& e : p.pigmentMap) decodePigment(e.pigment, gamma);
+}
+
+void decodeTexture(Texture& t, double gamma) {
+    decodePigment(t.pigment, gamma);
+    for (Texture::MapEntry& e : t.map) decodeTexture(e.texture, gamma);
+    for (Texture& layer : t.layersAbove) decodeTexture(layer, gamma);
 }
 
 void decodeObject(Object& o, double gamma) {
-    decodePigment(o.texture.pigment, gamma);
+    decodeTexture(o.texture, gamma);
     if (Csg* csg = std::get_if<Csg>(&o.shape))
         for (Object& c : csg->children) decodeObject(c, gamma);
 }

@@ -18,14 +18,22 @@ void PovParser::layerOnTop(Texture& below, Texture top, SourceLoc loc) {
     addLayerOnTop(below, std::move(top));
 }
 
+// `[value, body]`; in an `average` map the value (the weight) may be left out: 1.
+double PovParser::mapEntryValue() {
+    const Tok t = peek();
+    if (t.isWord("function") || !startsFloat(t)) return 1;
+    const double v = floatExpr();
+    acceptSymbol(",");
+    return v;
+}
+
 std::vector<Texture::MapEntry> PovParser::textureMap() {
     expectSymbol("{", "after 'texture_map'");
     std::vector<Texture::MapEntry> map;
     while (!acceptSymbol("}")) {
         expectSymbol("[", "to start a texture_map entry");
         Texture::MapEntry entry;
-        entry.value = floatExpr();
-        acceptSymbol(",");
+        entry.value = mapEntryValue();
         entry.texture = textureBody(defaultTexture_, "]");
         map.push_back(std::move(entry));
     }
@@ -38,8 +46,7 @@ std::vector<Pigment::MapEntry> PovParser::pigmentMap() {
     while (!acceptSymbol("}")) {
         expectSymbol("[", "to start a pigment_map entry");
         Pigment::MapEntry entry;
-        entry.value = floatExpr();
-        acceptSymbol(",");
+        entry.value = mapEntryValue();
         entry.pigment = pigmentBody(Pigment{}, "]");
         map.push_back(std::move(entry));
     }
@@ -140,6 +147,9 @@ Texture PovParser::patternedTexture(const Tok& word, const char* closer) {
             floatExpr();
         } else if (w == "julia") {
             vectorExpr(), acceptSymbol(","), floatExpr();
+        } else if (w == "slope" || w == "aoi") { // slope <v> or slope { <v> [, lo, hi] [altitude ..] }
+            if (peek().is("{")) next(), skipBlock();
+            else if (w == "slope") vectorExpr();
         }
     }
     for (;;) {
@@ -168,6 +178,11 @@ Texture PovParser::patternedTexture(const Tok& word, const char* closer) {
                      t.text != "scallop_wave" && t.text != "cubic_wave" &&
                      (t.text != "poly_wave" || peek().kind == TokKind::Number))
                 expression();
+        } else if (pattern.pattern == PatternKind::Crackle &&
+                   (t.text == "metric" || t.text == "form" || t.text == "offset" || t.text == "solid")) {
+            warnOnce("crackle-" + t.text, t.loc, "crackle '" + t.text + "' is not supported and is ignored");
+            if (t.text == "form") vectorExpr();
+            else if (t.text != "solid") floatExpr();
         } else if (t.text == "uv_mapping") {
             warnOnce(t.text, t.loc, "'uv_mapping' is not supported; the pattern uses object coordinates");
         } else {

@@ -583,7 +583,10 @@ std::optional<Normal> PovParser::normalBlock(SourceLoc keyword) {
 
 Texture PovParser::texture(const Texture& base) {
     expectSymbol("{", "after 'texture'");
-    return textureBody(base, "}");
+    // A new texture starts from the base's bottom layer; a patterned base gives only its defaults.
+    Texture start = base.map.empty() ? base : Texture{};
+    start.layersAbove.clear();
+    return textureBody(start, "}");
 }
 
 Texture PovParser::textureBody(const Texture& base, const char* closer) {
@@ -632,7 +635,8 @@ PovMaterial PovParser::material(const PovMaterial& base) {
             continue;
         }
         if (t.text == "texture") {
-            m.texture = texture(m.texture.value_or(Texture{}));
+            if (m.texture) layerOnTop(*m.texture, texture(Texture{}), t.loc); // a layer on top
+            else m.texture = texture(Texture{});
         } else if (t.text == "interior") {
             m.interior = interior(m.interior.value_or(Interior{}));
         } else if (t.text == "translate" || t.text == "rotate" || t.text == "scale" || t.text == "matrix" ||
