@@ -320,7 +320,10 @@ TEST(LayeredTextureSyntax, WriterRoundTripsEveryConstructBitForBit) {
         {"texture_map", "plane { y, 0 texture { gradient x texture_map { [0.2 pigment { rgb <1, 0.2, 0.1> } finish { phong 0.5 }]"
                         " [0.8 pigment { checker rgb 1, rgb 0 scale 0.25 } finish { reflection 0.4 }] } turbulence 0.3 "
                         "rotate y * 30 } }"},
-        {"checker", "plane { y, 0 texture { checker texture { pigment { rgb 1 } } texture { pigment { rgb <0.1, 0.2, 0.6> } "
+        {"layered_entry", "plane { y, 0 texture { gradient z texture_map { [0.3 pigment { rgb <0.2, 0.3, 0.9> }]"
+                          " [0.7 texture { pigment { rgb 1 } } texture { pigment { checker rgbt 1, rgbf <1, 0, 0, 0.5>"
+                          " scale 0.3 } finish { phong 0.5 } }] } scale 3 } }"},
+                {"checker", "plane { y, 0 texture { checker texture { pigment { rgb 1 } } texture { pigment { rgb <0.1, 0.2, 0.6> } "
                     "finish { reflection 0.3 } } scale 0.7 } }"},
         {"tiles", "box { -1, 1 texture { tiles { texture { pigment { rgb x } } texture { pigment { rgbt <1, 1, 1, 0.6> } }"
                   " tile2 texture { pigment { rgb y } } } scale 0.5 } rotate y * 30 }"},

@@ -144,7 +144,7 @@ void checkMapValue(bool average, double value, const double* previous, const Sou
 
 } // namespace
 
-// texture-map = "texture_map" "{" { "[" float [ "," ] texture-body "]" } "}"
+// texture-map = "texture_map" "{" { "[" float [ "," ] ( texture-body | texture { texture } ) "]" } "}"
 std::vector<Texture::MapEntry> Parser::textureMap(bool average) {
     const Token keyword = current_;
     advance();
@@ -160,7 +160,13 @@ std::vector<Texture::MapEntry> Parser::textureMap(bool average) {
         checkMapValue(average, e.value, entries.empty() ? nullptr : &entries.back().value, loc, "texture_map",
                       report);
         match(TokenKind::Comma);
-        e.texture = textureBody(TokenKind::RightBracket, "']' to end the texture_map entry");
+        if (checkWord("texture")) { // whole textures: a layered entry, `[v texture {A} texture {B}]`
+            e.texture = texture();
+            while (checkWord("texture")) layerTexture(e.texture, current_.loc);
+            expect(TokenKind::RightBracket, "']' to end the texture_map entry");
+        } else {
+            e.texture = textureBody(TokenKind::RightBracket, "']' to end the texture_map entry");
+        }
         entries.push_back(std::move(e));
     }
     if (entries.empty()) error(keyword.loc, "texture_map has no entries");

@@ -259,11 +259,12 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
         for (size_t i = 0; i < t.map.size() && i < count; ++i)
             text += " texture {" + textureBody(t.map[i].texture, childSuffix, exact, problems) + " }";
     } else {
-        if (layeredEntry)
-            problems.insert("layered textures inside a texture_map entry");
         text += " " + texturePatternWord(p) + " texture_map {";
         for (const Texture::MapEntry& e : t.map)
-            text += " [" + number(e.value) + textureBody(e.texture, childSuffix, exact, problems) + "]";
+            text += " [" + number(e.value) +
+                    (e.texture.layersAbove.empty() ? textureBody(e.texture, childSuffix, exact, problems)
+                                                   : blocks(e.texture)) +
+                    "]";
         text += " }";
     }
     text += turbulenceText(p.turbulence);
