@@ -378,6 +378,37 @@ TEST(PovLayeredTexture, LayersMapsTilesAndPigmentMapsLoadWithoutWarnings) {
     EXPECT_EQ(s.objects[5].texture.pigment.pigmentMap[1].pigment.pattern, PatternKind::Checker);
 }
 
+TEST(PovLayeredTexture, ObjectPigmentAndFinishChangeTheTopLayer) {
+    // Measured with POV-Ray 3.7: red under rgbt <0,0,1,0.5>, then `pigment { rgbt <0,1,0,0.5> }` on the
+    // object, ambient 1: the pixel is (0.5, 0.5, 0), green over red.
+    Diagnostics diags;
+    Scene s = loadPov("#default { finish { ambient 1 diffuse 0 } }\n"
+                      "plane { y, 0 texture { pigment { rgb x } } texture { pigment { rgbt <0, 0, 1, 0.5> } }"
+                      " pigment { rgbt <0, 1, 0, 0.5> } }",
+                      diags);
+    ASSERT_EQ(s.objects.size(), 1u);
+    s.camera = needleCamera({0, 1, 0}, {0, -1, 0});
+    expectColorNear(pixel(render(s, onePixel())), Color(0.5, 0.5, 0));
+    const Scene d = loadDrt("plane { y, 0 texture { pigment { rgb x } } texture { pigment { rgbt <0, 0, 1, 0.5> } }"
+                            " pigment { rgbt <0, 1, 0, 0.5> } finish { phong 1 } }");
+    ASSERT_EQ(d.objects[0].texture.layersAbove.size(), 1u);
+    EXPECT_EQ(d.objects[0].texture.layersAbove[0].pigment.color.rgb, Color(0, 1, 0));
+    EXPECT_EQ(d.objects[0].texture.layersAbove[0].finish.phong, 1);
+    EXPECT_EQ(d.objects[0].texture.pigment.color.rgb, Color(1, 0, 0));
+}
+
+TEST(PovLayeredTexture, RadialWithoutAColourMapTakesPovRaysDefaultMap) {
+    // As in pigment_map entries like `[0.4 radial frequency 10]` (pigmap.pov): cyan, yellow, magenta, cyan.
+    Diagnostics diags;
+    const Scene s = loadPov("sphere { 0, 1 pigment { gradient y pigment_map { [0 radial] [1 rgb 1] } } }", diags);
+    ASSERT_EQ(s.objects.size(), 1u);
+    const std::vector<ColorMapEntry>& map = s.objects[0].texture.pigment.pigmentMap.at(0).pigment.colorMap;
+    ASSERT_EQ(map.size(), 4u);
+    EXPECT_EQ(map[0].color.rgb, Color(0, 1, 1));
+    EXPECT_EQ(map[1].color.rgb, Color(1, 1, 0));
+    EXPECT_EQ(map[2].color.rgb, Color(1, 0, 1));
+}
+
 TEST(PovLayeredTexture, UnsupportedTexturePatternAveragesItsEntriesWithAWarning) {
     Diagnostics diags;
     const Scene s = loadPov("sphere { 0, 1 texture { spiral1 5 texture_map { [0 pigment { rgb x }] "

@@ -375,6 +375,8 @@ Pigment PovParser::pigmentBody(const Pigment& base, const char* closer) {
         first = false;
     }
     (void)first;
+    if (p.pattern == PatternKind::Radial && p.colorMap.empty() && p.pigmentMap.empty()) // POV-Ray's default radial map
+        p.colorMap = {{0.0, rgb(0, 1, 1)}, {0.333, rgb(1, 1, 0)}, {0.666, rgb(1, 0, 1)}, {1.0, rgb(0, 1, 1)}};
     if (!pattern.empty() && !p.pigmentMap.empty()) {
         warnOnce("pattern-" + pattern, patternLoc,
                  "pattern '" + pattern + "' is approximated by the equally weighted average of its pigment_map");
