@@ -50,6 +50,31 @@ TEST(Convert, WritesADrtFileThatRendersTheSameImage) {
     EXPECT_TRUE(renderSmall(*original).pixels == renderSmall(*converted).pixels);
 }
 
+TEST(Convert, LayeredAndMappedTexturesConvertWithoutWarningsAndRenderTheSame) {
+    const std::string dir = test::tempDir();
+    const std::string pov = test::writeFile(dir + "/layers.pov", R"(
+camera { location <0, 2, -4> look_at <0, 0.5, 0> }
+light_source { <-3, 5, -4> color rgb 1 }
+#declare Decal = texture { pigment { gradient y color_map { [0 rgbt 1] [0.5 rgbf <1, 0.5, 0, 0.6>] [1 rgbt 1] } scale 0.3 } }
+sphere { y, 1 texture { pigment { rgb <0.2, 0.4, 0.9> } finish { reflection 0.2 } } texture { Decal } }
+plane { y, 0 texture { gradient x texture_map { [0.2 pigment { rgb 1 }] [0.8 pigment { rgb 0.1 } finish { reflection 0.4 }] } } }
+box { <1, 0, 1>, <2, 1, 2> texture { tiles { texture { pigment { rgb x } } texture { Decal } tile2 texture { pigment { rgb z } } } scale 0.25 } }
+)");
+    const auto r = runDrt("convert '" + pov + "' -o '" + dir + "/layers.drt'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("0 warnings"), std::string::npos) << r.out << r.err;
+    const std::string text = test::readFile(dir + "/layers.drt");
+    EXPECT_NE(text.find("texture_map"), std::string::npos) << text;
+    EXPECT_NE(text.find("tiles {"), std::string::npos) << text;
+
+    Diagnostics povDiags, drtDiags;
+    const std::optional<Scene> original = loadPovSceneFile(pov, povDiags);
+    const std::optional<Scene> converted = loadSceneFile(dir + "/layers.drt", drtDiags);
+    ASSERT_TRUE(original) << povDiags.formatAll();
+    ASSERT_TRUE(converted) << drtDiags.formatAll();
+    EXPECT_TRUE(renderSmall(*original).pixels == renderSmall(*converted).pixels);
+}
+
 TEST(Convert, BadInputIsReportedAndNothingIsWritten) {
     const std::string dir = test::tempDir();
     auto missing = runDrt("convert '" + dir + "/none.pov' -o '" + dir + "/none.drt'");

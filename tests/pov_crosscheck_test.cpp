@@ -95,9 +95,10 @@ bool povrayInstalled() {
 
 struct CrossCheckScene {
     std::string name;                // e.g. "focalblur"
-    std::string file;                // under kExamples
+    std::string file;                // under kExamples, or under the source tree with `ownScene`
     std::vector<std::string> extras; // files the scene includes from its own folder
     int drtSamples;                  // per pixel
+    bool ownScene = false;           // a scene of drt's own, in tests/pov_crosscheck/
 };
 
 const std::vector<CrossCheckScene>& scenes() {
@@ -109,8 +110,16 @@ const std::vector<CrossCheckScene>& scenes() {
         {"ttf1", "objects/ttf1.pov", {}, 4},        // assumed_gamma 1.9: shading in the working space
         {"orthographic", "camera/orthographic.pov", {"camera/camera-context.inc"}, 4},
         {"soft", "lights/soft.pov", {}, 4}, // clipped_by
+        // Layered textures, texture_map, tiles, pigment_map, average (drt's own scene).
+        {"layered_textures", "tests/pov_crosscheck/layered_textures.pov", {}, 16, true},
     };
     return list;
+}
+
+const CrossCheckScene& sceneNamed(const std::string& name) {
+    for (const CrossCheckScene& s : scenes())
+        if (s.name == name) return s;
+    throw std::out_of_range("no cross-check scene " + name);
 }
 
 // A scene copied to a fresh folder, rendered there by POV-Ray.
@@ -128,7 +137,7 @@ Prepared prepare(const CrossCheckScene& s) {
                "and povray-includes); the POV-Ray cross-checks cannot run";
         return p;
     }
-    const fs::path source = fs::path(kExamples) / s.file;
+    const fs::path source = s.ownScene ? fs::path(test::sourcePath(s.file)) : fs::path(kExamples) / s.file;
     if (!fs::exists(source)) {
         ADD_FAILURE() << source << " is missing: install Debian's povray-examples package";
         return p;
@@ -319,6 +328,48 @@ TEST(PovCrossCheckOutlines, TextAndPrismOutlinesMatchPovRay) {
 
 TEST(PovCrossCheckControls, TextMovedByAFiftiethOfAnEmFails) {
     EXPECT_FALSE(outlineFigures(0.02 * 0.8).within(Thresholds{}));
+TEST(PovCrossCheckControls, SwappedTextureLayersFail) {
+    // Every layered texture (the tiles' entries included) with its layers in reverse order.
+    const CrossCheckScene& layered = sceneNamed("layered_textures");
+    ASSERT_EQ(layered.name, "layered_textures");
+    std::function<void(Texture&)> reverseLayers = [&](Texture& t) {
+        for (Texture::MapEntry& e : t.map)
+            reverseLayers(e.texture);
+        if (t.layersAbove.empty())
+            return;
+        std::vector<Texture> stack{t};
+        stack[0].layersAbove.clear();
+        for (const Texture& layer : t.layersAbove)
+            stack.push_back(layer);
+        Texture reversed = stack.back();
+        for (size_t i = stack.size() - 1; i-- > 0;)
+            reversed.layersAbove.push_back(stack[i]);
+        t = reversed;
+    };
+    const Figures f = brokenFigures(layered, "texture layers in reverse order", [&](Scene& scene) {
+        for (Object& o : scene.objects)
+            reverseLayers(o.texture);
+    });
+    EXPECT_FALSE(f.within(Thresholds{})) << f;
+}
+
+TEST(PovCrossCheckControls, FilterTreatedAsTransmitFails) {
+    // Layers that filter (P f) as if they only transmitted (f): the orange bands lose their colour.
+    const Figures f = brokenFigures(sceneNamed("layered_textures"), "layer filter treated as transmit", [](Scene& scene) {
+        std::function<void(Texture&)> unfilter = [&](Texture& t) {
+            for (Texture::MapEntry& e : t.map)
+                unfilter(e.texture);
+            for (Texture& layer : t.layersAbove) {
+                std::vector<ColorMapEntry>& map = layer.pigment.colorMap;
+                for (ColorMapEntry& c : map)
+                    c.color.transmit += c.color.filter, c.color.filter = 0;
+                unfilter(layer);
+            }
+        };
+        for (Object& o : scene.objects)
+            unfilter(o.texture);
+    });
+    EXPECT_FALSE(f.within(Thresholds{})) << f;
 }
 
 } // namespace

@@ -321,12 +321,15 @@ TEST(PovScene, StrictModeTurnsWarningsIntoErrors) {
     EXPECT_TRUE(load("sphere { 0, 1 }", clean, o));
 }
 
-TEST(PovScene, LayeredTexturesKeepTheBottomLayer) {
+TEST(PovScene, LayeredTexturesPutTheSecondOnTop) {
     Diagnostics diags;
     const auto s = load("sphere { 0, 1 texture { pigment { rgb x } } texture { pigment { rgbt 1 } } }", diags);
     ASSERT_TRUE(s);
-    EXPECT_EQ(s->objects[0].texture.pigment.color.rgb, Color(1, 0, 0));
-    EXPECT_EQ(warningsContaining(diags, "layered"), 1);
+    const Texture& t = s->objects[0].texture;
+    EXPECT_EQ(t.pigment.color.rgb, Color(1, 0, 0));
+    ASSERT_EQ(t.layersAbove.size(), 1u);
+    EXPECT_EQ(t.layersAbove[0].pigment.color.transmit, 1);
+    EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
 }
 
 TEST(PovScene, LightInsideUnionMovesWithIt) {

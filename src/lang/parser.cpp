@@ -262,7 +262,11 @@ void Parser::declare() {
     expect(TokenKind::Equals, "'=' after the declared name");
     Value value;
     bool block = true;
-    if (checkWord("texture")) value = texture();
+    if (checkWord("texture")) { // `texture {A} texture {B}`: B layered on top of A
+        Texture layered = texture();
+        while (checkWord("texture")) layerTexture(layered, current_.loc);
+        value = std::move(layered);
+    }
     else if (checkWord("pigment")) value = pigment();
     else if (checkWord("finish")) value = finish();
     else if (checkWord("interior")) value = interior();

@@ -146,7 +146,17 @@ private:
     // --------------------------------------------------- parser_textures.cpp
     Texture texture();
     Pigment pigment();
+    // The items of a texture / pigment up to `closer` (`}`, or `]` in a map entry).
+    Texture textureBody(TokenKind closer, const char* where);
+    Pigment pigmentBody(TokenKind closer, const char* where);
     bool pigmentItem(Pigment& p);
+    // parser_texture_maps.cpp: texture patterns, texture_map, pigment_map.
+    bool atTexturePattern() const;
+    Texture patternedTexture(TokenKind closer, const char* where);
+    std::vector<Texture::MapEntry> textureMap(bool average);
+    void pigmentMap(Pigment& p);
+    // After a `texture` keyword at `loc`: parses it and layers it on top of `below`.
+    void layerTexture(Texture& below, SourceLoc loc);
     Pigment pigmentOrColor();
     void colorMap(Pigment& p);
     Finish finish();

@@ -251,9 +251,16 @@ void Parser::meshTriangle(Mesh& mesh, bool smooth) {
 }
 
 void Parser::objectModifiers(ParsedObject& po, const Token& keyword) {
+    int textures = 0; // a second `texture` is a layer on top of the first (POV-Ray)
     while (!match(TokenKind::RightBrace)) {
         if (isCsg(po) && atObjectWord()) {
             addChild(po, object());
+            continue;
+        }
+        if (checkWord("texture") && textures++ > 0) {
+            Texture layered = po.object.texture;
+            layerTexture(layered, current_.loc);
+            setTexture(po, layered);
             continue;
         }
         if (objectModifier(po)) continue;
@@ -280,17 +287,17 @@ bool Parser::objectModifier(ParsedObject& po) {
     Object& o = po.object;
     if (w == "texture") {
         setTexture(po, texture());
-    } else if (w == "pigment") {
+    } else if (w == "pigment") { // pigment, finish, normal: of the top layer (as POV-Ray)
         Texture t = o.texture;
-        t.pigment = pigment();
+        (t.layersAbove.empty() ? t : t.layersAbove.back()).pigment = pigment();
         setTexture(po, t);
     } else if (w == "finish") {
         Texture t = o.texture;
-        t.finish = finish();
+        (t.layersAbove.empty() ? t : t.layersAbove.back()).finish = finish();
         setTexture(po, t);
     } else if (w == "normal") {
         Texture t = o.texture;
-        t.normal = normal();
+        (t.layersAbove.empty() ? t : t.layersAbove.back()).normal = normal();
         setTexture(po, t);
     } else if (w == "interior") {
         o.interior = interior();

@@ -16,7 +16,7 @@ static Pigment solid(const ColorFT& c) {
 static Pigment solidRgb(double r, double g, double b) { return solid(ColorFT{Color(r, g, b), 0, 0}); }
 
 // The noise patterns (render/noise.h), usable both as pigments and as normals.
-static std::optional<PatternKind> noisePatternKind(const std::string& w) {
+std::optional<PatternKind> noisePatternKind(const std::string& w) {
     static const std::map<std::string, PatternKind> kinds = {
         {"bozo", PatternKind::Bozo},         {"granite", PatternKind::Granite},   {"marble", PatternKind::Marble},
         {"wood", PatternKind::Wood},         {"agate", PatternKind::Agate},       {"leopard", PatternKind::Leopard},
@@ -27,15 +27,22 @@ static std::optional<PatternKind> noisePatternKind(const std::string& w) {
     return it->second;
 }
 
-static const std::vector<std::string> kNoiseWords{"bozo",    "granite",  "marble", "wood",  "agate",   "leopard",
+extern const std::vector<std::string> kNoiseWords;
+const std::vector<std::string> kNoiseWords{"bozo",    "granite",  "marble", "wood",  "agate",   "leopard",
                                                   "crackle", "wrinkles", "dents",  "bumps", "ripples", "waves"};
 
-// texture = "texture" "{" [ texture-name ] { pigment | finish | normal | transform } "}"
+// texture = "texture" "{" texture-body "}"
+// texture-body = [ texture-name ] { pigment | finish | normal | transform } | texture-pattern
 Texture Parser::texture() {
     const Token keyword = current_;
     advance();
     DepthGuard guard(*this, keyword.loc);
     expect(TokenKind::LeftBrace, "'{' after 'texture'");
+    return textureBody(TokenKind::RightBrace, "'}' in texture");
+}
+
+Texture Parser::textureBody(TokenKind closer, const char* where) {
+    if (atTexturePattern()) return patternedTexture(closer, where);
     Texture t;
     if (check(TokenKind::Identifier)) {
         if (const Value* v = lookup(current_.text)) {
@@ -45,7 +52,7 @@ Texture Parser::texture() {
             advance();
         }
     }
-    while (!match(TokenKind::RightBrace)) {
+    while (!match(closer)) {
         if (std::optional<Transform> tr = transformItem()) {
             transformTextureSpaces(t, *tr);
         } else if (checkWord("pigment")) {
@@ -55,20 +62,26 @@ Texture Parser::texture() {
         } else if (checkWord("normal")) {
             t.normal = normal();
         } else if (check(TokenKind::Identifier)) {
-            failUnknown(current_, {"pigment", "finish", "normal", "translate", "rotate", "scale", "matrix"});
+            failUnknown(current_, {"pigment", "finish", "normal", "translate", "rotate", "scale", "matrix",
+                                   "texture_map", "tiles", "checker", "gradient", "average"});
         } else {
-            failExpected("'pigment', 'finish', 'normal', a transform or '}' in texture");
+            failExpected((std::string("'pigment', 'finish', 'normal', a transform or ") + where).c_str());
         }
     }
     return t;
 }
 
-// pigment = "pigment" "{" [ pigment-name ] { pigment-item } "}"
+// pigment = "pigment" "{" pigment-body "}"
+// pigment-body = [ pigment-name ] { pigment-item }
 Pigment Parser::pigment() {
     const Token keyword = current_;
     advance();
     DepthGuard guard(*this, keyword.loc);
     expect(TokenKind::LeftBrace, "'{' after 'pigment'");
+    return pigmentBody(TokenKind::RightBrace, "'}' in pigment");
+}
+
+Pigment Parser::pigmentBody(TokenKind closer, const char* where) {
     Pigment p;
     if (check(TokenKind::Identifier)) {
         if (const Value* v = lookup(current_.text); v && std::holds_alternative<Pigment>(*v)) {
@@ -76,19 +89,19 @@ Pigment Parser::pigment() {
             advance();
         }
     }
-    while (!match(TokenKind::RightBrace)) {
+    while (!match(closer)) {
         if (pigmentItem(p)) continue;
         if (check(TokenKind::Identifier)) {
             if (const Value* v = lookup(current_.text))
                 fail(current_.loc, "'" + current_.text + "' is " + kindName(*v) + ", not a pigment or colour");
             std::vector<std::string> known{"color",    "rgb",       "checker", "hexagon",   "brick",
                                            "brick_size", "mortar", "gradient", "radial",  "onion", "spherical",
-                                           "color_map", "turbulence", "octaves", "omega", "lambda",
+                                           "color_map", "pigment_map", "average", "turbulence", "octaves", "omega", "lambda",
                                            "translate", "rotate",   "scale",   "matrix"};
             known.insert(known.end(), kNoiseWords.begin(), kNoiseWords.end());
             failUnknown(current_, known);
         }
-        failExpected("a colour, a pattern or '}' in pigment");
+        failExpected((std::string("a colour, a pattern or ") + where).c_str());
     }
     return p;
 }
@@ -177,6 +190,12 @@ bool Parser::pigmentItem(Pigment& p) {
     } else if (turbulenceItem(p.turbulence)) {
     } else if (w == "color_map" || w == "colour_map") {
         colorMap(p);
+    } else if (w == "pigment_map") {
+        pigmentMap(p);
+    } else if (w == "average") {
+        advance();
+        p.pattern = PatternKind::Average;
+        p.children.clear();
     } else {
         return false;
     }

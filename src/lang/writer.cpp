@@ -343,25 +343,44 @@ void SceneWriter::object(const Object& o, int indent) {
     // own; after them, it needs its whole pattern -> world map. Take the form
     // that rebuilds the model exactly, the one without `matrix` if both do.
     const Texture& t = o.texture;
-    const bool untextured = isDefaultPigment(t.pigment) && isDefaultFinish(t.finish) && !t.normal &&
-                            writer::sameTransform(t.pigment.toWorld, writer::compose(steps));
-    bool exactBefore = true, exactAfter = true;
-    const std::string before = untextured ? "" : pigmentBody(t.pigment, steps, exactBefore, problems_);
-    const std::string after =
-        untextured || steps.empty() ? before : pigmentBody(t.pigment, {}, exactAfter, problems_);
-    const std::string normalBefore = t.normal ? normalBody(*t.normal, steps, exactBefore) : "";
-    const std::string normalAfter = t.normal ? normalBody(*t.normal, {}, exactAfter) : "";
-    const bool readableBefore =
-        before.find(" matrix") == std::string::npos && normalBefore.find(" matrix") == std::string::npos;
-    const bool textureBefore = untextured || steps.empty() ||
-                               (exactBefore && (readableBefore || !exactAfter)) ||
-                               (!exactBefore && !exactAfter);
-    if (textureBefore && !untextured)
-        texture(t, before, normalBefore, indent + 1);
-    if (!steps.empty())
-        line(indent + 1, formatSteps(steps).substr(1));
-    if (!textureBefore)
-        texture(t, after, normalAfter, indent + 1);
+    if (!t.plain()) { // layers or a pattern: the same choice, over all blocks
+        bool exactBefore = true, exactAfter = true;
+        const std::vector<std::string> before = textureBlocks(t, steps, exactBefore, problems_);
+        const std::vector<std::string> after = steps.empty() ? before : textureBlocks(t, {}, exactAfter, problems_);
+        const bool readableBefore = std::none_of(before.begin(), before.end(), [](const std::string& b) {
+            return b.find(" matrix") != std::string::npos;
+        });
+        const bool textureBefore = steps.empty() || (exactBefore && (readableBefore || !exactAfter)) ||
+                                   (!exactBefore && !exactAfter);
+        if (textureBefore)
+            for (const std::string& block : before)
+                line(indent + 1, block);
+        if (!steps.empty())
+            line(indent + 1, formatSteps(steps).substr(1));
+        if (!textureBefore)
+            for (const std::string& block : after)
+                line(indent + 1, block);
+    } else {
+        const bool untextured = isDefaultPigment(t.pigment) && isDefaultFinish(t.finish) && !t.normal &&
+                                writer::sameTransform(t.pigment.toWorld, writer::compose(steps));
+        bool exactBefore = true, exactAfter = true;
+        const std::string before = untextured ? "" : pigmentBody(t.pigment, steps, exactBefore, problems_);
+        const std::string after =
+            untextured || steps.empty() ? before : pigmentBody(t.pigment, {}, exactAfter, problems_);
+        const std::string normalBefore = t.normal ? normalBody(*t.normal, steps, exactBefore) : "";
+        const std::string normalAfter = t.normal ? normalBody(*t.normal, {}, exactAfter) : "";
+        const bool readableBefore =
+            before.find(" matrix") == std::string::npos && normalBefore.find(" matrix") == std::string::npos;
+        const bool textureBefore = untextured || steps.empty() ||
+                                   (exactBefore && (readableBefore || !exactAfter)) ||
+                                   (!exactBefore && !exactAfter);
+        if (textureBefore && !untextured)
+            texture(t, before, normalBefore, indent + 1);
+        if (!steps.empty())
+            line(indent + 1, formatSteps(steps).substr(1));
+        if (!textureBefore)
+            texture(t, after, normalAfter, indent + 1);
+    }
     if (!isDefaultInterior(o.interior))
         line(indent + 1, "interior {" + interiorBody(o.interior, problems_) + " }");
     std::string flags;

@@ -61,6 +61,13 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
                         std::set<std::string>& problems);
 // The inside of `normal { ... }`, placed like pigmentBody.
 std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& exact);
+// The inside of `texture { ... }` for one layer or a patterned texture (its
+// layersAbove left out), placed like pigmentBody.
+std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool& exact,
+                        std::set<std::string>& problems);
+// A whole texture as `texture { ... }` blocks, bottom layer first.
+std::vector<std::string> textureBlocks(const Texture& t, const std::vector<Step>& suffix, bool& exact,
+                                       std::set<std::string>& problems);
 std::string finishBody(const Finish& f);     // the non-default items, each after a space
 std::string interiorBody(const Interior& i, std::set<std::string>& problems); // the same, media included
 std::string mediaBody(const Media& m, std::set<std::string>& problems);       // the inside of `media { }`

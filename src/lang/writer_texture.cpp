@@ -27,7 +27,7 @@ std::string colorText(const ColorFT& c) {
 bool isDefaultPigment(const Pigment& p) {
     const Pigment d;
     return p.pattern == PatternKind::Solid && p.color == d.color && p.children.empty() &&
-           p.colorMap.empty() && p.gradientAxis == d.gradientAxis && p.brickSize == d.brickSize &&
+           p.colorMap.empty() && p.pigmentMap.empty() && p.gradientAxis == d.gradientAxis && p.brickSize == d.brickSize &&
            p.mortar == d.mortar;
 }
 
@@ -129,11 +129,26 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
             text += (i ? ", " : " ") + subPigment(p.children[i]);
     };
     auto colorMap = [&] {
+        if (!p.pigmentMap.empty()) {
+            text += " pigment_map {";
+            for (const Pigment::MapEntry& e : p.pigmentMap)
+                text += " [" + number(e.value) + pigmentBody(e.pigment, childSuffix, exact, problems) + "]";
+            text += " }";
+            return;
+        }
         if (!p.children.empty())
             problems.insert("a pigment_map (sub-pigments of a colour-map pattern)");
         std::vector<ColorMapEntry> map = p.colorMap;
         if (map.empty())
             map = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // the renderer's empty-map ramp
+        // .drt takes values in [0, 1], not decreasing; POV-Ray takes any: clamp them.
+        double previous = 0;
+        for (ColorMapEntry& e : map) {
+            const double v = std::max(previous, std::clamp(e.value, 0.0, 1.0));
+            if (v != e.value)
+                problems.insert("color_map values outside [0, 1] or decreasing (clamped)");
+            e.value = previous = v;
+        }
         text += " color_map {";
         for (const ColorMapEntry& e : map)
             text += " [" + number(e.value) + " " + colorText(e.color) + "]";
@@ -168,6 +183,11 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         text += " spherical";
         colorMap();
         break;
+    case PatternKind::Average:
+        text += " average";
+        if (!p.pigmentMap.empty())
+            colorMap();
+        break;
     default:
         text += std::string(" ") + noiseKeyword(p.pattern);
         colorMap();
@@ -181,6 +201,95 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
     if (p.mortar != d.mortar)
         text += " mortar " + number(p.mortar);
     return text + formatSteps(own);
+}
+
+// The pattern keyword of a patterned texture (its pigment carries the pattern).
+static std::string texturePatternWord(const Pigment& p) {
+    switch (p.pattern) {
+    case PatternKind::Checker: return "checker";
+    case PatternKind::Hexagon: return "hexagon";
+    case PatternKind::Brick: return "brick";
+    case PatternKind::Gradient: return "gradient " + vector(p.gradientAxis);
+    case PatternKind::Radial: return "radial";
+    case PatternKind::Onion: return "onion";
+    case PatternKind::Average: return "average";
+    default: {
+        const char* word = noiseKeyword(p.pattern);
+        return word ? word : "average";
+    }
+    }
+}
+
+std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool& exact,
+                        std::set<std::string>& problems) {
+    if (t.map.empty()) { // one plain layer
+        std::string text = " pigment {" + pigmentBody(t.pigment, suffix, exact, problems) + " }";
+        if (t.normal)
+            text += " normal {" + normalBody(*t.normal, suffix, exact) + " }";
+        if (!isDefaultFinish(t.finish))
+            text += " finish {" + finishBody(t.finish) + " }";
+        return text;
+    }
+    // A patterned texture: the pattern's own transform comes last and moves the entries too.
+    const Pigment& p = t.pigment;
+    const Transform after = writer::compose(suffix);
+    std::vector<Step> own;
+    if (!writer::sameTransform(p.toWorld, after)) {
+        own = decompose(p.toWorld.then(after.inverted()));
+        exact = exact && writer::sameTransform(writer::compose(suffix, writer::compose(own)), p.toWorld);
+    }
+    std::vector<Step> childSuffix = own;
+    childSuffix.insert(childSuffix.end(), suffix.begin(), suffix.end());
+    auto blocks = [&](const Texture& entry) {
+        std::string text;
+        for (const std::string& block : textureBlocks(entry, childSuffix, exact, problems))
+            text += " " + block;
+        return text;
+    };
+    std::string text;
+    const bool block =
+        p.pattern == PatternKind::Checker || p.pattern == PatternKind::Hexagon || p.pattern == PatternKind::Brick;
+    const bool layeredEntry = std::any_of(t.map.begin(), t.map.end(),
+                                          [](const Texture::MapEntry& e) { return !e.texture.layersAbove.empty(); });
+    if (block && p.pattern == PatternKind::Checker && t.map.size() == 2 && layeredEntry) {
+        text += " tiles {" + blocks(t.map[1].texture) + " tile2" + blocks(t.map[0].texture) + " }"; // see the parser
+    } else if (block) {
+        const size_t count = p.pattern == PatternKind::Hexagon ? 3 : 2;
+        if (t.map.size() != count)
+            problems.insert("a block-pattern texture with a texture count other than " + std::to_string(count));
+        if (layeredEntry)
+            problems.insert("layered textures inside a hexagon or brick texture");
+        text += " " + texturePatternWord(p);
+        for (size_t i = 0; i < t.map.size() && i < count; ++i)
+            text += " texture {" + textureBody(t.map[i].texture, childSuffix, exact, problems) + " }";
+    } else {
+        text += " " + texturePatternWord(p) + " texture_map {";
+        for (const Texture::MapEntry& e : t.map)
+            text += " [" + number(e.value) +
+                    (e.texture.layersAbove.empty() ? textureBody(e.texture, childSuffix, exact, problems)
+                                                   : blocks(e.texture)) +
+                    "]";
+        text += " }";
+    }
+    text += turbulenceText(p.turbulence);
+    const Pigment d;
+    if (!(p.brickSize == d.brickSize))
+        text += " brick_size " + vector(p.brickSize);
+    if (p.mortar != d.mortar)
+        text += " mortar " + number(p.mortar);
+    return text + formatSteps(own);
+}
+
+std::vector<std::string> textureBlocks(const Texture& t, const std::vector<Step>& suffix, bool& exact,
+                                       std::set<std::string>& problems) {
+    std::vector<std::string> out;
+    if (!t.layersAbove.empty() && hasPatternedLayer(t))
+        problems.insert("a layered texture with a patterned layer (the parser refuses it, as POV-Ray)");
+    out.push_back("texture {" + textureBody(t, suffix, exact, problems) + " }");
+    for (const Texture& layer : t.layersAbove)
+        for (std::string& block : textureBlocks(layer, suffix, exact, problems))
+            out.push_back(std::move(block));
+    return out;
 }
 
 std::string finishBody(const Finish& f) {

@@ -385,24 +385,28 @@ PovObject PovParser::object(const Tok& keyword) {
                             " { " + m + " }");
         }
         if (m == "texture") {
-            if (++textures > 1) {
-                warnOnce("layered", t.loc, "layered textures are not supported; only the first (bottom) layer is used");
-                texture(Texture{});
+            if (++textures > 1) { // `texture {A} texture {B}`: B is a layer on top of A
+                Texture layered = o.texture;
+                layerOnTop(layered, texture(defaultTexture_), t.loc);
+                setTexture(po, layered);
                 continue;
             }
             setTexture(po, texture(po.textured ? o.texture : defaultTexture_));
-        } else if (m == "pigment") {
+        } else if (m == "pigment") { // pigment, finish, normal: of the top layer (measured against POV-Ray)
             Texture tex = po.textured ? o.texture : defaultTexture_;
-            tex.pigment = pigment(tex.pigment);
+            Texture& top = tex.layersAbove.empty() ? tex : tex.layersAbove.back();
+            top.pigment = pigment(top.pigment);
             setTexture(po, tex);
         } else if (m == "finish") {
             Texture tex = po.textured ? o.texture : defaultTexture_;
-            tex.finish = finish(tex.finish);
+            Texture& top = tex.layersAbove.empty() ? tex : tex.layersAbove.back();
+            top.finish = finish(top.finish);
             setTexture(po, tex);
         } else if (m == "normal") {
             if (std::optional<Normal> n = normalBlock(t.loc)) {
                 Texture tex = po.textured ? o.texture : defaultTexture_;
-                tex.normal = std::move(n);
+                Texture& top = tex.layersAbove.empty() ? tex : tex.layersAbove.back();
+                top.normal = std::move(n);
                 setTexture(po, tex);
             }
         } else if (m == "interior") {

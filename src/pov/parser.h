@@ -84,6 +84,17 @@ public:
     // ------------------------------------------------------------ textures (textures.cpp)
     Texture texture(const Texture& base);  // after 'texture'
     Pigment pigment(const Pigment& base);  // after 'pigment'
+    // The items of a texture / pigment up to `closer` ("}", or "]" in a map entry).
+    Texture textureBody(const Texture& base, const char* closer);
+    Pigment pigmentBody(const Pigment& base, const char* closer);
+    // Texture patterns and maps (texture_maps.cpp).
+    static bool isTexturePatternWord(const std::string& w);
+    Texture patternedTexture(const Tok& patternWord, const char* closer); // pattern word consumed
+    std::vector<Texture::MapEntry> textureMap();                          // after 'texture_map'
+    double mapEntryValue(); // after '[' in a map
+    std::vector<Pigment::MapEntry> pigmentMap();                          // after 'pigment_map'
+    // addLayerOnTop, with POV-Ray's errors for layers over or of patterned textures.
+    void layerOnTop(Texture& below, Texture top, SourceLoc loc);
     Finish finish(const Finish& base);     // after 'finish'
     Interior interior(const Interior& base);
     // media.cpp

@@ -205,13 +205,13 @@ PovValue PovParser::rvalue() {
         if (w == "texture") {
             next();
             v.kind = Kind::Texture;
-            v.texture = std::make_shared<Texture>(texture(Texture{}));
-            // `texture {..} texture {..}`: a layered texture; drt keeps the bottom layer.
+            Texture layered = texture(Texture{});
+            // `texture {A} texture {B}`: a layered texture, B on top of A.
             while (peekOperator().isWord("texture")) {
-                const Tok layer = next();
-                warnOnce("layered", layer.loc, "layered textures are not supported; only the first (bottom) layer is used");
-                texture(Texture{});
+                const Tok keyword = next();
+                layerOnTop(layered, texture(Texture{}), keyword.loc);
             }
+            v.texture = std::make_shared<Texture>(std::move(layered));
             return v;
         }
         if (w == "pigment") {

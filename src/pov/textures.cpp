@@ -2,6 +2,7 @@
 // scene model has; noise patterns approximated), finish (the classic model),
 // interior, material, normal (bump patterns), colour maps and transforms.
 #include "pov/parser.h"
+#include "pov/pattern_words.h"
 
 #include <fmt/format.h>
 
@@ -63,7 +64,7 @@ ColorFT pigmentAverage(const Pigment& p) {
     return mapAverage(p.colorMap);
 }
 
-namespace {
+// Pattern words shared with texture_maps.cpp (pattern_words.h).
 
 const std::set<std::string>& noisePatterns() {
     static const std::set<std::string> words = {
@@ -93,8 +94,6 @@ const std::set<std::string>& ignoredPatternModifiers() {
                                                 "cubic_wave", "poly_wave", "noise_generator", "warp", "agate_turb"};
     return words;
 }
-
-} // namespace
 
 std::optional<Transform> PovParser::transformItem() {
     const Tok t = peek();
@@ -210,7 +209,11 @@ std::vector<ColorMapEntry> PovParser::colorMap() {
 }
 
 Pigment PovParser::pigment(const Pigment& base) {
-    const Tok open = expectSymbol("{", "after 'pigment'");
+    expectSymbol("{", "after 'pigment'");
+    return pigmentBody(base, "}");
+}
+
+Pigment PovParser::pigmentBody(const Pigment& base, const char* closer) {
     Pigment p = base;
     std::string pattern; // the approximated noise pattern, if any
     SourceLoc patternLoc;
@@ -239,7 +242,7 @@ Pigment PovParser::pigment(const Pigment& base) {
     };
     for (;;) {
         const Tok t = peek();
-        if (t.is("}")) {
+        if (t.is(closer)) {
             next();
             break;
         }
@@ -315,6 +318,13 @@ Pigment PovParser::pigment(const Pigment& base) {
             p.pattern = *kind;
             p.children.clear();
             noiseNote(w, t.loc);
+        } else if (w == "average") {
+            next();
+            p.pattern = PatternKind::Average;
+            p.children.clear();
+        } else if (w == "pigment_map") {
+            next();
+            p.pigmentMap = pigmentMap();
         } else if (patternModifier(t, p.turbulence)) {
         } else if (p.pattern == PatternKind::Crackle && (w == "metric" || w == "form" || w == "offset" || w == "solid")) {
             // crackle's variants: drt has one cellular form (F2 - F1, Euclidean).
@@ -347,7 +357,7 @@ Pigment PovParser::pigment(const Pigment& base) {
             const Transform keep = p.toWorld;
             p = solid(rgb(0.5, 0.5, 0.5));
             p.toWorld = keep;
-        } else if (w == "pigment_map" || w == "density_map" || w == "normal_map") {
+        } else if (w == "density_map" || w == "normal_map") {
             next();
             warnOnce(w, t.loc, "'" + w + "' is not supported; the pattern uses a grey ramp");
             expectSymbol("{", "");
@@ -374,7 +384,14 @@ Pigment PovParser::pigment(const Pigment& base) {
         first = false;
     }
     (void)first;
-    if (!pattern.empty()) {
+    if (p.pattern == PatternKind::Radial && p.colorMap.empty() && p.pigmentMap.empty()) // POV-Ray's default radial map
+        p.colorMap = {{0.0, rgb(0, 1, 1)}, {0.333, rgb(1, 1, 0)}, {0.666, rgb(1, 0, 1)}, {1.0, rgb(0, 1, 1)}};
+    if (!pattern.empty() && !p.pigmentMap.empty()) {
+        warnOnce("pattern-" + pattern, patternLoc,
+                 "pattern '" + pattern + "' is approximated by the equally weighted average of its pigment_map");
+        p.pattern = PatternKind::Average;
+        for (Pigment::MapEntry& entry : p.pigmentMap) entry.value = 1;
+    } else if (!pattern.empty()) {
         warnOnce("pattern-" + pattern, patternLoc,
                  "pattern '" + pattern + "' is approximated by the average colour of its colour map");
         const Transform keep = p.toWorld;
@@ -573,12 +590,19 @@ std::optional<Normal> PovParser::normalBlock(SourceLoc keyword) {
 }
 
 Texture PovParser::texture(const Texture& base) {
-    const Tok open = expectSymbol("{", "after 'texture'");
+    expectSymbol("{", "after 'texture'");
+    // A new texture starts from the base's bottom layer; a patterned base gives only its defaults.
+    Texture start = base.map.empty() ? base : Texture{};
+    start.layersAbove.clear();
+    return textureBody(start, "}");
+}
+
+Texture PovParser::textureBody(const Texture& base, const char* closer) {
     Texture tex = base;
     for (;;) {
         const Tok t = next();
-        if (t.is("}")) return tex;
-        if (t.kind != TokKind::Word) failExpected(t, "a texture item or '}'");
+        if (t.is(closer)) return tex;
+        if (t.kind != TokKind::Word) failExpected(t, "a texture item or '" + std::string(closer) + "'");
         const Cell c = useIndexed(t);
         if (c && c->kind == Kind::Texture) {
             tex = *c->texture;
@@ -592,24 +616,8 @@ Texture PovParser::texture(const Texture& base) {
         } else if (w == "translate" || w == "rotate" || w == "scale" || w == "matrix" || w == "transform") {
             pushBack(t);
             transformTextureSpaces(tex, *transformItem());
-        } else if (w == "texture_map" || w == "material_map" || noisePatterns().count(w) || w == "checker" ||
-                   w == "hexagon" || w == "brick" || w == "gradient" || w == "radial" || w == "onion" ||
-                   w == "spherical") {
-            warnOnce("texture-pattern", t.loc, "patterned textures (texture_map) are not supported; the first texture is used");
-            // Skip to the end of this texture, keeping the first nested texture if there is one.
-            int depth = 1;
-            bool taken = false;
-            while (depth > 0) {
-                const Tok s = next();
-                if (s.kind == TokKind::EndOfFile) fail(open.loc, "unbalanced '{' in texture");
-                if (!taken && s.isWord("texture")) {
-                    tex = texture(tex);
-                    taken = true;
-                    continue;
-                }
-                depth += s.is("{") || s.is("[") ? 1 : (s.is("}") || s.is("]")) ? -1 : 0;
-            }
-            return tex;
+        } else if (isTexturePatternWord(w)) {
+            return patternedTexture(t, closer);
         } else if (w == "uv_mapping") {
             warnOnce(w, t.loc, "'uv_mapping' is not supported; the pattern uses object coordinates");
         } else if (ignoredPatternModifiers().count(w) || w == "quick_color") {
@@ -617,7 +625,7 @@ Texture PovParser::texture(const Texture& base) {
             if (w == "warp") expectSymbol("{", ""), skipBlock();
             else expression();
         } else {
-            failExpected(t, "'pigment', 'finish', 'normal', a transform or '}'");
+            failExpected(t, "'pigment', 'finish', 'normal', a transform or '" + std::string(closer) + "'");
         }
     }
 }
@@ -635,7 +643,8 @@ PovMaterial PovParser::material(const PovMaterial& base) {
             continue;
         }
         if (t.text == "texture") {
-            m.texture = texture(m.texture.value_or(Texture{}));
+            if (m.texture) layerOnTop(*m.texture, texture(Texture{}), t.loc); // a layer on top
+            else m.texture = texture(Texture{});
         } else if (t.text == "interior") {
             m.interior = interior(m.interior.value_or(Interior{}));
         } else if (t.text == "translate" || t.text == "rotate" || t.text == "scale" || t.text == "matrix" ||

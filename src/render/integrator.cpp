@@ -6,6 +6,7 @@
 #include "render/noise.h"
 #include "render/pigment.h"
 #include "render/shading.h"
+#include "render/texture_shading.h"
 #include "sampling/warp.h"
 
 #include <algorithm>
@@ -96,72 +97,126 @@ Ray spawn(const Hit& hit, const Vec3& direction, double time) {
 void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
                        std::vector<PendingRay>& stack) const {
     const Object& object = *hit.object;
-    const Finish& finish = object.texture.finish;
-    const Vec3 incoming = normalize(pending.ray.direction);
-    const bool entering = dot(incoming, hit.geometricNormal) < 0;
-    Vec3 normal = entering ? hit.shadingNormal : -hit.shadingNormal;
-    if (dot(normal, incoming) >= 0) normal = entering ? hit.geometricNormal : -hit.geometricNormal;
-    if (object.texture.normal) { // bump pattern; kept only while it still faces the viewer
-        const Vec3 bumped = perturbNormal(*object.texture.normal, hit.point, normal);
-        if (dot(bumped, incoming) < 0) normal = bumped;
-    }
+    SurfaceHit surface{pending, hit, Vec3(), true, Vec3(), 1.0};
+    surface.incoming = normalize(pending.ray.direction);
+    surface.entering = dot(surface.incoming, hit.geometricNormal) < 0;
+    Vec3 normal = surface.entering ? hit.shadingNormal : -hit.shadingNormal;
+    if (dot(normal, surface.incoming) >= 0) normal = surface.entering ? hit.geometricNormal : -hit.geometricNormal;
+    surface.normal = normal;
+    const double ior = object.interior.ior > 0 && std::isfinite(object.interior.ior) ? object.interior.ior : 1.0;
+    surface.eta = surface.entering ? 1.0 / ior : ior; // n_incident / n_transmitted
 
     Color weight = pending.weight;
-    if (!entering) // the ray crossed the object's interior
+    if (!surface.entering) // the ray crossed the object's interior
         weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
+    shadeTexture(surface, object.texture, weight, sampler, counts, result, stack);
+}
 
-    ShadingPoint sp;
-    sp.hit = hit;
-    sp.normal = normal;
-    sp.incoming = incoming;
-    sp.pigment = evaluatePigment(object.texture.pigment, hit.point);
-    sp.finish = &finish;
-    sp.time = pending.ray.time;
-    sp.depth = pending.depth;
+void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,
+                              RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const {
+    if (texture.layersAbove.empty()) {
+        if (!texture.map.empty()) {
+            shadePatterned(surface, texture, weight, sampler, counts, result, stack);
+            return;
+        }
+        const Texture* single = &texture;
+        shadeLayers(surface, &single, 1, weight, sampler, counts, result, stack);
+        return;
+    }
+    std::vector<const Texture*> layers;
+    layersTopFirst(texture, layers);
+    shadeLayers(surface, layers.data(), layers.size(), weight, sampler, counts, result, stack);
+}
 
-    const Color local = ambientTerm(finish, sp.pigment, scene_.global.ambientLight) +
-                        directLighting(scene_, accel_, sp, sampler, counts);
-    result += weight * local;
+// Each entry the pattern picks shades fully with its blend weight (the
+// patterned texture's own layersAbove are not its business).
+void Integrator::shadePatterned(const SurfaceHit& surface, const Texture& texture, const Color& weight,
+                                Sampler& sampler, RayCounts& counts, Color& result,
+                                std::vector<PendingRay>& stack) const {
+    forEachPickedEntry(texture, surface.hit.point, [&](const Texture& entry, double w) {
+        shadeTexture(surface, entry, weight * w, sampler, counts, result, stack);
+    });
+}
 
+// texture_shading.h gives the layer model; one plain layer is Whitted's shading.
+void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* layers, size_t count,
+                             const Color& weight, Sampler& sampler, RayCounts& counts, Color& result,
+                             std::vector<PendingRay>& stack) const {
+    const PendingRay& pending = surface.pending;
+    const Hit& hit = surface.hit;
+    const Vec3& incoming = surface.incoming;
     const int childDepth = pending.depth + 1;
-    if (childDepth >= maxTraceLevel_) return; // deeper rays are black (POV-Ray)
-
-    const double ior = object.interior.ior > 0 && std::isfinite(object.interior.ior) ? object.interior.ior : 1.0;
-    const double eta = entering ? 1.0 / ior : ior; // n_incident / n_transmitted
-    const double cosIncident = std::clamp(-dot(incoming, normal), 0.0, 1.0);
-    const Color reflected =
-        reflectivity(finish, cosIncident, eta) * metallicTint(finish.reflectionMetallic, sp.pigment, cosIncident);
-    Color transmitted = sp.pigment.rgb * sp.pigment.filter + Color(sp.pigment.transmit);
-    if (finish.conserveEnergy) // what is reflected is not transmitted as well
-        transmitted *= Color(std::max(0.0, 1 - reflected.r), std::max(0.0, 1 - reflected.g), std::max(0.0, 1 - reflected.b));
-
+    const bool traceChildren = childDepth < maxTraceLevel_; // deeper rays are black (POV-Ray)
     const auto worthTracing = [&](const Color& w) { return maxComponent(w) > 0 && maxComponent(w) >= adcBailout_; };
 
-    const Vec3 mirror = reflect(incoming, normal);
-    const Color reflectedWeight = weight * reflected;
-    if (worthTracing(reflectedWeight)) {
-        const Vec3 direction = lobeDirection(mirror, finish.reflectionBlur, sampler,
-                                             bounceDimension(pending.depth, kOffsetLobe));
-        if (dot(direction, normal) > 0) // below the surface: weight 0
-            stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth, pending.medium});
-    }
+    Color filter(1); // what the layers so far let through
+    Vec3 topNormal = surface.normal;
+    for (size_t i = 0; i < count; ++i) {
+        const Texture& layer = *layers[i];
+        if (!layer.map.empty()) { // a patterned layer shades itself and all below it, seen through `filter`
+            shadePatterned(surface, layer, weight * filter, sampler, counts, result, stack);
+            return;
+        }
+        const Finish& finish = layer.finish;
+        Vec3 normal = surface.normal;
+        if (layer.normal) { // bump pattern; kept only while it still faces the viewer
+            const Vec3 bumped = perturbNormal(*layer.normal, hit.point, normal);
+            if (dot(bumped, incoming) < 0) normal = bumped;
+        }
+        if (i == 0) topNormal = normal;
 
-    const Color transmittedWeight = weight * transmitted;
+        ShadingPoint sp;
+        sp.hit = hit;
+        sp.normal = normal;
+        sp.incoming = incoming;
+        sp.pigment = evaluatePigment(layer.pigment, hit.point);
+        sp.finish = &finish;
+        sp.time = pending.ray.time;
+        sp.depth = pending.depth;
+
+        const Color local = ambientTerm(finish, sp.pigment, scene_.global.ambientLight) +
+                            directLighting(scene_, accel_, sp, sampler, counts);
+        result += weight * filter * local;
+
+        const double cosIncident = std::clamp(-dot(incoming, normal), 0.0, 1.0);
+        const Color reflected = traceChildren ? reflectivity(finish, cosIncident, surface.eta) *
+                                                    metallicTint(finish.reflectionMetallic, sp.pigment, cosIncident)
+                                              : Color(0);
+        const Color reflectedWeight = weight * reflected;
+        if (traceChildren && worthTracing(reflectedWeight)) {
+            const Vec3 direction = lobeDirection(reflect(incoming, normal), finish.reflectionBlur, sampler,
+                                                 bounceDimension(pending.depth, kOffsetLobe));
+            if (dot(direction, normal) > 0) // below the surface: weight 0
+                stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth, pending.medium});
+        }
+
+        filter *= sp.pigment.rgb * sp.pigment.filter + Color(sp.pigment.transmit);
+        if (finish.conserveEnergy) // what is reflected is not transmitted as well
+            filter *= Color(std::max(0.0, 1 - reflected.r), std::max(0.0, 1 - reflected.g),
+                            std::max(0.0, 1 - reflected.b));
+        if (i + 1 < count && std::min(1.0, std::fabs(greyValue(filter))) < adcBailout_) return;
+    }
+    if (!traceChildren) return;
+
+    // The transmitted ray: everything the layers let through, bent at the top layer.
+    const Finish& top = layers[0]->finish;
+    const Color transmittedWeight = weight * filter;
     if (worthTracing(transmittedWeight)) {
         Vec3 ideal;
         bool internalReflection = false;
-        if (eta == 1.0)
+        if (surface.eta == 1.0)
             ideal = incoming; // no bending: exactly straight on
-        else if (!refract(incoming, normal, eta, ideal)) {
-            ideal = mirror; // total internal reflection: the transmitted share follows the mirror ray
+        else if (!refract(incoming, topNormal, surface.eta, ideal)) {
+            ideal = reflect(incoming, topNormal); // total internal reflection: the transmitted share follows the mirror ray
             internalReflection = true;
         }
-        const Vec3 direction = lobeDirection(ideal, finish.refractionBlur, sampler,
+        const Vec3 direction = lobeDirection(ideal, top.refractionBlur, sampler,
                                              bounceDimension(pending.depth, kOffsetRefractionLobe));
-        const double side = dot(direction, normal);
+        const double side = dot(direction, topNormal);
         if (internalReflection ? side > 0 : side < 0)
             stack.push_back({spawn(hit, direction, pending.ray.time), transmittedWeight, childDepth,
-                             internalReflection ? pending.medium : mediumAfterCrossing(pending.medium, object, entering)});
+                             internalReflection ? pending.medium
+                                                : mediumAfterCrossing(pending.medium, *hit.object, surface.entering)});
     }
 }
 

@@ -51,8 +51,23 @@ private:
         int depth = 0;
         const Object* medium = nullptr; // the media-holding object the ray is inside (render/media.h)
     };
+    // The surface point a ray hit, before any texture layer's bump normal.
+    struct SurfaceHit {
+        const PendingRay& pending;
+        const Hit& hit;
+        Vec3 incoming; // unit
+        bool entering = true;
+        Vec3 normal;       // facing the incoming ray
+        double eta = 1;    // n_incident / n_transmitted
+    };
     void shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
                std::vector<PendingRay>& stack) const;
+    void shadeTexture(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,
+                      RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
+    void shadePatterned(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,
+                        RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
+    void shadeLayers(const SurfaceHit& surface, const Texture* const* layers, size_t count, const Color& weight,
+                     Sampler& sampler, RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
 
     const Scene& scene_;
     const Accelerator& accel_;

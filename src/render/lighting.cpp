@@ -4,6 +4,7 @@
 #include "render/media.h"
 #include "render/pigment.h"
 #include "render/shading.h"
+#include "render/texture_shading.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,8 +40,8 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
         if (!accel.intersect(ray, blocker)) return mediaScene ? transmittance * throughMedia(nullptr, 1) : transmittance;
         if (mediaScene) transmittance *= throughMedia(&blocker, blocker.t);
         if (!blocker.object->noShadow) {
-            const ColorFT p = evaluatePigment(blocker.object->texture.pigment, blocker.point);
-            transmittance *= p.rgb * p.filter + Color(p.transmit);
+            transmittance *= textureFilter(blocker.object->texture, blocker.point);
+            if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
         if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         ray.origin = Accelerator::offsetOrigin(blocker, ray.direction);

@@ -106,24 +106,62 @@ ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value) {
     return map.back().color;
 }
 
-ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
-    if (pigment.pattern == PatternKind::Solid) return pigment.color;
+PatternSample samplePattern(const Pigment& pigment, const Vec3& worldPoint) {
+    PatternSample s;
+    if (pigment.pattern == PatternKind::Solid || pigment.pattern == PatternKind::Average) return s;
     const Vec3 unwarped = pigment.toWorld.inversePoint(worldPoint);
-    if (isNoisePattern(pigment.pattern))
-        return lookupColorMap(pigment.colorMap, noisePatternValue(pigment.pattern, pigment.turbulence, unwarped));
+    if (isNoisePattern(pigment.pattern)) {
+        s.value = noisePatternValue(pigment.pattern, pigment.turbulence, unwarped);
+        return s;
+    }
     const Vec3 p = unwarped + turbulenceOffset(pigment.turbulence, unwarped);
     switch (pigment.pattern) {
-    case PatternKind::Solid: return pigment.color;
-    case PatternKind::Checker: return child(pigment, checkerIndex(p), worldPoint);
-    case PatternKind::Hexagon: return child(pigment, hexagonIndex(p), worldPoint);
-    case PatternKind::Brick: return child(pigment, brickIndex(p, pigment.brickSize, pigment.mortar), worldPoint);
-    case PatternKind::Gradient: return lookupColorMap(pigment.colorMap, gradientValue(p, pigment.gradientAxis));
-    case PatternKind::Radial: return lookupColorMap(pigment.colorMap, radialValue(p));
-    case PatternKind::Onion: return lookupColorMap(pigment.colorMap, onionValue(p));
-    case PatternKind::Spherical: return lookupColorMap(pigment.colorMap, sphericalValue(p));
+    case PatternKind::Checker: s.block = true, s.index = checkerIndex(p); break;
+    case PatternKind::Hexagon: s.block = true, s.index = hexagonIndex(p); break;
+    case PatternKind::Brick: s.block = true, s.index = brickIndex(p, pigment.brickSize, pigment.mortar); break;
+    case PatternKind::Gradient: s.value = gradientValue(p, pigment.gradientAxis); break;
+    case PatternKind::Radial: s.value = radialValue(p); break;
+    case PatternKind::Onion: s.value = onionValue(p); break;
+    case PatternKind::Spherical: s.value = sphericalValue(p); break;
     default: break;
     }
-    return pigment.color;
+    return s;
+}
+
+namespace {
+
+// pigment_map with `average`: sum w_i P_i / sum w_i over all entries.
+ColorFT averagePigmentMap(const std::vector<Pigment::MapEntry>& map, const Vec3& worldPoint) {
+    ColorFT sum{Color(0), 0, 0};
+    double total = 0;
+    for (const Pigment::MapEntry& entry : map) {
+        if (entry.value == 0) continue;
+        const ColorFT c = evaluatePigment(entry.pigment, worldPoint);
+        sum.rgb += c.rgb * entry.value;
+        sum.filter += c.filter * entry.value;
+        sum.transmit += c.transmit * entry.value;
+        total += entry.value;
+    }
+    if (!(total != 0)) return ColorFT{};
+    return ColorFT{sum.rgb / total, sum.filter / total, sum.transmit / total};
+}
+
+ColorFT lookupPigmentMap(const std::vector<Pigment::MapEntry>& map, double value, const Vec3& worldPoint) {
+    const MapBlend b = blendMapEntries(map.size(), [&](size_t i) { return map[i].value; }, value);
+    const ColorFT lower = evaluatePigment(map[b.lower].pigment, worldPoint);
+    if (b.t == 0) return lower;
+    return mix(lower, evaluatePigment(map[b.upper].pigment, worldPoint), b.t);
+}
+
+} // namespace
+
+ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
+    if (pigment.pattern == PatternKind::Solid) return pigment.color;
+    if (pigment.pattern == PatternKind::Average) return averagePigmentMap(pigment.pigmentMap, worldPoint);
+    const PatternSample s = samplePattern(pigment, worldPoint);
+    if (s.block) return child(pigment, size_t(s.index), worldPoint);
+    if (!pigment.pigmentMap.empty()) return lookupPigmentMap(pigment.pigmentMap, s.value, worldPoint);
+    return lookupColorMap(pigment.colorMap, s.value);
 }
 
 } // namespace drt

@@ -23,4 +23,36 @@ double onionValue(const Vec3& p);           // in [0, 1)
 double sphericalValue(const Vec3& p);       // max(0, 1 - |p|), in [0, 1]
 ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value);
 
+// Where a pattern puts a world point: a block pattern (checker, hexagon,
+// brick) gives the index of its sub-pigment / sub-texture, the others a value
+// for a colour, pigment or texture map. Average gives neither (block false,
+// value 0): it uses every map entry.
+struct PatternSample {
+    bool block = false;
+    int index = 0;
+    double value = 0;
+};
+PatternSample samplePattern(const Pigment& pattern, const Vec3& worldPoint);
+
+// A map lookup as colour maps do it: the result is (1 - t) entry[lower] +
+// t entry[upper]; values outside the map take its end entries (t = 0, lower ==
+// upper). `count` must be positive; valueAt(i) is entry i's value.
+struct MapBlend {
+    size_t lower = 0;
+    size_t upper = 0;
+    double t = 0;
+};
+template <class ValueAt>
+MapBlend blendMapEntries(size_t count, ValueAt valueAt, double value) {
+    if (value <= valueAt(0)) return {0, 0, 0};
+    for (size_t i = 1; i < count; ++i) {
+        if (value <= valueAt(i)) {
+            const double span = valueAt(i) - valueAt(i - 1);
+            if (!(span > 0)) return {i, i, 0};
+            return {i - 1, i, (value - valueAt(i - 1)) / span};
+        }
+    }
+    return {count - 1, count - 1, 0};
+}
+
 } // namespace drt

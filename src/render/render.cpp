@@ -34,6 +34,7 @@
 #include "render/camera.h"
 #include "render/film.h"
 #include "render/integrator.h"
+#include "render/texture_shading.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -141,7 +142,7 @@ bool converged(const PixelAccumulator& pixel, const RenderOptions& options) {
 
 bool anyFinish(const std::vector<Object>& objects, const auto& predicate) {
     for (const Object& object : objects) {
-        if (predicate(object.texture.finish)) return true;
+        if (anyFinish(object.texture, predicate)) return true;
         if (const auto* csg = std::get_if<Csg>(&object.shape); csg && anyFinish(csg->children, predicate)) return true;
     }
     return false;

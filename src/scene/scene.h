@@ -45,6 +45,9 @@ enum class PatternKind {
     Bumps,
     Ripples,  // concentric waves around fixed centres
     Waves,
+    // The weighted mean of every pigment_map / texture_map entry, each entry's
+    // map value being its weight (POV-Ray's `average`).
+    Average,
 };
 
 // POV-Ray turbulence: the pattern is evaluated at p + amount * T(p), with T a
@@ -74,6 +77,15 @@ struct Pigment {
     // Pattern space -> world space, including the transforms of the object the
     // pigment belongs to that came after it. Evaluate at toWorld.inversePoint(p).
     Transform toWorld;
+    // pigment_map: when non-empty it replaces colorMap; the two entries around
+    // the pattern value are evaluated and blended like colour-map entries.
+    struct MapEntry;
+    std::vector<MapEntry> pigmentMap;
+};
+
+struct Pigment::MapEntry {
+    double value = 0;
+    Pigment pigment;
 };
 
 struct Finish {
@@ -113,22 +125,63 @@ struct Normal {
     Transform toWorld; // as Pigment::toWorld
 };
 
+// A plain texture is one layer: pigment, finish, normal. Two extensions, both
+// empty for a plain texture (render/texture_shading.h gives their shading):
+// - `map` makes it a patterned texture (texture_map, or checker / hexagon /
+//   brick / tiles of textures): `pigment` then only carries the pattern (kind,
+//   gradient axis, brick size, turbulence, pattern space); block patterns pick
+//   the entry by index, the others blend the two entries around the pattern
+//   value, Average all of them. finish and normal are unused.
+// - `layersAbove` are further layers on top of this one, lowest first (POV-Ray's
+//   `texture {A} texture {B}` is A with layersAbove {B}).
 struct Texture {
     Pigment pigment;
     Finish finish;
     std::optional<Normal> normal; // none: the surface's own normal
+    struct MapEntry;
+    std::vector<MapEntry> map;
+    std::vector<Texture> layersAbove;
+
+    bool plain() const { return map.empty() && layersAbove.empty(); }
 };
+
+struct Texture::MapEntry {
+    double value = 0; // the pattern value (texture_map) or weight (Average); unused by block patterns
+    Texture texture;
+};
+
+// True if the texture or any of its layers is a patterned texture. POV-Ray
+// layers only plain textures ("Cannot layer over a patterned texture"); both
+// front ends refuse the same.
+inline bool hasPatternedLayer(const Texture& t) {
+    if (!t.map.empty()) return true;
+    for (const Texture& layer : t.layersAbove)
+        if (hasPatternedLayer(layer)) return true;
+    return false;
+}
+
+// Puts `top` (with its own layers) on top of `bottom`'s layers.
+inline void addLayerOnTop(Texture& bottom, Texture top) {
+    std::vector<Texture> above = std::move(top.layersAbove);
+    top.layersAbove.clear();
+    bottom.layersAbove.push_back(std::move(top));
+    for (Texture& layer : above) bottom.layersAbove.push_back(std::move(layer));
+}
 
 // Applies a transform after the pattern space of a pigment and of all its sub-pigments.
 inline void transformPigmentSpaces(Pigment& p, const Transform& t) {
     p.toWorld = p.toWorld.then(t);
     for (Pigment& child : p.children) transformPigmentSpaces(child, t);
+    for (Pigment::MapEntry& entry : p.pigmentMap) transformPigmentSpaces(entry.pigment, t);
 }
 
-// Applies a transform to every pattern space of a texture (pigment tree and normal).
+// Applies a transform to every pattern space of a texture (pigment tree and
+// normal), its map entries and its layers.
 inline void transformTextureSpaces(Texture& texture, const Transform& t) {
     transformPigmentSpaces(texture.pigment, t);
     if (texture.normal) texture.normal->toWorld = texture.normal->toWorld.then(t);
+    for (Texture::MapEntry& entry : texture.map) transformTextureSpaces(entry.texture, t);
+    for (Texture& layer : texture.layersAbove) transformTextureSpaces(layer, t);
 }
 
 // POV-Ray participating media (`media { }`; render/media.h has the estimator).

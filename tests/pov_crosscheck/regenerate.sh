@@ -31,7 +31,8 @@ cat <<'TEXT'
 # Cross-checks against POV-Ray 3.7
 
 drt's POV-Ray front end (`src/pov/`) and its `.drt` writer (`drt convert`, `src/lang/writer.cpp`) are checked
-against POV-Ray itself on POV-Ray's own focal-blur and area-light sample scenes. Each scene is copied to a fresh
+against POV-Ray itself on POV-Ray's own focal-blur and area-light sample scenes and on a layered-texture scene of
+drt's own. Each scene is copied to a fresh
 folder and rendered at 160x120 by `povray +W160 +H120 -D +A0.3 +FN` and by drt (the scene converted to `.drt`
 and loaded back, as `drt convert` does), then compared on linear values (`compareImages`, `src/compare`).
 
@@ -69,7 +70,7 @@ cat <<'TEXT'
 Left to right: drt, POV-Ray, and the heatmap of the largest channel error per pixel (black 0, white 0.25).
 
 TEXT
-for name in focalblur arealit1 arealit2; do
+for name in focalblur arealit1 arealit2 layered_textures; do
     read -r _ spp mae mse tile psnr <"$images/$name.figures"
     printf '### %s\n\n' "$name"
     printf '![drt](images/pov/%s-drt.png) ![POV-Ray](images/pov/%s-pov.png) ![difference](images/pov/%s-diff.png)\n\n' \
@@ -93,6 +94,10 @@ Compared by eye, the images agree in geometry, camera, focus and shadows; the he
   `variance`); drt samples the lens disc with its sampler at 120 samples per pixel. The blur radius and the plane
   in focus match; the noise in the most blurred regions differs. The one bright spot in the focalblur heatmap is
   the sphere's highlight, smaller than a pixel: the two renderers' different pixel sampling weighs it differently.
+- **Layered textures.** `layered_textures` is drt's own scene (`tests/pov_crosscheck/layered_textures.pov`):
+  layers that filter and transmit over opaque and reflective ones, a `texture_map`, `tiles` whose tiles are
+  layered, a shadow through two see-through layers, `pigment_map` and `average`. Its negative controls reverse
+  the order of every layer stack and treat the layers' filter as transmit.
 - **Smooth gradients.** POV-Ray's PNG has 8 bits per channel; drt's image is compared in floating point, so the
   quantisation steps of POV-Ray's output show as faint contour rings on the lit wall of arealit1 and arealit2
   (errors below 1/255).

@@ -1,0 +1,92 @@
+#include "render/texture_shading.h"
+
+#include "render/pigment.h"
+
+#include <algorithm>
+
+namespace drt {
+
+void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint,
+                        const std::function<void(const Texture&, double)>& visit) {
+    const std::vector<Texture::MapEntry>& map = patterned.map;
+    if (map.empty()) return;
+    if (patterned.pigment.pattern == PatternKind::Average) {
+        double total = 0;
+        for (const Texture::MapEntry& entry : map) total += entry.value;
+        if (!(total != 0)) return;
+        for (const Texture::MapEntry& entry : map)
+            if (entry.value != 0) visit(entry.texture, entry.value / total);
+        return;
+    }
+    const PatternSample s = samplePattern(patterned.pigment, worldPoint);
+    if (s.block) {
+        if (s.index >= 0 && size_t(s.index) < map.size()) visit(map[size_t(s.index)].texture, 1.0);
+        return;
+    }
+    const MapBlend b = blendMapEntries(map.size(), [&](size_t i) { return map[i].value; }, s.value);
+    if (b.t != 1) visit(map[b.lower].texture, 1 - b.t);
+    if (b.t != 0) visit(map[b.upper].texture, b.t);
+}
+
+namespace {
+
+void collectBottomFirst(const Texture& texture, std::vector<const Texture*>& out) {
+    out.push_back(&texture);
+    for (const Texture& layer : texture.layersAbove) collectBottomFirst(layer, out);
+}
+
+} // namespace
+
+void layersTopFirst(const Texture& texture, std::vector<const Texture*>& out) {
+    const size_t start = out.size();
+    collectBottomFirst(texture, out);
+    std::reverse(out.begin() + std::ptrdiff_t(start), out.end());
+    // A patterned layer shades all below it by itself.
+    for (size_t i = start; i < out.size(); ++i)
+        if (!out[i]->map.empty()) {
+            out.resize(i + 1);
+            break;
+        }
+}
+
+namespace {
+
+Color patternedFilter(const Texture& patterned, const Vec3& worldPoint) {
+    Color sum(0);
+    forEachPickedEntry(patterned, worldPoint,
+                       [&](const Texture& entry, double w) { sum += textureFilter(entry, worldPoint) * w; });
+    return sum;
+}
+
+} // namespace
+
+Color textureFilter(const Texture& texture, const Vec3& worldPoint) {
+    if (texture.plain()) {
+        const ColorFT p = evaluatePigment(texture.pigment, worldPoint);
+        return p.rgb * p.filter + Color(p.transmit);
+    }
+    if (texture.layersAbove.empty()) return patternedFilter(texture, worldPoint);
+    std::vector<const Texture*> layers;
+    layersTopFirst(texture, layers);
+    Color filter(1);
+    for (const Texture* layer : layers) {
+        if (!layer->map.empty()) {
+            filter *= patternedFilter(*layer, worldPoint);
+            break;
+        }
+        const ColorFT p = evaluatePigment(layer->pigment, worldPoint);
+        filter *= p.rgb * p.filter + Color(p.transmit);
+    }
+    return filter;
+}
+
+bool anyFinish(const Texture& texture, const std::function<bool(const Finish&)>& predicate) {
+    if (texture.map.empty() && predicate(texture.finish)) return true;
+    for (const Texture::MapEntry& entry : texture.map)
+        if (anyFinish(entry.texture, predicate)) return true;
+    for (const Texture& layer : texture.layersAbove)
+        if (anyFinish(layer, predicate)) return true;
+    return false;
+}
+
+} // namespace drt

@@ -1,0 +1,44 @@
+// Layered and patterned textures (scene.h Texture), following POV-Ray 3.7:
+// - Layers are shaded top first with an accumulated filter F (start rgb 1). A
+//   layer of pigment P (filter f, transmit t) adds F x (its ambient, emission,
+//   diffuse and highlights, with its own finish and bumped normal) and spawns
+//   its own reflected ray of weight reflectivity (not scaled by F); then
+//   F *= P.rgb f + t, and with conserve_energy F *= 1 - reflectivity. Layers
+//   stop once min(1, |grey(F)|) < adc_bailout. The transmitted ray has weight F
+//   and bends at the top layer's normal.
+// - A patterned texture (texture_map, block patterns of textures) shades the entries its pattern picks (one for block
+//   patterns, the two around the value for texture_map, all for Average), each
+//   fully (lights and rays) with its blend weight.
+// - A shadow ray through a surface is filtered by the product over layers of
+//   P.rgb f + t (blended by weight for patterned textures).
+#pragma once
+
+#include "core/color.h"
+#include "core/vec.h"
+#include "scene/scene.h"
+
+#include <functional>
+
+namespace drt {
+
+// POV-Ray's grey value of a colour: 0.297 r + 0.589 g + 0.114 b.
+inline double greyValue(const Color& c) { return 0.297 * c.r + 0.589 * c.g + 0.114 * c.b; }
+
+// Calls visit(entry, weight) for the entries of a patterned texture (!map.empty())
+// that the pattern picks at worldPoint, skipping weight-0 entries.
+void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint,
+                        const std::function<void(const Texture&, double)>& visit);
+
+// The layers of a layered texture, top first, appended to `out`. A patterned
+// layer (the front ends refuse them, as POV-Ray does; the model allows them)
+// ends the list: its entries are whole textures, seen through the layers
+// above it, and the layers below it are not shaded.
+void layersTopFirst(const Texture& texture, std::vector<const Texture*>& out);
+
+// What a shadow ray keeps after crossing the surface at worldPoint.
+Color textureFilter(const Texture& texture, const Vec3& worldPoint);
+
+// True if any finish in the texture (layers, map entries) satisfies the predicate.
+bool anyFinish(const Texture& texture, const std::function<bool(const Finish&)>& predicate);
+
+} // namespace drt
