@@ -328,6 +328,8 @@ TEST(PovCrossCheckOutlines, TextAndPrismOutlinesMatchPovRay) {
 
 TEST(PovCrossCheckControls, TextMovedByAFiftiethOfAnEmFails) {
     EXPECT_FALSE(outlineFigures(0.02 * 0.8).within(Thresholds{}));
+}
+
 TEST(PovCrossCheckControls, SwappedTextureLayersFail) {
     // Every layered texture (the tiles' entries included) with its layers in reverse order.
     const CrossCheckScene& layered = sceneNamed("layered_textures");
