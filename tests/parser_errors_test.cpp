@@ -199,7 +199,6 @@ const ErrorCase kCases[] = {
     {"BrickSize", "sphere { 0, 1 pigment { brick brick_size <1, 0, 1> } }", "'brick_size' components must be positive", 1, 42},
     {"Mortar", "sphere { 0, 1 pigment { brick mortar -1 } }", "'mortar' must not be negative", 1, 38},
     {"GradientAxis", "sphere { 0, 1 pigment { gradient 0 } }", "gradient axis must not be a zero-length vector", 1, 34},
-    {"ColorMapRange", "sphere { 0, 1 pigment { gradient y color_map { [1.5 rgb 1] } } }", "color_map values must be between 0 and 1", 1, 49},
     {"ColorMapOrder", "sphere { 0, 1 pigment { gradient y color_map { [0.5 rgb 1] [0.2 rgb 0] } } }", "color_map values must not decrease", 1, 61},
     {"ColorMapEmpty", "sphere { 0, 1 pigment { gradient y color_map { } } }", "color_map has no entries", 1, 36},
     // texture_map, pigment_map, patterned and layered textures
@@ -211,7 +210,7 @@ const ErrorCase kCases[] = {
     {"TextureMapNegativeWeight", "sphere { 0, 1 texture { average texture_map { [-1 pigment { rgb 1 }] } } }", "texture_map weights (with 'average') must not be negative", 1, 48},
     {"PigmentMapNeedsBracket", "sphere { 0, 1 pigment { gradient x pigment_map { rgb 1 } } }", "expected '[' to start a pigment_map entry, or '}', found 'rgb'", 1, 50},
     {"PigmentMapEntryUnclosed", "sphere { 0, 1 pigment { gradient x pigment_map { [0 rgb 1 } } }", "expected a colour, a pattern or ']' to end the pigment_map entry, found '}'", 1, 59},
-    {"PigmentMapRange", "sphere { 0, 1 pigment { gradient x pigment_map { [1.5 rgb 1] } } }", "pigment_map values must be between 0 and 1", 1, 51},
+    {"PigmentMapOrder", "sphere { 0, 1 pigment { gradient x pigment_map { [0.5 rgb 1] [0.25 rgb 0] } } }", "pigment_map values must not decrease", 1, 63},
     {"CheckerTextureCount", "sphere { 0, 1 texture { checker texture { pigment { rgb 1 } } } }", "'checker' needs 2 textures", 1, 25},
     {"CheckerTextureWithMap", "sphere { 0, 1 texture { checker texture { pigment { rgb 1 } } texture { pigment { rgb 0 } } texture_map { [0 pigment { rgb 1 }] } } }", "'checker' takes its textures directly, not a texture_map", 1, 93},
     {"TilesNeedsTile2", "sphere { 0, 1 texture { tiles { texture { pigment { rgb 1 } } texture { pigment { rgb 0 } } } } }", "expected 'tile2' or another 'texture' in tiles, found '}'", 1, 93},

@@ -2,6 +2,7 @@
 // includes, texture transforms, unions, motion), and robustness on bad input.
 // Every error message has its own case in parser_errors_test.cpp.
 #include "lang/load.h"
+#include "render/pigment.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -52,6 +53,16 @@ TEST(Parser, EmptyFinishHasPovRayDefaults) {
     EXPECT_DOUBLE_EQ(f.roughness, 0.05);
     EXPECT_EQ(f.reflectionMax, Color(0));
     EXPECT_EQ(s.objects[0].texture.pigment.color.rgb, Color(0)); // default pigment black
+}
+
+// Colour-map values outside [0, 1] are POV-Ray's (skies.inc uses 1.001): the
+// pattern value 0.5 lies between -1 (black) and 1.001 (white), at 1.5 / 2.001.
+TEST(Parser, ColorMapValuesMayLieOutsideZeroToOne) {
+    const Scene s = parseOk("sphere { 0, 1 pigment { gradient x color_map { [-1 rgb 0] [1.001 rgb 1] } } }");
+    const Pigment& p = s.objects.at(0).texture.pigment;
+    ASSERT_EQ(p.colorMap.size(), 2u);
+    EXPECT_EQ(p.colorMap[0].value, -1);
+    EXPECT_NEAR(lookupColorMap(p.colorMap, 0.5).rgb.g, 1.5 / 2.001, 1e-12);
 }
 
 TEST(Parser, SphereAndExpressions) {

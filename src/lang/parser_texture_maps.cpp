@@ -129,8 +129,9 @@ Texture Parser::patternedTexture(TokenKind closer, const char* where) {
 
 namespace {
 
-// Map values: within [0, 1] and not decreasing, except for `average`, whose
-// values are non-negative weights.
+// Map values: not decreasing (any finite value, as POV-Ray: the pattern's
+// values lie in [0, 1], below the first entry its colour holds, above the
+// last the last one's), except for `average`, whose values are non-negative weights.
 template <class Report>
 void checkMapValue(bool average, double value, const double* previous, const SourceLoc& loc, const char* map,
                    const Report& error) {
@@ -138,8 +139,7 @@ void checkMapValue(bool average, double value, const double* previous, const Sou
         if (value < 0) error(loc, std::string(map) + " weights (with 'average') must not be negative");
         return;
     }
-    if (value < 0 || value > 1) error(loc, std::string(map) + " values must be between 0 and 1");
-    else if (previous && value < *previous) error(loc, std::string(map) + " values must not decrease");
+    if (previous && value < *previous) error(loc, std::string(map) + " values must not decrease");
 }
 
 } // namespace

@@ -225,7 +225,6 @@ void Parser::colorMap(Pigment& p) {
         ColorMapEntry e;
         const SourceLoc loc = current_.loc;
         e.value = floatExpr("the entry's value");
-        if (e.value < 0 || e.value > 1) error(loc, "color_map values must be between 0 and 1");
         if (!entries.empty() && e.value < entries.back().value)
             error(loc, "color_map values must not decrease");
         match(TokenKind::Comma);

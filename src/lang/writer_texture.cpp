@@ -3,6 +3,7 @@
 #include "lang/writer_detail.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace drt::writer {
 
@@ -141,12 +142,12 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         std::vector<ColorMapEntry> map = p.colorMap;
         if (map.empty())
             map = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // the renderer's empty-map ramp
-        // .drt takes values in [0, 1], not decreasing; POV-Ray takes any: clamp them.
-        double previous = 0;
+        // .drt takes values that do not decrease; POV-Ray takes any order: raise them.
+        double previous = -std::numeric_limits<double>::infinity();
         for (ColorMapEntry& e : map) {
-            const double v = std::max(previous, std::clamp(e.value, 0.0, 1.0));
+            const double v = std::max(previous, e.value);
             if (v != e.value)
-                problems.insert("color_map values outside [0, 1] or decreasing (clamped)");
+                problems.insert("decreasing color_map values (raised to the one before)");
             e.value = previous = v;
         }
         text += " color_map {";
