@@ -107,6 +107,8 @@ public:
     // extrusion.cpp: the bodies of prism and text, after '{'.
     Extrusion prismShape(SourceLoc keyword);
     std::optional<Extrusion> textShape();
+    // revolution.cpp: the bodies of lathe and sor, after '{'.
+    Revolution revolutionShape(const Tok& keyword);
     void applyTransform(PovObject& o, const Transform& t);
     // ------------------------------------------------------------ algebraic.cpp
     static bool isAlgebraicWord(const std::string& w);
@@ -218,5 +220,8 @@ struct DepthGuard {
     ~DepthGuard();
     int& depth;
 };
+
+// revolution.cpp: object-space bounds of a lathe or sor (conservative).
+void revolutionBounds(const Revolution& r, Vec3& lower, Vec3& upper);
 
 } // namespace drt::pov
