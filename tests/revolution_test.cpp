@@ -79,7 +79,7 @@ TEST(RevolutionIntersect, LinearLatheOfARectangleIsTheCylinder) {
     EXPECT_TRUE(accel::isSolidShape(l));
     int compared = 0;
     expectSameCrossings(l, cyl, 3, 1e-11, compared);
-    EXPECT_GT(compared, 10000);
+    EXPECT_GT(compared, 5000);
 }
 
 TEST(RevolutionIntersect, ClosedClockwiseLinearLatheIsTheCone) {
@@ -91,7 +91,7 @@ TEST(RevolutionIntersect, ClosedClockwiseLinearLatheIsTheCone) {
     EXPECT_TRUE(accel::isSolidShape(l));
     int compared = 0;
     expectSameCrossings(l, cone, 4, 1e-11, compared);
-    EXPECT_GT(compared, 10000);
+    EXPECT_GT(compared, 5000);
 }
 
 TEST(RevolutionIntersect, SorOfConstantRadiusIsTheCylinder) {
@@ -101,13 +101,13 @@ TEST(RevolutionIntersect, SorOfConstantRadiusIsTheCylinder) {
     const auto cyl = *accel::prepareShape(Cylinder{{0, -0.5, 0}, {0, 1, 0}, 0.8, false});
     int compared = 0;
     expectSameCrossings(s, cyl, 5, 1e-11, compared);
-    EXPECT_GT(compared, 10000);
+    EXPECT_GT(compared, 4000);
     const auto open = *accel::prepareShape(sor({{0.8, -1}, {0.8, -0.5}, {0.8, 0.2}, {0.8, 1}, {0.8, 1.5}}, true));
     const auto openCyl = *accel::prepareShape(Cylinder{{0, -0.5, 0}, {0, 1, 0}, 0.8, true});
     EXPECT_FALSE(accel::isSolidShape(open));
     compared = 0;
     expectSameCrossings(open, openCyl, 6, 1e-11, compared);
-    EXPECT_GT(compared, 5000);
+    EXPECT_GT(compared, 2500);
 }
 
 // Curved splines: walking along a line, the inside test flips at each
@@ -136,7 +136,9 @@ void expectHitsOnSurfaceAndParity(const Revolution& rev, unsigned seed) {
             EXPECT_EQ(dot(c[k].normal, d) < 0, expectInside) << "line " << i << " crossing " << k;
             ++parityChecks;
         }
-        if (n > 0) EXPECT_FALSE(accel::insideShape(s, o + (c[0].t - 1e-3) * d));
+        if (n > 0) {
+            EXPECT_FALSE(accel::insideShape(s, o + (c[0].t - 1e-3) * d));
+        }
     }
     EXPECT_GT(hits, 1000);
     EXPECT_GT(parityChecks, 500);
