@@ -76,7 +76,8 @@ RevolutionGeometry::RevolutionGeometry(const Revolution& rev) : kind_(rev.kind) 
             s.yHigh = P[i + 2].y;
             double lo, hi;
             cubicRange(s.r, h, lo, hi);
-            radiusMax_ = std::max(radiusMax_, std::sqrt(std::max(0.0, hi)));
+            s.radiusMax = std::sqrt(std::max(0.0, hi));
+            radiusMax_ = std::max(radiusMax_, s.radiusMax);
             segments_.push_back(s);
         }
         yMin_ = segments_.front().yLow;
@@ -122,7 +123,8 @@ RevolutionGeometry::RevolutionGeometry(const Revolution& rev) : kind_(rev.kind) 
         double rlo, rhi;
         cubicRange(s.r, 1, rlo, rhi);
         cubicRange(s.y, 1, s.yLow, s.yHigh);
-        radiusMax_ = std::max({radiusMax_, std::fabs(rlo), std::fabs(rhi)});
+        s.radiusMax = std::max(std::fabs(rlo), std::fabs(rhi));
+        radiusMax_ = std::max(radiusMax_, s.radiusMax);
         yMin_ = k == 0 ? s.yLow : std::min(yMin_, s.yLow);
         yMax_ = k == 0 ? s.yHigh : std::max(yMax_, s.yHigh);
         segments_.push_back(s);
@@ -149,6 +151,28 @@ RevolutionGeometry::RevolutionGeometry(const Revolution& rev) : kind_(rev.kind) 
         }
     area += previous.x * start.y - start.x * previous.y;
     orientation_ = area >= 0 ? 1 : -1;
+}
+
+// |o_xz + t d_xz|^2 is a parabola in t; its least value over the t range in
+// which the line is within [yLow, yHigh] (all t for a horizontal line) is
+// compared with radiusMax^2, with a relative margin for rounding.
+bool RevolutionGeometry::missesSegmentBound(const Segment& seg, const Vec3& o, const Vec3& d) {
+    const double a = d.x * d.x + d.z * d.z, b = o.x * d.x + o.z * d.z;
+    double lo = -INFINITY, hi = INFINITY;
+    if (d.y != 0) {
+        lo = (seg.yLow - o.y) / d.y, hi = (seg.yHigh - o.y) / d.y;
+        if (lo > hi) std::swap(lo, hi);
+        const double pad = 1e-9 * (std::fabs(lo) + std::fabs(hi)) + 1e-300;
+        lo -= pad, hi += pad;
+    } else if (o.y < seg.yLow || o.y > seg.yHigh) {
+        return true;
+    }
+    double t = a > 0 ? -b / a : 0;
+    t = std::clamp(t, lo, hi);
+    if (!std::isfinite(t)) return false;
+    const double px = o.x + t * d.x, pz = o.z + t * d.z;
+    const double bound = seg.radiusMax * (1 + 1e-9) + 1e-300;
+    return px * px + pz * pz > bound * bound;
 }
 
 // Half-open segments [0, 1) so a shared end is counted once; the last
@@ -205,6 +229,7 @@ void RevolutionGeometry::latheCrossings(const Vec3& o, const Vec3& d, std::vecto
     const bool horizontal = std::fabs(d.y) <= 1e-9 * horizontalPart;
     for (size_t k = 0; k < segments_.size(); ++k) {
         const Segment& seg = segments_[k];
+        if (missesSegmentBound(seg, o, d)) continue;
         double Y[4] = {seg.y[0] - o.y, seg.y[1], seg.y[2], seg.y[3]};
         if (horizontal) {
             if (o.y < seg.yLow || o.y > seg.yHigh) continue;
@@ -243,6 +268,7 @@ void RevolutionGeometry::sorCrossings(const Vec3& o, const Vec3& d, std::vector<
     for (size_t k = 0; k < segments_.size(); ++k) {
         const Segment& seg = segments_[k];
         const bool last = k + 1 == segments_.size();
+        if (missesSegmentBound(seg, o, d)) continue;
         const double* a = seg.r;
         const double w0 = o.y - seg.yLow;
         // G(t) = f(w0 + t dy) - (ox + t dx)^2 - (oz + t dz)^2, f(u) = sum a_i u^i.

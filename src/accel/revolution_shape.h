@@ -34,7 +34,11 @@ private:
     struct Segment {
         double r[4], y[4]; // lathe: r(s) = sum r[i] s^i, y(s) likewise; sor: r^2(y) = sum r[i] y^i
         double yLow, yHigh; // height range
+        double radiusMax;   // largest |r| on the segment
     };
+    // Whether the line stays farther from the axis than the segment's
+    // radius everywhere within the segment's height range (a bounding-cylinder test).
+    static bool missesSegmentBound(const Segment& seg, const Vec3& o, const Vec3& d);
     void latheCrossings(const Vec3& o, const Vec3& d, std::vector<Crossing>& out) const;
     void sorCrossings(const Vec3& o, const Vec3& d, std::vector<Crossing>& out) const;
     void addLatheHit(const Segment& seg, double s, double t, const Vec3& o, const Vec3& d,
