@@ -141,6 +141,16 @@ struct Differ {
         }
         if (auto* s = std::get_if<Extrusion>(&a))
             return extrusion(*s, std::get<Extrusion>(b), p);
+        if (auto* s = std::get_if<Revolution>(&a)) {
+            auto& t = std::get<Revolution>(b);
+            bool ok = eq(s->kind, t.kind, p + ".kind") && eq(s->spline, t.spline, p + ".spline") &&
+                      eq(s->open, t.open, p + ".open") && eq(s->sturm, t.sturm, p + ".sturm") &&
+                      eq(s->points.size(), t.points.size(), p + ".points.size");
+            for (size_t i = 0; ok && i < s->points.size(); ++i)
+                ok = eq(s->points[i].x, t.points[i].x, p + ".points.x") &&
+                     eq(s->points[i].y, t.points[i].y, p + ".points.y");
+            return ok;
+        }
         auto& s = std::get<Csg>(a);
         auto& t = std::get<Csg>(b);
         bool ok = eq(s.op, t.op, p + ".op") && eq(s.children.size(), t.children.size(), p + ".children.size");

@@ -3,6 +3,7 @@
 #include "accel/algebraic_shapes.h"
 #include "accel/extrusion_shape.h"
 #include "accel/polynomial.h"
+#include "accel/revolution_shape.h"
 
 #include <algorithm>
 #include <cmath>
@@ -245,6 +246,9 @@ std::optional<AnalyticShape> prepareShape(const Shape& shape) {
     } else if (const auto* extrusion = std::get_if<Extrusion>(&shape)) {
         s.kind = ShapeKind::Extrusion;
         s.extrusion = std::make_shared<const ExtrusionGeometry>(*extrusion);
+    } else if (const auto* revolution = std::get_if<Revolution>(&shape)) {
+        s.kind = ShapeKind::Revolution;
+        s.revolution = std::make_shared<const RevolutionGeometry>(*revolution);
     } else {
         return std::nullopt;
     }
@@ -268,6 +272,12 @@ int intersectShape(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossin
         for (const Crossing& c : many) list.add(c.t, c.normal);
         return list.count;
     }
+    case ShapeKind::Revolution: {
+        thread_local std::vector<Crossing> many;
+        s.revolution->intersect(o, d, many);
+        for (const Crossing& c : many) list.add(c.t, c.normal);
+        return list.count;
+    }
     }
     return 0;
 }
@@ -276,6 +286,11 @@ int allCrossings(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossing 
                  std::vector<Crossing>& many, const Crossing*& first) {
     if (s.kind == ShapeKind::Extrusion) {
         s.extrusion->intersect(o, d, many);
+        first = many.data();
+        return static_cast<int>(many.size());
+    }
+    if (s.kind == ShapeKind::Revolution) {
+        s.revolution->intersect(o, d, many);
         first = many.data();
         return static_cast<int>(many.size());
     }
@@ -288,6 +303,7 @@ bool isSolidShape(const AnalyticShape& s) {
     case ShapeKind::Disc: return false;
     case ShapeKind::Cone: return !s.open;
     case ShapeKind::Extrusion: return s.extrusion->solid();
+    case ShapeKind::Revolution: return s.revolution->solid();
     default: return true;
     }
 }
@@ -316,6 +332,7 @@ bool insideShape(const AnalyticShape& s, const Vec3& p) {
     case ShapeKind::Polynomial: return insidePolynomial(*s.polynomial, p);
     case ShapeKind::Superellipsoid: return superellipsoidFunction(s.exponentE, s.exponentN, p) < 0;
     case ShapeKind::Extrusion: return s.extrusion->inside(p);
+    case ShapeKind::Revolution: return s.revolution->inside(p);
     }
     return false;
 }
@@ -363,6 +380,7 @@ bool shapeBounds(const AnalyticShape& s, Vec3& lower, Vec3& upper) {
         upper = Vec3(1);
         return true;
     case ShapeKind::Extrusion: s.extrusion->bounds(lower, upper); return true;
+    case ShapeKind::Revolution: s.revolution->bounds(lower, upper); return true;
     }
     return false;
 }

@@ -25,9 +25,11 @@ inline constexpr int kMaxCrossings = 36;
 
 struct PolynomialSurface; // algebraic_shapes.h
 
-enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box, Polynomial, Superellipsoid, Extrusion };
+enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box, Polynomial, Superellipsoid, Extrusion,
+                       Revolution };
 
 class ExtrusionGeometry; // accel/extrusion_shape.h
+class RevolutionGeometry; // accel/revolution_shape.h
 
 // A shape in the form its intersection routine wants. Cylinders are cones
 // with equal radii; cones and cylinders are stored in a local frame whose z
@@ -47,6 +49,7 @@ struct AnalyticShape {
     std::shared_ptr<const PolynomialSurface> polynomial; // Polynomial
     double exponentE = 1, exponentN = 1;                 // Superellipsoid
     std::shared_ptr<const ExtrusionGeometry> extrusion; // Extrusion
+    std::shared_ptr<const RevolutionGeometry> revolution; // Revolution (lathe, sor)
 };
 
 // Builds the analytic form of an analytic scene shape. Returns nothing for
@@ -59,7 +62,7 @@ std::optional<AnalyticShape> prepareShape(const Shape& shape);
 // d need not be unit length.
 int intersectShape(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Crossing out[kMaxCrossings]);
 
-// All crossings, however many (extrusions may have more than kMaxCrossings):
+// All crossings, however many (extrusions and lathes may have more than kMaxCrossings):
 // points to `fixed` or to `many`, and returns the count.
 int allCrossings(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Crossing fixed[kMaxCrossings],
                  std::vector<Crossing>& many, const Crossing*& first);

@@ -142,6 +142,9 @@ private:
     // parser_extrusion.cpp
     void prismBody(const Token& keyword, ParsedObject& po);
     void textBody(ParsedObject& po);
+    // parser_revolution.cpp
+    static bool isRevolutionWord(const std::string& word);
+    void revolutionBody(const Token& keyword, ParsedObject& po);
 
     // --------------------------------------------------- parser_textures.cpp
     Texture texture();

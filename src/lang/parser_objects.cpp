@@ -12,7 +12,8 @@ static const std::vector<std::string>& objectWords() {
                                                 "disc",   "torus",    "triangle",        "smooth_triangle",
                                                 "mesh",   "union",    "merge",           "difference",
                                                 "intersection", "object",
-                                                "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text"};
+                                                "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text",
+                                                "lathe", "sor"};
     return words;
 }
 
@@ -182,6 +183,8 @@ void Parser::shapeBody(const Token& keyword, ParsedObject& po) {
         prismBody(keyword, po);
     } else if (w == "text") {
         textBody(po);
+    } else if (isRevolutionWord(w)) {
+        revolutionBody(keyword, po);
     } else if (w == "mesh") {
         Mesh m;
         while (checkWord("triangle") || checkWord("smooth_triangle")) {
@@ -322,7 +325,9 @@ bool Parser::objectModifier(ParsedObject& po) {
         if (Cylinder* c = std::get_if<Cylinder>(&o.shape)) c->open = true;
         else if (Cone* c = std::get_if<Cone>(&o.shape)) c->open = true;
         else if (Extrusion* e = std::get_if<Extrusion>(&o.shape); e && e->prism) e->open = true;
-        else error(loc, "'open' applies only to cylinder, cone and prism");
+        else if (Revolution* r = std::get_if<Revolution>(&o.shape); r && r->kind == Revolution::Kind::Sor)
+            r->open = true;
+        else error(loc, "'open' applies only to cylinder, cone and prism, and to sor");
     } else {
         return false;
     }

@@ -72,6 +72,11 @@ std::string finishBody(const Finish& f);     // the non-default items, each afte
 std::string interiorBody(const Interior& i, std::set<std::string>& problems); // the same, media included
 std::string mediaBody(const Media& m, std::set<std::string>& problems);       // the inside of `media { }`
 
+// ------------------------------------------------------------ writer_revolution.cpp
+
+// The opening of a lathe or sor through its points, `open` and `sturm`.
+std::string revolutionText(const Revolution& r, int indent);
+
 // ------------------------------------------------------------ writer_extrusion.cpp
 
 // The opening of a prism or text object through its fixed arguments (points

@@ -15,13 +15,14 @@ const std::set<std::string>& primitiveWords() {
     static const std::set<std::string> w = {"sphere", "box", "plane", "cylinder", "cone", "disc", "torus",
                                             "triangle", "smooth_triangle", "mesh", "mesh2", "union", "merge",
                                             "difference", "intersection", "object", "polygon",
-                                            "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text"};
+                                            "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text",
+                                            "lathe", "sor"};
     return w;
 }
 
 const std::set<std::string>& unsupportedShapes() {
-    static const std::set<std::string> w = {"blob", "height_field", "isosurface", "julia_fractal", "lathe",
-                                            "parametric", "sor", "sphere_sweep", "bicubic_patch", "ovus"};
+    static const std::set<std::string> w = {"blob", "height_field", "isosurface", "julia_fractal",
+                                            "parametric", "sphere_sweep", "bicubic_patch", "ovus"};
     return w;
 }
 
@@ -194,6 +195,8 @@ PovObject PovParser::object(const Tok& keyword) {
         o.shape = m;
     } else if (w == "prism") {
         o.shape = prismShape(keyword.loc);
+    } else if (w == "lathe" || w == "sor") {
+        o.shape = revolutionShape(keyword);
     } else if (w == "text") {
         std::optional<Extrusion> text = textShape();
         if (text) o.shape = std::move(*text);
@@ -429,12 +432,15 @@ PovObject PovParser::object(const Tok& keyword) {
             if (Cylinder* cy = std::get_if<Cylinder>(&o.shape)) cy->open = true;
             else if (Cone* co = std::get_if<Cone>(&o.shape)) co->open = true;
             else if (Extrusion* ex = std::get_if<Extrusion>(&o.shape); ex && ex->prism) ex->open = true;
-            else warnOnce("open", t.loc, "'open' applies to cylinder, cone and prism only; ignored");
+            else if (Revolution* rv = std::get_if<Revolution>(&o.shape); rv && rv->kind == Revolution::Kind::Sor)
+                rv->open = true;
+            else warnOnce("open", t.loc, "'open' applies to cylinder, cone, prism and sor only; ignored");
         } else if (m == "sturm" || m == "smooth" || m == "split_union" || m == "hierarchy") {
             const Tok n = peekOperator();
             const bool on = n.kind == TokKind::Number ? floatExpr() != 0 : true;
             if (Algebraic* a = std::get_if<Algebraic>(&o.shape); a && m == "sturm" && a->form != Algebraic::Form::Quadric)
                 a->sturm = on;
+            if (Revolution* rv = std::get_if<Revolution>(&o.shape); rv && m == "sturm") rv->sturm = on;
         } else if (m == "inside_vector") {
             vectorExpr();
         } else if (m == "bounded_by" || m == "clipped_by") {

@@ -119,6 +119,8 @@ public:
     Extrusion prismShape(SourceLoc keyword);
     std::optional<Extrusion> textShape();
     std::optional<std::vector<Object>> clipObjects(const Tok& word); // after bounded_by / clipped_by
+    // revolution.cpp: the bodies of lathe and sor, after '{'.
+    Revolution revolutionShape(const Tok& keyword);
     void applyTransform(PovObject& o, const Transform& t);
     // ------------------------------------------------------------ algebraic.cpp
     static bool isAlgebraicWord(const std::string& w);
@@ -234,5 +236,6 @@ struct DepthGuard {
     ~DepthGuard();
     int& depth;
 };
+
 
 } // namespace drt::pov

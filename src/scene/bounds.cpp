@@ -33,6 +33,33 @@ Box3 extrusionBox(const Extrusion& e) {
                e.plane == Extrusion::Plane::XZ ? Vec3{hi.x, h2, hi.y} : Vec3{hi.x, hi.y, h2});
 }
 
+// Object-space bounds from the points (for min_extent / max_extent): the
+// control hull holds linear and Bezier outlines; quadratic and cubic splines
+// and sor profiles may overshoot it, so theirs is widened by a quarter of its
+// size (conservative, not tight).
+Box3 revolutionBox(const Revolution& r) {
+    double rmax = 0, ylo = 1e300, yhi = -1e300;
+    const auto& P = r.points;
+    const size_t first = r.kind == Revolution::Kind::Sor ? 1 : 0;
+    const size_t last = r.kind == Revolution::Kind::Sor ? P.size() - 2 : P.size() - 1;
+    for (size_t i = 0; i < P.size(); ++i) {
+        if (i < first || i > last) continue;
+        ylo = std::min(ylo, P[i].y), yhi = std::max(yhi, P[i].y);
+    }
+    for (const Vec2& p : P) rmax = std::max(rmax, std::fabs(p.x));
+    const bool overshoots = r.kind == Revolution::Kind::Sor || r.spline == Revolution::Spline::Quadratic ||
+                            r.spline == Revolution::Spline::Cubic;
+    if (overshoots) {
+        if (r.kind == Revolution::Kind::Lathe)
+            for (const Vec2& p : P) ylo = std::min(ylo, p.y), yhi = std::max(yhi, p.y);
+        const double span = std::max(rmax, yhi - ylo);
+        rmax += 0.25 * span;
+        if (r.kind == Revolution::Kind::Lathe) ylo -= 0.25 * span, yhi += 0.25 * span;
+    }
+    if (!(ylo <= yhi)) return unbounded();
+    return box({-rmax, ylo, -rmax}, {rmax, yhi, rmax});
+}
+
 // Object-space boxes of the primitive shapes; anything else is unbounded, so
 // shapes added to Shape later compile and stay conservative until listed here.
 struct ShapeBox {
@@ -77,6 +104,7 @@ struct ShapeBox {
     }
     Box3 operator()(const Superellipsoid&) const { return box(Vec3(-1), Vec3(1)); }
     Box3 operator()(const Extrusion& e) const { return extrusionBox(e); }
+    Box3 operator()(const Revolution& r) const { return revolutionBox(r); }
     Box3 operator()(const Plane&) const { return unbounded(); }
     template <class Other> Box3 operator()(const Other&) const { return unbounded(); }
 };

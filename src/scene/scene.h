@@ -9,6 +9,7 @@
 #include "core/vec.h"
 #include "scene/algebraic.h"
 #include "scene/extrusion.h"
+#include "scene/revolution.h"
 
 #include <array>
 #include <cstdint>
@@ -272,9 +273,10 @@ struct Csg {
     std::vector<Object> children;
 };
 
-// Algebraic and Superellipsoid: scene/algebraic.h; Extrusion: scene/extrusion.h.
+// Algebraic and Superellipsoid: scene/algebraic.h; Extrusion: scene/extrusion.h;
+// Revolution: scene/revolution.h.
 using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid,
-                           Extrusion>;
+                           Extrusion, Revolution>;
 
 // Motion over the shutter (issue 3): the extra transform reached at time 1,
 // applied after Object::transform. At time t the object is scaled by
