@@ -17,6 +17,9 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <random>
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
 
 namespace fs = std::filesystem;
 
@@ -119,6 +122,34 @@ TEST(Determinism, TriangleHitsAreSolvedInDoubleFromTheVertices) {
         EXPECT_LT(length(hit.point - exact), 1e-12) << i;
     }
 }
+
+#if defined(__SSE__) || defined(__x86_64__)
+// A thread's denormal mode (MXCSR flush-to-zero, denormals-are-zero) must not
+// reach the image: a colour of 1e-39 is a denormal float, which FTZ would
+// store as 0 on whichever thread happens to run the tile.
+TEST(Determinism, ThreadDenormalModeDoesNotReachTheImage) {
+    Diagnostics diagnostics;
+    const std::optional<Scene> scene = loadSceneText(
+        "camera { location <0, 0, -3> look_at 0 }\n"
+        "plane { z, 0 pigment { rgb <1e-39, 0.5, 0.5> } finish { ambient 1 diffuse 0 } }",
+        "denormal.drt", diagnostics);
+    ASSERT_TRUE(scene) << diagnostics.formatAll();
+    RenderOptions options = resolveRenderOptions(*scene, {});
+    options.width = 8;
+    options.height = 6;
+    options.samplesPerPixel = 1;
+    const float expected = static_cast<float>(1e-39);
+    ASSERT_GT(expected, 0.0f);
+    const unsigned saved = _mm_getcsr();
+    for (int threads : {1, 2}) {
+        options.threads = threads;
+        _mm_setcsr(saved | 0x8040); // flush-to-zero and denormals-are-zero on the calling thread
+        const RenderResult r = render(*scene, options);
+        _mm_setcsr(saved);
+        EXPECT_EQ(r.color.at(4, 3, 0), expected) << threads << " threads";
+    }
+}
+#endif
 
 } // namespace
 } // namespace drt

@@ -36,6 +36,10 @@
 #include "render/integrator.h"
 #include "render/texture_shading.h"
 
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#define DRT_HAVE_MXCSR 1
+#endif
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -190,6 +194,26 @@ std::string describeEffects(const SceneEffects& e) {
     return text.empty() ? "none" : text;
 }
 
+namespace {
+
+// Denormal handling is per thread (x86 MXCSR flush-to-zero and
+// denormals-are-zero bits), and what a worker thread inherits depends on who
+// created it, so the same sample could round differently on two threads. Every
+// tile runs with IEEE denormals (both bits off) and restores the thread's mode.
+class IeeeDenormals {
+public:
+#ifdef DRT_HAVE_MXCSR
+    IeeeDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ & ~(kFlushToZero | kDenormalsAreZero)); }
+    ~IeeeDenormals() { _mm_setcsr(saved_); }
+
+private:
+    static constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;
+    unsigned saved_;
+#endif
+};
+
+} // namespace
+
 RenderResult render(const Scene& scene, const RenderOptions& options) {
     validate(options);
     const ResolvedCamera camera = resolveCamera(scene.camera, options.width, options.height);
@@ -335,6 +359,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const auto runRound = [&](int roundEnd) {
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
+                const IeeeDenormals ieee;
                 for (int index = range.begin(); index != range.end(); ++index) renderTile(index, roundEnd);
             });
         });
