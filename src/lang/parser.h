@@ -148,6 +148,7 @@ private:
     bool pigmentItem(Pigment& p);
     Pigment pigmentOrColor();
     void colorMap(Pigment& p);
+    void imageMap(Pigment& p); // parser_image_map.cpp, at 'image_map'
     Finish finish();
     Normal normal();
     bool turbulenceItem(Turbulence& turbulence);

@@ -83,7 +83,7 @@ Pigment Parser::pigment() {
                 fail(current_.loc, "'" + current_.text + "' is " + kindName(*v) + ", not a pigment or colour");
             std::vector<std::string> known{"color",    "rgb",       "checker", "hexagon",   "brick",
                                            "brick_size", "mortar", "gradient", "radial",  "onion", "spherical",
-                                           "color_map", "turbulence", "octaves", "omega", "lambda",
+                                           "color_map", "image_map", "turbulence", "octaves", "omega", "lambda",
                                            "translate", "rotate",   "scale",   "matrix"};
             known.insert(known.end(), kNoiseWords.begin(), kNoiseWords.end());
             failUnknown(current_, known);
@@ -177,6 +177,8 @@ bool Parser::pigmentItem(Pigment& p) {
     } else if (turbulenceItem(p.turbulence)) {
     } else if (w == "color_map" || w == "colour_map") {
         colorMap(p);
+    } else if (w == "image_map") {
+        imageMap(p);
     } else {
         return false;
     }

@@ -14,12 +14,13 @@ const std::set<std::string>& primitiveWords() {
     static const std::set<std::string> w = {"sphere", "box", "plane", "cylinder", "cone", "disc", "torus",
                                             "triangle", "smooth_triangle", "mesh", "mesh2", "union", "merge",
                                             "difference", "intersection", "object", "polygon",
-                                            "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text"};
+                                            "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text",
+                                            "height_field"};
     return w;
 }
 
 const std::set<std::string>& unsupportedShapes() {
-    static const std::set<std::string> w = {"blob", "height_field", "isosurface", "julia_fractal", "lathe",
+    static const std::set<std::string> w = {"blob", "isosurface", "julia_fractal", "lathe",
                                             "parametric", "sor", "sphere_sweep", "bicubic_patch", "ovus"};
     return w;
 }
@@ -255,6 +256,10 @@ PovObject PovParser::object(const Tok& keyword) {
         o.shape = m;
     } else if (w == "prism") {
         o.shape = prismShape(keyword.loc);
+    } else if (w == "height_field") {
+        std::optional<Mesh> field = heightFieldShape(keyword.loc);
+        if (field) o.shape = std::move(*field);
+        else po.lightOnly = true; // left out
     } else if (w == "text") {
         std::optional<Extrusion> text = textShape();
         if (text) o.shape = std::move(*text);

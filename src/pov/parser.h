@@ -107,6 +107,13 @@ public:
     // extrusion.cpp: the bodies of prism and text, after '{'.
     Extrusion prismShape(SourceLoc keyword);
     std::optional<Extrusion> textShape();
+    // height_field.cpp: the body of height_field after '{'; none if left out (a warning says why).
+    std::optional<Mesh> heightFieldShape(SourceLoc keyword);
+    static bool isImageTypeWord(const Tok& t); // gif tga png jpeg ... before an image file name
+    // An image or data file named in the scene, found like an include file; "" if not found.
+    std::string findDataFile(const std::string& name) const;
+    // image_map.cpp: after 'image_map'; none if unsupported (a warning says why).
+    std::optional<Pigment> imageMapPigment(SourceLoc keyword);
     void applyTransform(PovObject& o, const Transform& t);
     // ------------------------------------------------------------ algebraic.cpp
     static bool isAlgebraicWord(const std::string& w);

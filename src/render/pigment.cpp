@@ -1,5 +1,6 @@
 #include "render/pigment.h"
 
+#include "render/image_pattern.h"
 #include "render/noise.h"
 
 #include <cmath>
@@ -121,6 +122,7 @@ ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
     case PatternKind::Radial: return lookupColorMap(pigment.colorMap, radialValue(p));
     case PatternKind::Onion: return lookupColorMap(pigment.colorMap, onionValue(p));
     case PatternKind::Spherical: return lookupColorMap(pigment.colorMap, sphericalValue(p));
+    case PatternKind::ImageMap: return pigment.imageMap ? imageMapColor(*pigment.imageMap, p) : ColorFT{};
     default: break;
     }
     return pigment.color;

@@ -45,6 +45,7 @@ enum class PatternKind {
     Bumps,
     Ripples,  // concentric waves around fixed centres
     Waves,
+    ImageMap, // an image file (scene/image_map.h)
 };
 
 // POV-Ray turbulence: the pattern is evaluated at p + amount * T(p), with T a
@@ -62,8 +63,11 @@ struct ColorMapEntry {
     ColorFT color;
 };
 
+struct ImageMap;
+
 struct Pigment {
     PatternKind pattern = PatternKind::Solid;
+    std::shared_ptr<const ImageMap> imageMap; // ImageMap: the decoded image and its mapping
     ColorFT color;                        // Solid (POV-Ray default: black)
     std::vector<Pigment> children;        // Checker, Hexagon, Brick sub-pigments
     std::vector<ColorMapEntry> colorMap;  // Gradient, Radial, Onion
