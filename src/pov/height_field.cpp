@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 namespace drt::pov {
 
@@ -21,8 +22,8 @@ const std::set<std::string>& imageTypeWords() {
 // stored in the file (scaled to [0, 1]): greyscale files use the grey value,
 // colour files deeper than 8 bits their grey (0.297 r + 0.589 g + 0.114 b)
 // and 8-bit colour files red as the high byte and green as the low byte.
-// OpenImageIO expands palette images, so POV-Ray's palette-index rule for
-// indexed GIF/PNG files is not reproduced (their colours are used instead).
+// Palette PNGs use their index instead (below); palette GIFs, which
+// OpenImageIO expands, use the colour rule.
 // Integer samples are read back exactly by rounding (POV-Ray truncates a float
 // product, which can land one step of 1/65536 lower).
 double povHeightValue(const Image& img, const ImageFileInfo& info, int x, int y) {
@@ -46,7 +47,13 @@ std::string PovParser::findDataFile(const std::string& name) const {
             fromDir = it->dir;
             break;
         }
-    return findInclude(name, fromDir);
+    std::string path = findInclude(name, fromDir);
+    // POV-Ray adds the image types' extensions to a name without one.
+    if (path.empty() && !std::filesystem::path(name).has_extension())
+        for (const char* ext : {".png", ".tga", ".jpg", ".jpeg", ".gif", ".ppm", ".pgm", ".tiff", ".tif", ".exr",
+                                ".hdr", ".bmp"})
+            if (path = findInclude(name + ext, fromDir); !path.empty()) break;
+    return path;
 }
 
 std::optional<Mesh> PovParser::heightFieldShape(SourceLoc keyword) {
@@ -85,11 +92,18 @@ std::optional<Mesh> PovParser::heightFieldShape(SourceLoc keyword) {
         else if (t.isWord("gamma") || t.isWord("premultiplied")) next(), floatExpr();
         else break;
     }
+    // Palette PNGs: POV-Ray's height is the index times 256.
+    int pw = 0, ph = 0;
+    std::vector<unsigned char> palette;
+    const bool indexed = readPngPaletteIndices(path, pw, ph, palette) && pw == img.width && ph == img.height;
     // POV-Ray puts image row 0 (the top) at z = 1 and scales heights by 1/65536.
     std::vector<double> heights(size_t(img.width) * img.height);
     for (int z = 0; z < img.height; ++z)
-        for (int x = 0; x < img.width; ++x)
-            heights[size_t(z) * img.width + x] = povHeightValue(img, info, x, img.height - 1 - z) / 65536.0;
+        for (int x = 0; x < img.width; ++x) {
+            const int row = img.height - 1 - z;
+            const double value = indexed ? palette[size_t(row) * img.width + x] * 256.0 : povHeightValue(img, info, x, row);
+            heights[size_t(z) * img.width + x] = value / 65536.0;
+        }
     Mesh m = heightFieldMesh(heights, img.width, img.height, smooth, waterLevel);
     if (m.triangles.empty()) {
         warn(keyword, "the height_field lies entirely below its water_level; it is left out");

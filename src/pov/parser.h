@@ -110,7 +110,8 @@ public:
     // height_field.cpp: the body of height_field after '{'; none if left out (a warning says why).
     std::optional<Mesh> heightFieldShape(SourceLoc keyword);
     static bool isImageTypeWord(const Tok& t); // gif tga png jpeg ... before an image file name
-    // An image or data file named in the scene, found like an include file; "" if not found.
+    // An image file named in the scene, found like an include file (image extensions tried
+    // for a name without one); "" if not found.
     std::string findDataFile(const std::string& name) const;
     // image_map.cpp: after 'image_map'; none if unsupported (a warning says why).
     std::optional<Pigment> imageMapPigment(SourceLoc keyword);
