@@ -321,6 +321,22 @@ TEST(ImageMap, MissingFileIsAnErrorInBothLanguages) {
     EXPECT_NE(drt.formatAll().find("gone.png"), std::string::npos);
 }
 
+TEST(ImageMap, UnreadableFileIsAnErrorAndBareNamesGetImageExtensions) {
+    const std::string dir = test::tempDir();
+    test::writeFile(dir + "/bad.png", "not an image");
+    Diagnostics diags;
+    EXPECT_FALSE(loadPovSceneText("sphere { 0, 1 pigment { image_map { png \"bad.png\" } } }", "s.pov", diags,
+                                  PovOptions{}, dir));
+    EXPECT_NE(diags.formatAll().find("s.pov:1:41"), std::string::npos) << diags.formatAll();
+    // POV-Ray's "sign" finds sign.png (advanced/cliche/cliche.pov relies on it).
+    quadrants(dir);
+    Diagnostics ok;
+    const Scene s = loadPov("sphere { 0, 1 pigment { image_map { \"quad\" } } }", dir, ok);
+    ASSERT_EQ(s.objects.size(), 1u);
+    ASSERT_TRUE(s.objects[0].texture.pigment.imageMap);
+    EXPECT_EQ(std::filesystem::path(s.objects[0].texture.pigment.imageMap->path).filename(), "quad.png");
+}
+
 TEST(ImageMap, DrtBadSettingsAreErrors) {
     const std::string dir = test::tempDir();
     quadrants(dir);

@@ -72,7 +72,12 @@ std::optional<Mesh> PovParser::heightFieldShape(SourceLoc keyword) {
         }
         return std::nullopt;
     }
-    if (isImageTypeWord(peek())) next();
+    if (isImageTypeWord(peek())) {
+        const Tok type = next();
+        if (type.isWord("pot"))
+            warnOnce("height_field-pot", type.loc,
+                     "Fractint 'pot' files are read as plain GIF images, not as 16-bit heights (approximate)");
+    }
     const SourceLoc fileLoc = peek().loc;
     const std::string name = stringExpr();
     const std::string path = findDataFile(name);
