@@ -282,6 +282,23 @@ TEST(ImageMap, BilinearInterpolationBetweenTexelCentres) {
     expectColor(imageMapColor(m, {1.0, 0.5, 0}), 0.5, 0.5, 0.5);
 }
 
+TEST(ImageMap, BicubicHitsTexelCentresAndReproducesALinearRamp) {
+    const std::string dir = test::tempDir();
+    // A linear ramp 0, 1/3, 2/3, 1 (gamma 1: as stored) repeated: Catmull-Rom is exact on the
+    // ramp's inner span, where the four texels it uses are all on the ramp.
+    writePng8(dir + "/quad.png", 4, 1, 1, {0, 85, 170, 255});
+    const ImageMap m = loadedMap(dir, "interpolate 3 gamma 1");
+    EXPECT_EQ(m.interpolation, ImageMap::Interpolation::Bicubic);
+    expectColor(imageMapColor(m, {0.375, 0.5, 0}), 85 / 255.0, 85 / 255.0, 85 / 255.0); // texel 1's centre
+    // Halfway between texels 1 and 2 (x = 0.5): (85 + 170) / 2.
+    expectColor(imageMapColor(m, {0.5, 0.5, 0}), 0.5, 0.5, 0.5);
+    // A quarter of the way from texel 1 to 2: weights -9/128, 111/128, 29/128, -3/128 on
+    // 0, 85, 170, 255, which is the ramp's own value 1.25 / 3.
+    const double v = (111 * 85 + 29 * 170 - 3 * 255) / 128.0 / 255.0;
+    EXPECT_NEAR(v, 1.25 / 3, 1e-15);
+    expectColor(imageMapColor(m, {0.375 + 0.0625, 0.5, 0}), v, v, v);
+}
+
 TEST(ImageMap, FilterAndTransmitAllAndAlpha) {
     const std::string dir = test::tempDir();
     quadrants(dir);
@@ -335,6 +352,18 @@ TEST(ImageMap, UnreadableFileIsAnErrorAndBareNamesGetImageExtensions) {
     ASSERT_EQ(s.objects.size(), 1u);
     ASSERT_TRUE(s.objects[0].texture.pigment.imageMap);
     EXPECT_EQ(std::filesystem::path(s.objects[0].texture.pigment.imageMap->path).filename(), "quad.png");
+}
+
+TEST(ImageMap, PovUnknownSettingsAreWarnings) {
+    const std::string dir = test::tempDir();
+    quadrants(dir);
+    Diagnostics diags;
+    const Scene s = loadPov("sphere { 0, 1 pigment { image_map { png \"quad.png\" map_type 7 interpolate 9 "
+                            "filter 1, 0.5 } } }", dir, diags);
+    EXPECT_EQ(diags.warningCount(), 3) << diags.formatAll();
+    ASSERT_TRUE(s.objects[0].texture.pigment.imageMap);
+    EXPECT_EQ(s.objects[0].texture.pigment.imageMap->projection, ImageMap::Projection::Planar);
+    EXPECT_EQ(s.objects[0].texture.pigment.imageMap->interpolation, ImageMap::Interpolation::None);
 }
 
 TEST(ImageMap, DrtBadSettingsAreErrors) {

@@ -9,7 +9,7 @@ namespace fs = std::filesystem;
 
 namespace drt {
 
-// image-map-item = "map_type" ( 0 | 1 | 2 | 5 ) | "once" | "interpolate" ( 0 | 2 | 4 )
+// image-map-item = "map_type" ( 0 | 1 | 2 | 5 ) | "once" | "interpolate" ( 0 | 2 | 3 | 4 )
 //                | "filter" "all" float | "transmit" "all" float | "gamma" float
 void Parser::imageMap(Pigment& p) {
     advance(); // image_map
@@ -38,8 +38,8 @@ void Parser::imageMap(Pigment& p) {
         } else if (matchWord("interpolate")) {
             const SourceLoc at = current_.loc;
             const int type = intExpr("the interpolation");
-            if (type != 0 && type != 2 && type != 4)
-                error(at, "interpolate must be 0 (none), 2 (bilinear) or 4 (normalised distance)");
+            if (type != 0 && type != 2 && type != 3 && type != 4)
+                error(at, "interpolate must be 0 (none), 2 (bilinear), 3 (bicubic) or 4 (normalised distance)");
             else map->interpolation = ImageMap::Interpolation(type);
         } else if (checkWord("filter") || checkWord("transmit")) {
             const bool filter = checkWord("filter");

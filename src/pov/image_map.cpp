@@ -34,11 +34,9 @@ std::optional<Pigment> PovParser::imageMapPigment(SourceLoc keyword) {
             const SourceLoc at = peek().loc;
             const int type = static_cast<int>(floatExpr());
             if (type == 2) map->interpolation = ImageMap::Interpolation::Bilinear;
+            else if (type == 3) map->interpolation = ImageMap::Interpolation::Bicubic;
             else if (type == 4) map->interpolation = ImageMap::Interpolation::NormalizedDistance;
-            else if (type == 3) {
-                map->interpolation = ImageMap::Interpolation::Bilinear;
-                warnOnce("interpolate-3", at, "bicubic interpolation (interpolate 3) is approximated by bilinear");
-            }
+            else if (type != 0) warnOnce("interpolate", at, "interpolate " + std::to_string(type) + " is not known; no interpolation");
         } else if (t.isWord("filter") || t.isWord("transmit")) {
             const bool filter = t.isWord("filter");
             if (acceptWord("all")) {

@@ -115,6 +115,28 @@ ColorFT interpolated(const ImageMap& m, double x, double y) {
     return add(c, weighted(texel(m, ix - 1, iy - 1), f[3]));
 }
 
+// POV-Ray's bicubic: Catmull-Rom weights for the four texels around x (in
+// texel units, centres at integer + 0.5), in each direction.
+void cubicWeights(double p, double f[4]) {
+    const double q = 1 - p;
+    f[0] = -0.5 * p * q * q;
+    f[1] = 0.5 * q * (q * (3 * p + 1) + 1);
+    f[2] = 0.5 * p * (p * (3 * q + 1) + 1);
+    f[3] = -0.5 * q * p * p;
+}
+
+ColorFT bicubic(const ImageMap& m, double x, double y) {
+    x += 0.5, y += 0.5;
+    const double ix = std::floor(x), iy = std::floor(y);
+    double fx[4], fy[4];
+    cubicWeights(x - ix, fx);
+    cubicWeights(y - iy, fy);
+    ColorFT c{Color(0), 0, 0};
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) c = add(c, weighted(texel(m, ix + i - 2, iy + j - 2), fx[i] * fy[j]));
+    return c;
+}
+
 } // namespace
 
 ColorFT imageMapColor(const ImageMap& m, const Vec3& p) {
@@ -126,7 +148,9 @@ ColorFT imageMapColor(const ImageMap& m, const Vec3& p) {
     if (m.once && (u >= m.width || v >= m.height || u < 0 || v < 0)) return clear;
     // Image rows run top down: v up the image is row height - v.
     const double x = wrap(u, m.width), y = wrap(-v, m.height);
-    ColorFT c = m.interpolation == ImageMap::Interpolation::None ? texel(m, x, y) : interpolated(m, x, y);
+    ColorFT c = m.interpolation == ImageMap::Interpolation::None      ? texel(m, x, y)
+                : m.interpolation == ImageMap::Interpolation::Bicubic ? bicubic(m, x, y)
+                                                                       : interpolated(m, x, y);
     if (m.workingGamma != 1) {
         const double inv = 1.0 / m.workingGamma;
         c.rgb = Color(std::pow(std::max(0.0, c.rgb.r), inv), std::pow(std::max(0.0, c.rgb.g), inv),

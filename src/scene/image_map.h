@@ -11,7 +11,7 @@ namespace drt {
 
 struct ImageMap {
     enum class Projection { Planar = 0, Spherical = 1, Cylindrical = 2, Torus = 5 };
-    enum class Interpolation { None = 0, Bilinear = 2, NormalizedDistance = 4 };
+    enum class Interpolation { None = 0, Bilinear = 2, Bicubic = 3, NormalizedDistance = 4 };
 
     std::string file; // as written in the scene
     std::string path; // where it was found
