@@ -318,6 +318,20 @@ TEST(ImageMap, EightBitFilesAreDecodedFromSrgbUnlessGammaIsGiven) {
     expectColor(imageMapColor(srgb, {0.5, 0.5, 0}), v, v, v);
     const ImageMap linear = loadedMap(dir, "gamma 1.0");
     expectColor(imageMapColor(linear, {0.5, 0.5, 0}), 128 / 255.0, 128 / 255.0, 128 / 255.0);
+    // A file that states its gamma (PNG gAMA) is decoded with it unless the scene gives one.
+    {
+        auto out = OIIO::ImageOutput::create(dir + "/quad.png");
+        OIIO::ImageSpec spec(1, 1, 1, OIIO::TypeDesc::UINT8);
+        spec.attribute("oiio:ColorSpace", "Gamma1.8");
+        spec.attribute("oiio:Gamma", 1.8f);
+        const uint8_t byte = 128;
+        ASSERT_TRUE(out->open(dir + "/quad.png", spec) && out->write_image(OIIO::TypeDesc::UINT8, &byte));
+        out->close();
+    }
+    const double g18 = std::pow(128 / 255.0, double(1.8f));
+    expectColor(imageMapColor(loadedMap(dir, ""), {0.5, 0.5, 0}), g18, g18, g18);
+    expectColor(imageMapColor(loadedMap(dir, "gamma 1"), {0.5, 0.5, 0}), 128 / 255.0, 128 / 255.0, 128 / 255.0);
+    writePng8(dir + "/quad.png", 1, 1, 1, {128});
     // Through evaluatePigment, with the pigment's transform (scale 2: texel 0.5 of the map at x = 1).
     Diagnostics diags;
     const Scene s = loadPov("#version 3.7; sphere { 0, 1 pigment { image_map { png \"quad.png\" gamma 2 } scale 2 } }", dir,

@@ -191,7 +191,10 @@ std::string readImageEncoded(const std::string& path, Image& image, ImageFileInf
     info.isFloat = !isIntegerType(spec.format);
     const int bits = spec.get_int_attribute("oiio:BitsPerSample", 0);
     info.bitsPerChannel = info.isFloat ? 32 : (bits > 0 ? bits : int(spec.format.size()) * 8);
-    info.srgbEncoded = !info.isFloat && spec.get_string_attribute("oiio:ColorSpace") != "Linear";
+    const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
+    info.srgbEncoded = !info.isFloat && colorSpace != "Linear" && colorSpace.rfind("Gamma", 0) != 0;
+    if (colorSpace == "Linear") info.fileGamma = 1;
+    else if (colorSpace.rfind("Gamma", 0) == 0) info.fileGamma = spec.get_float_attribute("oiio:Gamma", 0);
     input->close();
     image = std::move(result);
     return "";

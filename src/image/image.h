@@ -40,7 +40,8 @@ std::string readImage(const std::string& path, Image& image, Metadata* metadata 
 struct ImageFileInfo {
     int bitsPerChannel = 8; // 8 or 16 for integer files, 32 for float files
     bool isFloat = false;
-    bool srgbEncoded = true; // integer files unless the file says they are linear
+    bool srgbEncoded = true; // integer files unless the file says otherwise (a PNG gAMA chunk, "Linear")
+    double fileGamma = 0;    // when the file states a plain gamma g: values are decoded as v^g (1: linear)
 };
 
 // Reads the values as stored, scaled to [0, 1] for integer files (value / 255,

@@ -12,9 +12,11 @@ std::string loadImageMap(ImageMap& map) {
     ImageFileInfo info;
     if (std::string error = readImageEncoded(map.path, img, info); !error.empty()) return error;
     if (img.width < 1 || img.height < 1) return "cannot read '" + map.path + "': empty image";
+    // The scene's gamma wins, then the file's own (a PNG gAMA chunk), then sRGB for integer files.
+    const double gamma = map.gamma > 0 ? map.gamma : info.fileGamma;
     auto decode = [&](float v) -> float {
-        if (map.gamma > 0) return static_cast<float>(std::pow(std::max(0.0f, v), map.gamma));
-        return info.isFloat ? v : static_cast<float>(srgbDecode(v));
+        if (gamma > 0) return static_cast<float>(std::pow(std::max(0.0f, v), gamma));
+        return info.srgbEncoded ? static_cast<float>(srgbDecode(v)) : v;
     };
     map.width = img.width;
     map.height = img.height;

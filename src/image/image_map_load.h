@@ -7,9 +7,10 @@
 
 namespace drt {
 
-// Reads `map.path` and fills the texels: integer files are decoded from sRGB,
-// or with v^gamma when `map.gamma` > 0; float files (EXR, HDR) are linear
-// (v^gamma when given). Alpha becomes transmit = 1 - alpha. Returns "" on
+// Reads `map.path` and fills the texels, decoded with v^gamma when
+// `map.gamma` > 0, else with the gamma the file states (a PNG gAMA chunk,
+// a linear file), else from sRGB for integer files; float files (EXR, HDR)
+// are linear. Alpha becomes transmit = 1 - alpha. Returns "" on
 // success, else the reason.
 std::string loadImageMap(ImageMap& map);
 
