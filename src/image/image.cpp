@@ -170,6 +170,36 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
     return "";
 }
 
+std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info) {
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        return "cannot read '" + path + "': no such file";
+    // Colour as stored, not multiplied by alpha (OpenImageIO's default for PNG).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto input = OIIO::ImageInput::open(path, &config);
+    if (!input) {
+        std::string reason = OIIO::geterror();
+        return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
+    }
+    const OIIO::ImageSpec& spec = input->spec();
+    Image result(spec.width, spec.height, spec.nchannels);
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
+        const std::string reason = input->geterror();
+        return "cannot read '" + path + "': " + reason;
+    }
+    info.isFloat = !isIntegerType(spec.format);
+    const int bits = spec.get_int_attribute("oiio:BitsPerSample", 0);
+    info.bitsPerChannel = info.isFloat ? 32 : (bits > 0 ? bits : int(spec.format.size()) * 8);
+    const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
+    info.srgbEncoded = !info.isFloat && colorSpace != "Linear" && colorSpace.rfind("Gamma", 0) != 0;
+    if (colorSpace == "Linear") info.fileGamma = 1;
+    else if (colorSpace.rfind("Gamma", 0) == 0) info.fileGamma = spec.get_float_attribute("oiio:Gamma", 0);
+    input->close();
+    image = std::move(result);
+    return "";
+}
+
 std::string readImage(const std::string& path, Image& image, Metadata* metadata) {
     std::error_code ec;
     if (!fs::exists(path, ec))

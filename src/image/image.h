@@ -36,4 +36,20 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
 // Returns "" on success, else the reason.
 std::string readImage(const std::string& path, Image& image, Metadata* metadata = nullptr);
 
+// How a file stores its pixels, for readers that apply their own decoding rules.
+struct ImageFileInfo {
+    int bitsPerChannel = 8; // 8 or 16 for integer files, 32 for float files
+    bool isFloat = false;
+    bool srgbEncoded = true; // integer files unless the file says otherwise (a PNG gAMA chunk, "Linear")
+    double fileGamma = 0;    // when the file states a plain gamma g: values are decoded as v^g (1: linear)
+};
+
+// Reads the values as stored, scaled to [0, 1] for integer files (value / 255,
+// value / 65535), without any sRGB decoding. Returns "" on success, else the reason.
+std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info);
+
+// The palette indices of a palette (colour-mapped) PNG, rows top first. False
+// when the file is not a palette PNG or cannot be read.
+bool readPngPaletteIndices(const std::string& path, int& width, int& height, std::vector<unsigned char>& indices);
+
 } // namespace drt

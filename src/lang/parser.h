@@ -162,6 +162,7 @@ private:
     void layerTexture(Texture& below, SourceLoc loc);
     Pigment pigmentOrColor();
     void colorMap(Pigment& p);
+    void imageMap(Pigment& p); // parser_image_map.cpp, at 'image_map'
     Finish finish();
     Normal normal();
     bool turbulenceItem(Turbulence& turbulence);

@@ -96,7 +96,7 @@ Pigment Parser::pigmentBody(TokenKind closer, const char* where) {
                 fail(current_.loc, "'" + current_.text + "' is " + kindName(*v) + ", not a pigment or colour");
             std::vector<std::string> known{"color",    "rgb",       "checker", "hexagon",   "brick",
                                            "brick_size", "mortar", "gradient", "radial",  "onion", "spherical",
-                                           "color_map", "pigment_map", "average", "turbulence", "octaves", "omega", "lambda",
+                                           "color_map", "pigment_map", "average", "image_map", "turbulence", "octaves", "omega", "lambda",
                                            "translate", "rotate",   "scale",   "matrix"};
             known.insert(known.end(), kNoiseWords.begin(), kNoiseWords.end());
             failUnknown(current_, known);
@@ -196,6 +196,8 @@ bool Parser::pigmentItem(Pigment& p) {
         advance();
         p.pattern = PatternKind::Average;
         p.children.clear();
+    } else if (w == "image_map") {
+        imageMap(p);
     } else {
         return false;
     }

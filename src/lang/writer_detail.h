@@ -5,6 +5,7 @@
 
 #include "core/transform.h"
 #include "core/vec.h"
+#include "scene/image_map.h"
 #include "scene/scene.h"
 
 #include <array>
@@ -46,6 +47,10 @@ std::string formatSteps(const std::vector<Step>& steps);
 // The opening of the shape's block through its coefficients (and `sturm`).
 std::string algebraicHead(const Algebraic& a);
 std::string superellipsoidHead(const Superellipsoid& s);
+
+// ------------------------------------------------------------ writer_image_map.cpp
+
+std::string imageMapText(const ImageMap& m); // " image_map { \"/abs/file.png\" ... }"
 
 // ------------------------------------------------------------ writer_texture.cpp
 

@@ -189,6 +189,10 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         if (!p.pigmentMap.empty())
             colorMap();
         break;
+    case PatternKind::ImageMap:
+        if (p.imageMap) text += imageMapText(*p.imageMap);
+        else problems.insert("an image_map without its image");
+        break;
     default:
         text += std::string(" ") + noiseKeyword(p.pattern);
         colorMap();

@@ -16,12 +16,12 @@ const std::set<std::string>& primitiveWords() {
                                             "triangle", "smooth_triangle", "mesh", "mesh2", "union", "merge",
                                             "difference", "intersection", "object", "polygon",
                                             "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text",
-                                            "lathe", "sor"};
+                                            "lathe", "sor", "height_field"};
     return w;
 }
 
 const std::set<std::string>& unsupportedShapes() {
-    static const std::set<std::string> w = {"blob", "height_field", "isosurface", "julia_fractal",
+    static const std::set<std::string> w = {"blob", "isosurface", "julia_fractal",
                                             "parametric", "sphere_sweep", "bicubic_patch", "ovus"};
     return w;
 }
@@ -197,6 +197,10 @@ PovObject PovParser::object(const Tok& keyword) {
         o.shape = prismShape(keyword.loc);
     } else if (w == "lathe" || w == "sor") {
         o.shape = revolutionShape(keyword);
+    } else if (w == "height_field") {
+        std::optional<Mesh> field = heightFieldShape(keyword.loc);
+        if (field) o.shape = std::move(*field);
+        else po.lightOnly = true; // left out
     } else if (w == "text") {
         std::optional<Extrusion> text = textShape();
         if (text) o.shape = std::move(*text);

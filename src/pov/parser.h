@@ -121,6 +121,14 @@ public:
     std::optional<std::vector<Object>> clipObjects(const Tok& word); // after bounded_by / clipped_by
     // revolution.cpp: the bodies of lathe and sor, after '{'.
     Revolution revolutionShape(const Tok& keyword);
+    // height_field.cpp: the body of height_field after '{'; none if left out (a warning says why).
+    std::optional<Mesh> heightFieldShape(SourceLoc keyword);
+    static bool isImageTypeWord(const Tok& t); // gif tga png jpeg ... before an image file name
+    // An image file named in the scene, found like an include file (image extensions tried
+    // for a name without one); "" if not found.
+    std::string findDataFile(const std::string& name) const;
+    // image_map.cpp: after 'image_map'; none if unsupported (a warning says why).
+    std::optional<Pigment> imageMapPigment(SourceLoc keyword);
     void applyTransform(PovObject& o, const Transform& t);
     // ------------------------------------------------------------ algebraic.cpp
     static bool isAlgebraicWord(const std::string& w);

@@ -349,7 +349,13 @@ Pigment PovParser::pigmentBody(const Pigment& base, const char* closer) {
                 if (w == "julia") vectorExpr(), acceptSymbol(",");
                 floatExpr();
             }
-        } else if (w == "image_map" || w == "bump_map" || w == "material_map") {
+        } else if (w == "image_map") {
+            next();
+            const Transform keep = p.toWorld;
+            std::optional<Pigment> image = imageMapPigment(t.loc);
+            p = image ? *image : solid(rgb(0.5, 0.5, 0.5));
+            p.toWorld = keep;
+        } else if (w == "bump_map" || w == "material_map") {
             next();
             warnOnce(w, t.loc, "'" + w + "' is not supported; the pigment becomes mid grey");
             expectSymbol("{", ("after '" + w + "'").c_str());

@@ -1,5 +1,6 @@
 #include "render/pigment.h"
 
+#include "render/image_pattern.h"
 #include "render/noise.h"
 
 #include <cmath>
@@ -158,6 +159,11 @@ ColorFT lookupPigmentMap(const std::vector<Pigment::MapEntry>& map, double value
 ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
     if (pigment.pattern == PatternKind::Solid) return pigment.color;
     if (pigment.pattern == PatternKind::Average) return averagePigmentMap(pigment.pigmentMap, worldPoint);
+    if (pigment.pattern == PatternKind::ImageMap) { // a colour of its own, not a pattern value
+        if (!pigment.imageMap) return ColorFT{};
+        const Vec3 unwarped = pigment.toWorld.inversePoint(worldPoint);
+        return imageMapColor(*pigment.imageMap, unwarped + turbulenceOffset(pigment.turbulence, unwarped));
+    }
     const PatternSample s = samplePattern(pigment, worldPoint);
     if (s.block) return child(pigment, size_t(s.index), worldPoint);
     if (!pigment.pigmentMap.empty()) return lookupPigmentMap(pigment.pigmentMap, s.value, worldPoint);

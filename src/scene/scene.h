@@ -49,6 +49,7 @@ enum class PatternKind {
     // The weighted mean of every pigment_map / texture_map entry, each entry's
     // map value being its weight (POV-Ray's `average`).
     Average,
+    ImageMap, // an image file (scene/image_map.h)
 };
 
 // POV-Ray turbulence: the pattern is evaluated at p + amount * T(p), with T a
@@ -66,8 +67,11 @@ struct ColorMapEntry {
     ColorFT color;
 };
 
+struct ImageMap;
+
 struct Pigment {
     PatternKind pattern = PatternKind::Solid;
+    std::shared_ptr<const ImageMap> imageMap; // ImageMap: the decoded image and its mapping
     ColorFT color;                        // Solid (POV-Ray default: black)
     std::vector<Pigment> children;        // Checker, Hexagon, Brick sub-pigments
     std::vector<ColorMapEntry> colorMap;  // Gradient, Radial, Onion

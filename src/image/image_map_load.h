@@ -1,0 +1,17 @@
+// Decoding the image file of an image_map pigment (scene/image_map.h).
+#pragma once
+
+#include "scene/image_map.h"
+
+#include <string>
+
+namespace drt {
+
+// Reads `map.path` and fills the texels, decoded with v^gamma when
+// `map.gamma` > 0, else with the gamma the file states (a PNG gAMA chunk,
+// a linear file), else from sRGB for integer files; float files (EXR, HDR)
+// are linear. Alpha becomes transmit = 1 - alpha. Returns "" on
+// success, else the reason.
+std::string loadImageMap(ImageMap& map);
+
+} // namespace drt

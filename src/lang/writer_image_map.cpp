@@ -1,0 +1,40 @@
+// The .drt text of an image_map pigment: the file by its absolute path, then
+// the settings that differ from the defaults.
+#include "lang/writer_detail.h"
+#include "scene/image_map.h"
+
+#include <filesystem>
+
+namespace drt::writer {
+
+namespace {
+
+std::string quotedPath(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') out += '\\', out += c;
+        else if (c == '\n') out += "\\n";
+        else if (c == '\t') out += "\\t";
+        else out += c;
+    }
+    return out + "\"";
+}
+
+} // namespace
+
+std::string imageMapText(const ImageMap& m) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const std::string path = fs::absolute(m.path.empty() ? m.file : m.path, ec).lexically_normal().string();
+    std::string text = " image_map { " + quotedPath(path);
+    if (m.projection != ImageMap::Projection::Planar) text += " map_type " + std::to_string(int(m.projection));
+    if (m.once) text += " once";
+    if (m.interpolation != ImageMap::Interpolation::None)
+        text += " interpolate " + std::to_string(int(m.interpolation));
+    if (m.filterAll != 0) text += " filter all " + number(m.filterAll);
+    if (m.transmitAll != 0) text += " transmit all " + number(m.transmitAll);
+    if (m.gamma > 0) text += " gamma " + number(m.gamma);
+    return text + " }";
+}
+
+} // namespace drt::writer

@@ -1,0 +1,17 @@
+// Evaluating an image_map pigment (scene/image_map.h) at a pattern-space point.
+#pragma once
+
+#include "core/color.h"
+#include "core/vec.h"
+#include "scene/image_map.h"
+
+namespace drt {
+
+// POV-Ray's image_map: the point is projected to image coordinates (planar:
+// x, y in the unit square, image bottom at y = 0; spherical, cylindrical and
+// torus around the y axis), repeated unless `once`, and looked up without
+// interpolation, bilinearly, bicubically (Catmull-Rom) or by normalised distance. Off the map (once, or
+// a point on the projection's axis) the colour is clear: white, transmit 1.
+ColorFT imageMapColor(const ImageMap& map, const Vec3& p);
+
+} // namespace drt
