@@ -14,7 +14,6 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -40,26 +39,6 @@ std::string writePng16(const std::string& path, int w, int h, const std::vector<
     EXPECT_TRUE(out->open(path, spec));
     EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, values.data()));
     out->close();
-    return path;
-}
-
-// A palette PNG whose palette is in reverse grey order (index i is grey 255 - i),
-// so the index rule and the colour rule give different heights.
-std::string writePalettePng(const std::string& path, int w, int h, const std::vector<uint8_t>& indices) {
-    FILE* f = std::fopen(path.c_str(), "wb");
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    png_infop info = png_create_info_struct(png);
-    png_init_io(png, f);
-    png_set_IHDR(png, info, w, h, 8, PNG_COLOR_TYPE_PALETTE, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    std::vector<png_color> palette(256);
-    for (int i = 0; i < 256; ++i) palette[i] = {png_byte(255 - i), png_byte(255 - i), png_byte(255 - i)};
-    png_set_PLTE(png, info, palette.data(), 256);
-    png_write_info(png, info);
-    for (int y = 0; y < h; ++y) png_write_row(png, const_cast<png_bytep>(indices.data() + size_t(y) * w));
-    png_write_end(png, nullptr);
-    png_destroy_write_struct(&png, &info);
-    std::fclose(f);
     return path;
 }
 
@@ -142,19 +121,6 @@ TEST(HeightField, SixteenBitAndEightBitColourRules) {
     ASSERT_EQ(mc.vertices.size(), 4u);
     EXPECT_NEAR(mc.vertices[2].y, (1 * 256 + 2) / 65536.0, 1e-12); // top-left pixel at z = 1
     EXPECT_NEAR(mc.vertices[1].y, (255 * 256 + 255) / 65536.0, 1e-12);
-}
-
-TEST(HeightField, PalettePngUsesTheIndexTimes256) {
-    const std::string dir = test::tempDir();
-    writePalettePng(dir + "/pal.png", 2, 2, {0, 10, 200, 255});
-    Diagnostics diags;
-    const Scene s = loadPov("height_field { png \"pal.png\" }", dir, diags);
-    const Mesh& m = onlyMesh(s);
-    ASSERT_EQ(m.vertices.size(), 4u);
-    EXPECT_DOUBLE_EQ(m.vertices[0].y, 200 * 256 / 65536.0); // bottom-left
-    EXPECT_DOUBLE_EQ(m.vertices[1].y, 255 * 256 / 65536.0);
-    EXPECT_DOUBLE_EQ(m.vertices[2].y, 0.0);
-    EXPECT_DOUBLE_EQ(m.vertices[3].y, 10 * 256 / 65536.0);
 }
 
 TEST(HeightField, WaterLevelDropsCellsBelowIt) {

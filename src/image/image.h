@@ -48,8 +48,4 @@ struct ImageFileInfo {
 // value / 65535), without any sRGB decoding. Returns "" on success, else the reason.
 std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info);
 
-// The palette indices of a palette (colour-mapped) PNG, rows top first. False
-// when the file is not a palette PNG or cannot be read.
-bool readPngPaletteIndices(const std::string& path, int& width, int& height, std::vector<unsigned char>& indices);
-
 } // namespace drt

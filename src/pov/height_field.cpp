@@ -97,16 +97,15 @@ std::optional<Mesh> PovParser::heightFieldShape(SourceLoc keyword) {
         else if (t.isWord("gamma") || t.isWord("premultiplied")) next(), floatExpr();
         else break;
     }
-    // Palette PNGs: POV-Ray's height is the index times 256.
-    int pw = 0, ph = 0;
-    std::vector<unsigned char> palette;
-    const bool indexed = readPngPaletteIndices(path, pw, ph, palette) && pw == img.width && ph == img.height;
+    // Palette images: POV-Ray's height is the palette index times 256, but
+    // OpenImageIO (drt's one image reader) expands palettes, so their colours'
+    // rule applies (docs/pov.md).
     // POV-Ray puts image row 0 (the top) at z = 1 and scales heights by 1/65536.
     std::vector<double> heights(size_t(img.width) * img.height);
     for (int z = 0; z < img.height; ++z)
         for (int x = 0; x < img.width; ++x) {
             const int row = img.height - 1 - z;
-            const double value = indexed ? palette[size_t(row) * img.width + x] * 256.0 : povHeightValue(img, info, x, row);
+            const double value = povHeightValue(img, info, x, row);
             heights[size_t(z) * img.width + x] = value / 65536.0;
         }
     Mesh m = heightFieldMesh(heights, img.width, img.height, smooth, waterLevel);
