@@ -109,6 +109,13 @@ const std::vector<CrossCheckScene>& scenes() {
         {"foglyr2", "interior/foglyr2.pov", {}, 4}, // two turbulent ground fogs
         {"ttf1", "objects/ttf1.pov", {}, 4},        // assumed_gamma 1.9: shading in the working space
         {"orthographic", "camera/orthographic.pov", {"camera/camera-context.inc"}, 4},
+        {"ultra_wide_angle", "camera/ultra_wide_angle.pov", {"camera/camera-context.inc"}, 4},
+        {"panoramic", "camera/panoramic.pov", {"camera/camera-context.inc"}, 4},
+        {"cylinder1", "camera/cylinder1.pov", {"camera/camera-context.inc"}, 4},
+        {"cylinder2", "camera/cylinder2.pov", {"camera/camera-context.inc"}, 4},
+        {"cylinder3", "camera/cylinder3.pov", {"camera/camera-context.inc"}, 4},
+        {"cylinder4", "camera/cylinder4.pov", {"camera/camera-context.inc"}, 4},
+        {"spherical", "camera/spherical.pov", {"camera/camera-context.inc"}, 4},
         {"soft", "lights/soft.pov", {}, 4}, // clipped_by
         // Layered textures, texture_map, tiles, pigment_map, average (drt's own scene).
         {"layered_textures", "tests/pov_crosscheck/layered_textures.pov", {}, 16, true},

@@ -62,22 +62,34 @@ std::optional<Transform> Parser::transformItem() {
 // camera = "camera" "{" { camera-item } "}"
 void Parser::camera() {
     static const std::vector<std::string> known{
-        "perspective", "orthographic", "location",    "look_at",        "up",           "sky",          "right", "direction",
+        "perspective", "orthographic", "fisheye", "ultra_wide_angle", "panoramic", "cylinder", "spherical", "location",    "look_at",        "up",           "sky",          "right", "direction",
         "angle",       "aperture",    "focal_point",    "focal_distance", "shutter_open", "shutter_close"};
     const Token keyword = current_;
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'camera'");
     CameraSpec cam;
     cam.loc = keyword.loc;
-    SourceLoc lookAtLoc, focalPointLoc, shutterLoc, apertureLoc;
+    SourceLoc lookAtLoc, focalPointLoc, shutterLoc, apertureLoc, angleLoc, verticalLoc;
     while (!match(TokenKind::RightBrace)) {
         if (!check(TokenKind::Identifier)) failExpected("a camera keyword or '}'");
         const Token word = current_;
         const std::string& w = word.text;
         advance();
         const SourceLoc loc = current_.loc;
-        if (w == "perspective") cam.orthographic = false;
-        else if (w == "orthographic") cam.orthographic = true;
+        if (w == "perspective") cam.orthographic = false, cam.mapping = CameraMapping::Planar;
+        else if (w == "orthographic") cam.orthographic = true, cam.mapping = CameraMapping::Planar;
+        else if (w == "fisheye") cam.orthographic = false, cam.mapping = CameraMapping::Fisheye;
+        else if (w == "ultra_wide_angle") cam.orthographic = false, cam.mapping = CameraMapping::UltraWideAngle;
+        else if (w == "panoramic") cam.orthographic = false, cam.mapping = CameraMapping::Panoramic;
+        else if (w == "spherical") cam.orthographic = false, cam.mapping = CameraMapping::Spherical;
+        else if (w == "cylinder") {
+            static constexpr CameraMapping cylinders[] = {CameraMapping::Cylinder1, CameraMapping::Cylinder2,
+                                                          CameraMapping::Cylinder3, CameraMapping::Cylinder4};
+            const double n = floatExpr();
+            if (!(n == 1 || n == 2 || n == 3 || n == 4)) fail(loc, "'cylinder' camera type must be 1, 2, 3 or 4");
+            cam.orthographic = false;
+            cam.mapping = cylinders[static_cast<int>(n) - 1];
+        }
         else if (w == "location") cam.location = vectorExpr();
         else if (w == "look_at") lookAtLoc = loc, cam.lookAt = vectorExpr();
         else if (w == "up") requireNonZero(cam.up = vectorExpr(), loc, "'up'");
@@ -85,8 +97,10 @@ void Parser::camera() {
         else if (w == "right") requireNonZero(*(cam.right = vectorExpr()), loc, "'right'");
         else if (w == "direction") requireNonZero(cam.direction = vectorExpr(), loc, "'direction'");
         else if (w == "angle") {
+            angleLoc = loc;
             cam.angle = floatExpr();
-            if (!(*cam.angle > 0 && *cam.angle < 180)) error(loc, "'angle' must be between 0 and 180 degrees");
+            cam.verticalAngle.reset();
+            if (match(TokenKind::Comma)) verticalLoc = current_.loc, cam.verticalAngle = floatExpr();
         } else if (w == "aperture") {
             apertureLoc = loc;
             cam.aperture = floatExpr();
@@ -102,6 +116,15 @@ void Parser::camera() {
     if (cam.lookAt && *cam.lookAt == cam.location) error(lookAtLoc, "'look_at' is the same point as 'location'");
     if (cam.focalPoint && *cam.focalPoint == cam.location)
         error(focalPointLoc, "'focal_point' is the same point as 'location'");
+    // The angle's range depends on the camera type, which may follow it.
+    const bool planar = cam.mapping == CameraMapping::Planar;
+    if (cam.angle && planar && !(*cam.angle > 0 && *cam.angle < 180))
+        error(angleLoc, "'angle' must be between 0 and 180 degrees");
+    if (cam.angle && !planar && !(*cam.angle > 0)) error(angleLoc, "'angle' must be positive");
+    if (cam.verticalAngle && cam.mapping != CameraMapping::Spherical)
+        error(verticalLoc, "a vertical angle is only for the spherical camera");
+    if (cam.verticalAngle && !(*cam.verticalAngle > 0)) error(verticalLoc, "the vertical angle must be positive");
+    if (!planar && cam.aperture > 0) error(apertureLoc, "only a perspective camera has a lens: 'aperture' must be 0");
     if (cam.orthographic && cam.aperture > 0)
         error(apertureLoc, "an orthographic camera has no lens: 'aperture' must be 0");
     if (cam.shutterClose < cam.shutterOpen) error(shutterLoc, "'shutter_close' is before 'shutter_open'");

@@ -23,6 +23,21 @@ using namespace writer; // texture text (writer_texture.cpp)
 
 namespace {
 
+const char* cameraMappingKeyword(CameraMapping m) {
+    switch (m) {
+    case CameraMapping::Fisheye: return "fisheye";
+    case CameraMapping::UltraWideAngle: return "ultra_wide_angle";
+    case CameraMapping::Panoramic: return "panoramic";
+    case CameraMapping::Cylinder1: return "cylinder 1";
+    case CameraMapping::Cylinder2: return "cylinder 2";
+    case CameraMapping::Cylinder3: return "cylinder 3";
+    case CameraMapping::Cylinder4: return "cylinder 4";
+    case CameraMapping::Spherical: return "spherical";
+    case CameraMapping::Planar: break;
+    }
+    return "perspective";
+}
+
 // The parser normalises plane, disc and smooth-triangle normals. A unit
 // vector rarely normalises to itself to the last bit, so look for the short
 // direction the author most likely wrote (<0, 1, 1> for a 45-degree disc).
@@ -185,6 +200,8 @@ void SceneWriter::camera(const CameraSpec& c) {
     line(0, "camera {");
     if (c.orthographic)
         line(1, "orthographic");
+    if (c.mapping != CameraMapping::Planar)
+        line(1, cameraMappingKeyword(c.mapping));
     line(1, "location " + vector(c.location));
     if (!(c.direction == d.direction))
         line(1, "direction " + vector(c.direction));
@@ -197,7 +214,7 @@ void SceneWriter::camera(const CameraSpec& c) {
     if (c.lookAt)
         line(1, "look_at " + vector(*c.lookAt));
     if (c.angle)
-        line(1, "angle " + number(*c.angle));
+        line(1, "angle " + number(*c.angle) + (c.verticalAngle ? ", " + number(*c.verticalAngle) : ""));
     if (c.aperture != d.aperture)
         line(1, "aperture " + number(c.aperture));
     if (c.focalPoint)

@@ -21,7 +21,9 @@ void resolveCameraVectors(CameraSpec& c, bool orthoScale = false) {
     const double lookAtDistance = length(c.lookAt.value_or(Vec3(0, 0, 1)) - c.location);
     Vec3 right = c.right.value_or(Vec3(1.33, 0, 0));
     Vec3 dir = c.direction, up = c.up;
-    if (c.angle && *c.angle > 0 && *c.angle < 180 && length(dir) > 0)
+    // The non-planar cameras keep angle for their mapping; it leaves direction alone.
+    const bool planar = c.mapping == CameraMapping::Planar;
+    if (planar && c.angle && *c.angle > 0 && *c.angle < 180 && length(dir) > 0)
         dir = normalize(dir) * (0.5 * length(right) / std::tan(*c.angle * kPi / 360.0));
     if (c.lookAt) {
         const Vec3 to = *c.lookAt - c.location;
@@ -45,8 +47,17 @@ void resolveCameraVectors(CameraSpec& c, bool orthoScale = false) {
     c.direction = dir;
     c.right = right;
     c.up = up;
-    c.angle.reset();
+    if (planar) c.angle.reset();
     c.lookAt.reset();
+}
+
+std::optional<CameraMapping> cameraMapping(const std::string& keyword) {
+    if (keyword == "fisheye") return CameraMapping::Fisheye;
+    if (keyword == "ultra_wide_angle") return CameraMapping::UltraWideAngle;
+    if (keyword == "panoramic") return CameraMapping::Panoramic;
+    if (keyword == "cylinder") return CameraMapping::Cylinder1; // the type number follows
+    if (keyword == "spherical") return CameraMapping::Spherical;
+    return std::nullopt;
 }
 
 } // namespace
@@ -102,16 +113,23 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
             if (c.orthographic) orthoPending = false; // resolved when it was declared
             continue;
         }
-        if (w == "perspective") continue;
-        if (w == "orthographic") {
-            c.orthographic = true;
+        if (w == "perspective" || w == "orthographic") {
+            c.orthographic = w == "orthographic";
+            c.mapping = CameraMapping::Planar;
             continue;
         }
-        if (w == "fisheye" || w == "ultra_wide_angle" || w == "omnimax" || w == "panoramic" ||
-            w == "cylinder" || w == "spherical" || w == "mesh_camera") {
+        if (const std::optional<CameraMapping> m = cameraMapping(w)) {
+            c.orthographic = false;
+            c.mapping = *m;
+            if (w == "cylinder") {
+                const SourceLoc at = peek().loc;
+                const int n = static_cast<int>(floatExpr()); // POV-Ray truncates
+                if (n < 1 || n > 4) fail(at, "invalid cylinder camera type: valid are types 1 to 4");
+                c.mapping = static_cast<CameraMapping>(static_cast<int>(CameraMapping::Cylinder1) + n - 1);
+            }
+        } else if (w == "omnimax" || w == "mesh_camera") {
             warnOnce("camera-" + w, t.loc, "'" + w + "' camera is not supported; a perspective camera is used");
             nonPerspective = true;
-            if (w == "cylinder") floatExpr();
             if (w == "mesh_camera") expectSymbol("{", ""), skipBlock();
         } else if (w == "location") c.location = vectorExpr();
         else if (w == "look_at") c.lookAt = vectorExpr();
@@ -126,6 +144,17 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
             // only triggers the scaling rule).
             if (c.orthographic && !startsFloat(peekOperator())) continue;
             const double a = floatExpr();
+            if (c.mapping != CameraMapping::Planar) {
+                if (a < 0) fail(at, "negative camera angle");
+                c.angle = a;
+                c.verticalAngle.reset();
+                if (c.mapping == CameraMapping::Spherical && acceptSymbol(",")) {
+                    const SourceLoc vat = peek().loc;
+                    if (startsFloat(peekOperator())) c.verticalAngle = floatExpr();
+                    if (c.verticalAngle && *c.verticalAngle < 0) fail(vat, "negative vertical camera angle");
+                }
+                continue;
+            }
             if (acceptSymbol(",")) {
                 floatExpr();
                 warnOnce("angle-vertical", at, "the vertical camera angle is ignored (it follows from up/right)");
@@ -162,6 +191,11 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
         aperture = 0;
     }
     c.aperture = std::fabs(aperture) / 2;
+    if (c.mapping != CameraMapping::Planar) {
+        if (c.aperture > 0)
+            warnOnce("mapping-aperture", apertureLoc, "focal blur is supported with the perspective camera only; ignored");
+        c.aperture = 0;
+    }
     if (c.orthographic) {
         if (c.aperture > 0)
             warnOnce("ortho-aperture", apertureLoc, "focal blur with an orthographic camera is not supported; ignored");

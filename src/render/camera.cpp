@@ -36,7 +36,9 @@ ResolvedCamera resolveCamera(const CameraSpec& spec, int width, int height) {
 
     // Orthographic: the distance the angle's view width is measured at.
     const double orthoDistance = spec.lookAt ? length(*spec.lookAt - spec.location) : length(spec.direction);
-    if (spec.angle) {
+    const bool planar = spec.mapping == CameraMapping::Planar;
+    if (!planar && spec.orthographic) throw RenderError("camera: an orthographic camera cannot also be a non-planar one");
+    if (spec.angle && planar) {
         const double angle = *spec.angle;
         if (!(angle > 0 && angle < 180)) throw RenderError("camera: angle must be in (0, 180) degrees");
         // POV-Ray: |direction| = 0.5 |right| / tan(angle / 2).
@@ -75,6 +77,18 @@ ResolvedCamera resolveCamera(const CameraSpec& spec, int width, int height) {
         }
     }
 
+    if (!planar) {
+        cam.mapping = spec.mapping;
+        if (spec.aperture != 0) throw RenderError("camera: only perspective cameras have a lens (aperture must be 0)");
+        const bool spherical = spec.mapping == CameraMapping::Spherical;
+        const double angle = spec.angle.value_or(spherical ? 360.0 : 90.0);
+        const double vertical = spec.verticalAngle.value_or(spherical ? angle / 2 : 0.0);
+        if (!(angle > 0) || !std::isfinite(angle) || !(vertical >= 0) || !std::isfinite(vertical))
+            throw RenderError("camera: angle must be positive and finite");
+        cam.mappingAngle = angle * kPi / 180;
+        cam.verticalAngle = vertical * kPi / 180;
+    }
+
     cam.viewAxis = normalize(cam.direction);
     cam.lensU = normalize(cam.right);
     cam.lensV = normalize(cam.up);
@@ -110,6 +124,12 @@ Ray ResolvedCamera::generateRay(double px, double py, Vec2 lens, double time) co
     Ray ray;
     // Motion spans time 0..1; outside it objects hold their end positions.
     ray.time = std::clamp(time, 0.0, 1.0);
+    if (mapping != CameraMapping::Planar) {
+        const Ray mapped = mappedRay(px, py);
+        ray.origin = mapped.origin;
+        ray.direction = mapped.direction;
+        return ray;
+    }
     if (orthographic) {
         ray.origin = location + x0 * right + y0 * up;
         ray.direction = direction;

@@ -14,6 +14,20 @@
 //                                   |right| x |up|); with angle, right and up scale so the width is
 //                                   2 d tan(angle/2), d = |look_at - location| (|direction| without look_at).
 //                                   No lens: aperture must be 0.
+//   mapping (non-planar cameras, render/camera_mappings.cpp; x0, y0 as below, a = angle in radians;
+//   d, r, u the unit direction, right, up, |r|, |u| their lengths):
+//     fisheye          X = 2 x0 |r|, Y = 2 y0 |u|, rho = hypot(X, Y) <= 1 (else no ray), phi = atan2(Y, X),
+//                      theta = rho a / 2: D = sin theta (cos phi r + sin phi u) + cos theta d.
+//     ultra_wide_angle D = sin(x0 a) r + sin(y0 a |u|/|r|) u + cos(x0 a) cos(y0 a |u|/|r|) d.
+//     panoramic        p = (1 - px/width) pi, q = 2 y0 pi/2: D = cos p right + tan q up + sin p direction
+//                      (the vectors with their lengths; tan q capped at +-2e10 at the poles).
+//     cylinder 1       D = sin(x0 a) r + y0 |u| u + cos(x0 a) d (the axis is up).
+//     cylinder 2       D = x0 |r| r + sin(y0 a) u + cos(y0 a) d (the axis is right).
+//     cylinder 3       origin location + y0 |u| u, D = sin(x0 a) r + cos(x0 a) d.
+//     cylinder 4       origin location + x0 |r| r, D = sin(y0 a) u + cos(y0 a) d.
+//     spherical        h, v the horizontal, vertical angles: direction turned by y0 v towards up, then by
+//                      x0 h about up towards right (longitude/latitude).
+//                      No lens: aperture must be 0.
 //   shutter_open / shutter_close    ray time = lerp(open, close, u), clamped to Motion's [0, 1] (objects hold
 //                                   their end poses outside it); equal values draw no time sample.
 #pragma once
@@ -40,6 +54,10 @@ struct ResolvedCamera {
     double shutterClose = 0;
     // Parallel rays along direction from location + x0 right + y0 up.
     bool orthographic = false;
+    // Non-planar cameras (see above); angles in radians.
+    CameraMapping mapping = CameraMapping::Planar;
+    double mappingAngle = kPi / 2;
+    double verticalAngle = kPi;
 
     bool hasLens() const { return lensRadius > 0; }
     bool hasShutter() const { return shutterOpen != shutterClose; }
@@ -51,6 +69,12 @@ struct ResolvedCamera {
     // without a lens) at `time`: D = direction + x0 right + y0 up with
     // x0 = px/width - 0.5, y0 = 0.5 - py/height.
     Ray generateRay(double px, double py, Vec2 lens, double time) const;
+    // False where the camera traces no ray (outside a fisheye's circle): the
+    // pixel there is black, as in POV-Ray.
+    bool covers(double px, double py) const;
+
+private:
+    Ray mappedRay(double px, double py) const;
 };
 
 // Throws RenderError on input that would produce NaN (zero vectors, sky

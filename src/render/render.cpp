@@ -262,6 +262,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             // Only the effects in use draw samples (a pinhole takes no lens sample).
             const double time = camera.hasShutter() ? camera.timeAt(sampler.get1D(kDimTime)) : camera.shutterOpen;
             const Vec2 lens = camera.hasLens() ? sampler.get2D(kDimLens) : Vec2{0.5, 0.5};
+            if (!camera.covers(position.x, position.y)) {
+                pixel.add(Color(0)); // no ray there (POV-Ray: black)
+                continue;
+            }
             const Ray ray = camera.generateRay(position.x, position.y, lens, time);
             pixel.add(integrator.trace(ray, sampler, counts));
         }

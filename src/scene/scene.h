@@ -366,6 +366,10 @@ struct Light {
 
 // ---------------------------------------------------------------- camera
 
+// How image positions map to ray directions: Planar is the perspective (or,
+// with CameraSpec::orthographic, the orthographic) camera.
+enum class CameraMapping { Planar, Fisheye, UltraWideAngle, Panoramic, Cylinder1, Cylinder2, Cylinder3, Cylinder4, Spherical };
+
 // The camera as written; resolveCamera() (render/camera.h) turns it into
 // vectors once the image size is known.
 struct CameraSpec {
@@ -382,6 +386,12 @@ struct CameraSpec {
     // together so that the width is 2 d tan(angle / 2), d the distance from
     // location to look_at (|direction| without look_at). No lens (aperture 0).
     bool orthographic = false;
+    // POV-Ray's non-planar cameras (render/camera.h gives each one's rays).
+    // Only with orthographic false; angle is then the mapping's angle (it does
+    // not rescale direction) and defaults to 90, spherical's to 360 with
+    // verticalAngle angle / 2. No lens (aperture 0).
+    CameraMapping mapping = CameraMapping::Planar;
+    std::optional<double> verticalAngle; // spherical only
     // Thin lens (issue 3). aperture is the lens *diameter* in scene units; 0 is a pinhole.
     double aperture = 0;
     std::optional<Vec3> focalPoint;
