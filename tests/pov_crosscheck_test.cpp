@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -117,6 +118,7 @@ const std::vector<CrossCheckScene>& scenes() {
         {"cylinder4", "camera/cylinder4.pov", {"camera/camera-context.inc"}, 4},
         {"spherical", "camera/spherical.pov", {"camera/camera-context.inc"}, 4},
         {"soft", "lights/soft.pov", {}, 4}, // clipped_by
+        {"fisheye", "camera/fisheye.pov", {"camera/camera-context.inc"}, 4},
         // Layered textures, texture_map, tiles, pigment_map, average (drt's own scene).
         {"layered_textures", "tests/pov_crosscheck/layered_textures.pov", {}, 16, true},
     };
@@ -187,7 +189,11 @@ Image renderDrt(const Scene& scene, int samples) {
     options.samplesPerPixel = samples;
     options.adaptive = false;
     options.seed = 1;
-    return render(scene, options).color;
+    // POV-Ray's image is an 8-bit PNG, so values above 1 are clipped; drt's
+    // linear floats are clipped the same way, as drt's own PNG would hold them.
+    Image image = render(scene, options).color;
+    for (float& v : image.pixels) v = std::clamp(v, 0.0f, 1.0f);
+    return image;
 }
 
 // Writes the images and a figures line when DRT_CROSSCHECK_OUTPUT is set.
