@@ -141,6 +141,12 @@ void BlobGeometry::intersect(const Vec3& o, const Vec3& d, std::vector<Crossing>
     for (const Piece& p : pieces) cuts.push_back(p.t0), cuts.push_back(p.t1);
     std::sort(cuts.begin(), cuts.end());
     cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    // Each cut's polynomial is rounded differently, so a crossing that lies
+    // on a cut may show as a sign change across the cut only: the sign at the
+    // end of one cut is carried to the start of the next (outside every
+    // component the field minus the threshold is negative), which keeps the
+    // count of crossings consistent with inside and outside.
+    bool previousNegative = true;
     for (size_t i = 0; i + 1 < cuts.size(); ++i) {
         const double lo = cuts[i], hi = cuts[i + 1];
         const double mid = 0.5 * (lo + hi);
@@ -161,12 +167,19 @@ void BlobGeometry::intersect(const Vec3& o, const Vec3& d, std::vector<Crossing>
             poly[3] += p.strength * (2 * A * B);
             poly[4] += p.strength * (A * A);
         }
+        const auto value = [&](double t) {
+            double v = poly[4];
+            for (int k = 3; k >= 0; --k) v = v * t + poly[k];
+            return v;
+        };
+        const bool startNegative = !active || value(lo - mid) < 0;
+        if (startNegative != previousNegative) out.push_back({lo, -1.0 * gradient(o + lo * d)});
+        previousNegative = !active || value(hi - mid) < 0;
         if (!active) continue;
         double roots[5];
         const int n = polynomialRootsInInterval(poly, 4, lo - mid, hi - mid, roots);
         for (int k = 0; k < n; ++k) {
-            const double t = mid + roots[k];
-            if (!out.empty() && t <= out.back().t) continue; // a root on a shared cut, found twice
+            const double t = std::max(mid + roots[k], out.empty() ? -HUGE_VAL : out.back().t); // sorted
             out.push_back({t, -1.0 * gradient(o + t * d)});
         }
     }
