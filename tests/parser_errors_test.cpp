@@ -252,6 +252,14 @@ const ErrorCase kCases[] = {
     {"ConstantPolynomial", "poly { 2, <0, 0, 0, 0, 0, 0, 0, 0, 0, 5> }", "poly has no term in x, y or z: it defines no surface", 1, 1},
     {"SuperellipsoidCount", "superellipsoid { <1, 1, 1> }", "superellipsoid exponents <e, n> needs 2 numbers, found 3", 1, 18},
     {"SuperellipsoidPositive", "superellipsoid { <0, 1> }", "superellipsoid exponents must be positive", 1, 18},
+    // blob
+    {"BlobThreshold", "blob { threshold 0 sphere { 0, 1, 1 } }", "the blob threshold must be positive", 1, 18},
+    {"BlobNoComponent", "blob { threshold 0.5 }", "a blob needs at least one sphere or cylinder component", 1, 1},
+    {"BlobRadius", "blob { sphere { 0, -1, 1 } }", "blob component radius must be positive", 1, 20},
+    {"BlobStrengthZero", "blob {\n  sphere { 0, 1, strength 0 } }", "a blob component's strength must not be 0", 2, 27},
+    {"BlobCylinderEnds", "blob { cylinder { <1, 0, 0>, <1, 0, 0>, 1, 1 } }", "a blob cylinder needs two different ends", 1, 30},
+    {"BlobComponentComma", "blob { sphere { 0 1, 1 } }", "expected ',' after the point, found '1'", 1, 19},
+    {"BlobComponentClose", "blob { sphere { 0, 1, 1 pigment { rgb 1 } } }", "expected '}' to close the blob sphere, found 'pigment'", 1, 25},
     // media
     {"MediaUnknown", "media { absorbtion 1 }", "unknown keyword 'absorbtion'; did you mean 'absorption'?", 1, 9},
     {"MediaNotWord", "media { 1 }", "expected a media keyword or '}', found '1'", 1, 9},

@@ -60,7 +60,7 @@ TEST(PovClip, CsgMembersAndDeclaredObjectsKeepTheirClips) {
 
 TEST(PovClip, UnsupportedClipShapeIsLeftOutWithItsWarning) {
     Diagnostics diags;
-    const auto s = load("sphere { 0, 1 clipped_by { blob { threshold 0.5 sphere { 0, 1, 1 } } } }", diags);
+    const auto s = load("sphere { 0, 1 clipped_by { ovus { 1, 0.5 } } }", diags);
     ASSERT_TRUE(s) << diags.formatAll();
     ASSERT_EQ(s->objects.size(), 1u);
     EXPECT_TRUE(s->objects[0].clippedBy.empty());

@@ -151,6 +151,22 @@ struct Differ {
                      eq(s->points[i].y, t.points[i].y, p + ".points.y");
             return ok;
         }
+        if (auto* s = std::get_if<Blob>(&a)) {
+            auto& t = std::get<Blob>(b);
+            bool ok = eq(s->threshold, t.threshold, p + ".threshold") && eq(s->sturm, t.sturm, p + ".sturm") &&
+                      eq(s->hierarchy, t.hierarchy, p + ".hierarchy") &&
+                      eq(s->components.size(), t.components.size(), p + ".components.size");
+            for (size_t i = 0; ok && i < s->components.size(); ++i) {
+                const BlobComponent &x = s->components[i], &y = t.components[i];
+                ok = eq(x.kind, y.kind, p + ".kind") && eq(x.center, y.center, p + ".center") &&
+                     eq(x.end, y.end, p + ".end") && eq(x.radius, y.radius, p + ".radius") &&
+                     eq(x.strength, y.strength, p + ".strength") &&
+                     eq(x.transform.matrix() == y.transform.matrix() &&
+                            x.transform.inverseMatrix() == y.transform.inverseMatrix(),
+                        true, p + ".transform");
+            }
+            return ok;
+        }
         auto& s = std::get<Csg>(a);
         auto& t = std::get<Csg>(b);
         bool ok = eq(s.op, t.op, p + ".op") && eq(s.children.size(), t.children.size(), p + ".children.size");

@@ -4,6 +4,7 @@
 #include "accel/extrusion_shape.h"
 #include "accel/polynomial.h"
 #include "accel/revolution_shape.h"
+#include "accel/blob_shape.h"
 
 #include <algorithm>
 #include <cmath>
@@ -249,6 +250,9 @@ std::optional<AnalyticShape> prepareShape(const Shape& shape) {
     } else if (const auto* revolution = std::get_if<Revolution>(&shape)) {
         s.kind = ShapeKind::Revolution;
         s.revolution = std::make_shared<const RevolutionGeometry>(*revolution);
+    } else if (const auto* blob = std::get_if<Blob>(&shape)) {
+        s.kind = ShapeKind::Blob;
+        s.blob = std::make_shared<const BlobGeometry>(*blob);
     } else {
         return std::nullopt;
     }
@@ -278,6 +282,12 @@ int intersectShape(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossin
         for (const Crossing& c : many) list.add(c.t, c.normal);
         return list.count;
     }
+    case ShapeKind::Blob: {
+        thread_local std::vector<Crossing> many;
+        s.blob->intersect(o, d, many);
+        for (const Crossing& c : many) list.add(c.t, c.normal);
+        return list.count;
+    }
     }
     return 0;
 }
@@ -291,6 +301,11 @@ int allCrossings(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossing 
     }
     if (s.kind == ShapeKind::Revolution) {
         s.revolution->intersect(o, d, many);
+        first = many.data();
+        return static_cast<int>(many.size());
+    }
+    if (s.kind == ShapeKind::Blob) {
+        s.blob->intersect(o, d, many);
         first = many.data();
         return static_cast<int>(many.size());
     }
@@ -333,6 +348,7 @@ bool insideShape(const AnalyticShape& s, const Vec3& p) {
     case ShapeKind::Superellipsoid: return superellipsoidFunction(s.exponentE, s.exponentN, p) < 0;
     case ShapeKind::Extrusion: return s.extrusion->inside(p);
     case ShapeKind::Revolution: return s.revolution->inside(p);
+    case ShapeKind::Blob: return s.blob->inside(p);
     }
     return false;
 }
@@ -381,6 +397,7 @@ bool shapeBounds(const AnalyticShape& s, Vec3& lower, Vec3& upper) {
         return true;
     case ShapeKind::Extrusion: s.extrusion->bounds(lower, upper); return true;
     case ShapeKind::Revolution: s.revolution->bounds(lower, upper); return true;
+    case ShapeKind::Blob: s.blob->bounds(lower, upper); return true;
     }
     return false;
 }

@@ -145,6 +145,9 @@ private:
     // parser_revolution.cpp
     static bool isRevolutionWord(const std::string& word);
     void revolutionBody(const Token& keyword, ParsedObject& po);
+    // parser_blob.cpp
+    void blobBody(const Token& keyword, ParsedObject& po);
+    BlobComponent blobComponent();
 
     // --------------------------------------------------- parser_textures.cpp
     Texture texture();

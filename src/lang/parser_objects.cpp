@@ -13,7 +13,7 @@ static const std::vector<std::string>& objectWords() {
                                                 "mesh",   "union",    "merge",           "difference",
                                                 "intersection", "object",
                                                 "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text",
-                                                "lathe", "sor"};
+                                                "lathe", "sor", "blob"};
     return words;
 }
 
@@ -185,6 +185,8 @@ void Parser::shapeBody(const Token& keyword, ParsedObject& po) {
         textBody(po);
     } else if (isRevolutionWord(w)) {
         revolutionBody(keyword, po);
+    } else if (w == "blob") {
+        blobBody(keyword, po);
     } else if (w == "mesh") {
         Mesh m;
         while (checkWord("triangle") || checkWord("smooth_triangle")) {

@@ -485,6 +485,7 @@ std::string SceneWriter::shapeHead(const Object& o, int indent) {
         std::string operator()(const Mesh& m) const { return w.meshText(m, indent); }
         std::string operator()(const Extrusion& e) const { return writer::extrusionText(e, indent, w.problems_); }
         std::string operator()(const Revolution& r) const { return writer::revolutionText(r, indent); }
+        std::string operator()(const Blob& b) const { return writer::blobText(b, indent); }
         std::string operator()(const Csg& c) const {
             if (c.children.empty()) {
                 w.problems_.insert("a CSG with no members (left out)");

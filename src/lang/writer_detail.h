@@ -77,6 +77,11 @@ std::string finishBody(const Finish& f);     // the non-default items, each afte
 std::string interiorBody(const Interior& i, std::set<std::string>& problems); // the same, media included
 std::string mediaBody(const Media& m, std::set<std::string>& problems);       // the inside of `media { }`
 
+// ------------------------------------------------------------ writer_blob.cpp
+
+// The opening of a blob's block through its components (and sturm, hierarchy).
+std::string blobText(const Blob& b, int indent);
+
 // ------------------------------------------------------------ writer_revolution.cpp
 
 // The opening of a lathe or sor through its points, `open` and `sturm`.

@@ -16,12 +16,12 @@ const std::set<std::string>& primitiveWords() {
                                             "triangle", "smooth_triangle", "mesh", "mesh2", "union", "merge",
                                             "difference", "intersection", "object", "polygon",
                                             "quadric", "cubic", "quartic", "poly", "superellipsoid", "prism", "text",
-                                            "lathe", "sor", "height_field"};
+                                            "lathe", "sor", "height_field", "blob"};
     return w;
 }
 
 const std::set<std::string>& unsupportedShapes() {
-    static const std::set<std::string> w = {"blob", "isosurface", "julia_fractal",
+    static const std::set<std::string> w = {"isosurface", "julia_fractal",
                                             "parametric", "sphere_sweep", "bicubic_patch", "ovus"};
     return w;
 }
@@ -197,6 +197,8 @@ PovObject PovParser::object(const Tok& keyword) {
         o.shape = prismShape(keyword.loc);
     } else if (w == "lathe" || w == "sor") {
         o.shape = revolutionShape(keyword);
+    } else if (w == "blob") {
+        o.shape = blobShape(keyword);
     } else if (w == "height_field") {
         std::optional<Mesh> field = heightFieldShape(keyword.loc);
         if (field) o.shape = std::move(*field);
@@ -445,6 +447,8 @@ PovObject PovParser::object(const Tok& keyword) {
             if (Algebraic* a = std::get_if<Algebraic>(&o.shape); a && m == "sturm" && a->form != Algebraic::Form::Quadric)
                 a->sturm = on;
             if (Revolution* rv = std::get_if<Revolution>(&o.shape); rv && m == "sturm") rv->sturm = on;
+            if (Blob* b = std::get_if<Blob>(&o.shape); b && m == "sturm") b->sturm = on;
+            if (Blob* b = std::get_if<Blob>(&o.shape); b && m == "hierarchy") b->hierarchy = on;
         } else if (m == "inside_vector") {
             vectorExpr();
         } else if (m == "bounded_by" || m == "clipped_by") {

@@ -121,6 +121,8 @@ public:
     std::optional<std::vector<Object>> clipObjects(const Tok& word); // after bounded_by / clipped_by
     // revolution.cpp: the bodies of lathe and sor, after '{'.
     Revolution revolutionShape(const Tok& keyword);
+    // blob.cpp: the body of blob after '{' (components; textures in them are ignored with a warning).
+    Blob blobShape(const Tok& keyword);
     // height_field.cpp: the body of height_field after '{'; none if left out (a warning says why).
     std::optional<Mesh> heightFieldShape(SourceLoc keyword);
     static bool isImageTypeWord(const Tok& t); // gif tga png jpeg ... before an image file name

@@ -105,6 +105,11 @@ struct ShapeBox {
     Box3 operator()(const Superellipsoid&) const { return box(Vec3(-1), Vec3(1)); }
     Box3 operator()(const Extrusion& e) const { return extrusionBox(e); }
     Box3 operator()(const Revolution& r) const { return revolutionBox(r); }
+    Box3 operator()(const Blob& b) const {
+        Box3 result;
+        result.bounded = blobBounds(b, result.lower, result.upper);
+        return result.bounded ? result : box(Vec3(0), Vec3(0)); // no component: nothing to bound
+    }
     Box3 operator()(const Plane&) const { return unbounded(); }
     template <class Other> Box3 operator()(const Other&) const { return unbounded(); }
 };

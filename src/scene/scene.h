@@ -8,6 +8,7 @@
 #include "core/transform.h"
 #include "core/vec.h"
 #include "scene/algebraic.h"
+#include "scene/blob.h"
 #include "scene/extrusion.h"
 #include "scene/revolution.h"
 
@@ -278,9 +279,9 @@ struct Csg {
 };
 
 // Algebraic and Superellipsoid: scene/algebraic.h; Extrusion: scene/extrusion.h;
-// Revolution: scene/revolution.h.
+// Revolution: scene/revolution.h; Blob: scene/blob.h.
 using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid,
-                           Extrusion, Revolution>;
+                           Extrusion, Revolution, Blob>;
 
 // Motion over the shutter (issue 3): the extra transform reached at time 1,
 // applied after Object::transform. At time t the object is scaled by
