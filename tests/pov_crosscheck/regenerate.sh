@@ -70,7 +70,9 @@ cat <<'TEXT'
 Left to right: drt, POV-Ray, and the heatmap of the largest channel error per pixel (black 0, white 0.25).
 
 TEXT
-for name in focalblur arealit1 arealit2 layered_textures; do
+# Every scene the suite published, in the order it ran.
+for figures in $(ls -tr "$images"/*.figures); do
+    name=$(basename "$figures" .figures)
     read -r _ spp mae mse tile psnr <"$images/$name.figures"
     printf '### %s\n\n' "$name"
     printf '![drt](images/pov/%s-drt.png) ![POV-Ray](images/pov/%s-pov.png) ![difference](images/pov/%s-diff.png)\n\n' \
@@ -98,6 +100,17 @@ Compared by eye, the images agree in geometry, camera, focus and shadows; the he
   layers that filter and transmit over opaque and reflective ones, a `texture_map`, `tiles` whose tiles are
   layered, a shadow through two see-through layers, `pigment_map` and `average`. Its negative controls reverse
   the order of every layer stack and treat the layers' filter as transmit.
+- **Fog.** `foglyr2` has two turbulent ground fogs; as in POV-Ray each acts on the whole ray (their colours add,
+  their transmittances multiply). drt's turbulence is its own noise, so the fog's patches differ slightly.
+- **Gamma.** `ttf1` is an `assumed_gamma 1.9` scene: drt shades in that working space and decodes each pixel as
+  POV-Ray does, so lit surfaces agree, not only unlit ones.
+- **Cameras.** `orthographic`, `ultra_wide_angle`, `panoramic`, `cylinder1` to `cylinder4`, `spherical` and
+  `fisheye` are POV-Ray's own camera demos; differences are edges only.
+- **Clipping, text and prisms.** `soft` uses `clipped_by`; `outlines` is flat white text (timrom.ttf, with kerning)
+  and spline prisms on black, so it shows only where outlines differ. Its negative control moves the text by a
+  fiftieth of an em.
+- **Clipping to 8 bits.** POV-Ray's PNG holds values in [0, 1]; drt's floats are clipped the same way before the
+  comparison (the bright floor of `fisheye` exceeds 1).
 - **Smooth gradients.** POV-Ray's PNG has 8 bits per channel; drt's image is compared in floating point, so the
   quantisation steps of POV-Ray's output show as faint contour rings on the lit wall of arealit1 and arealit2
   (errors below 1/255).
