@@ -1,0 +1,42 @@
+// POV-Ray's pattern value modifiers: frequency, phase and the wave types.
+#include "pov/parser.h"
+
+namespace drt::pov {
+
+// frequency float, phase float, ramp_wave, triangle_wave, sine_wave,
+// scallop_wave, cubic_wave, poly_wave [float]: consumed with their value when
+// the peeked token `t` is one of them.
+bool PovParser::waveModifier(const Tok& t, PatternWave& wave) {
+    if (t.kind != TokKind::Word) return false;
+    const std::string& w = t.text;
+    if (w == "frequency" || w == "phase") {
+        next();
+        (w == "frequency" ? wave.frequency : wave.phase) = floatExpr();
+        return true;
+    }
+    static const std::pair<const char*, WaveKind> kinds[] = {
+        {"ramp_wave", WaveKind::Ramp},       {"triangle_wave", WaveKind::Triangle}, {"sine_wave", WaveKind::Sine},
+        {"scallop_wave", WaveKind::Scallop}, {"cubic_wave", WaveKind::Cubic},       {"poly_wave", WaveKind::Poly}};
+    for (const auto& [word, kind] : kinds) {
+        if (w != word) continue;
+        next();
+        wave.kind = kind;
+        if (kind == WaveKind::Poly) {
+            wave.exponent = 1; // POV-Ray's default exponent
+            const Tok e = peek();
+            if (e.kind == TokKind::Number || e.is("(") || e.is("-")) {
+                const double exponent = floatExpr();
+                if (exponent > 0) {
+                    wave.exponent = exponent;
+                } else {
+                    warnOnce("poly_wave-exponent", e.loc,
+                             "a 'poly_wave' exponent that is not positive is not supported; 1 is used");
+                }
+            }
+        }
+        return true;
+    }
+    return false;
+}
+
+} // namespace drt::pov
