@@ -144,5 +144,35 @@ TEST(PatternWave, PovPolyWaveWithANonPositiveExponentWarns) {
     EXPECT_EQ(scene->objects.at(0).texture.pigment.wave.exponent, 1);
 }
 
+TEST(PatternWave, PovWarpTurbulenceBeforeAnyTransformIsTheTurbulence) {
+    Diagnostics diags;
+    const std::optional<Scene> scene = loadPovSceneText(R"(
+sphere { 0, 1 pigment { crackle warp { turbulence <0.6, 0.2, 0.1> octaves 3 omega 0.4 lambda 2.5 } scale 0.5 } }
+sphere { 0, 1 pigment { crackle turbulence <0.6, 0.2, 0.1> octaves 3 omega 0.4 lambda 2.5 scale 0.5 } }
+)", "w.pov", diags);
+    ASSERT_TRUE(scene) << diags.formatAll();
+    EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
+    const Pigment &warped = scene->objects.at(0).texture.pigment, &plain = scene->objects.at(1).texture.pigment;
+    EXPECT_EQ(warped.turbulence.amount, Vec3(0.6, 0.2, 0.1));
+    EXPECT_EQ(warped.turbulence.octaves, 3);
+    EXPECT_EQ(warped.turbulence.omega, 0.4);
+    EXPECT_EQ(warped.turbulence.lambda, 2.5);
+    for (double t = -1; t < 1; t += 0.29) {
+        const Vec3 q(t, 0.3 - t, 0.7 * t);
+        EXPECT_EQ(evaluatePigment(warped, q).rgb, evaluatePigment(plain, q).rgb) << t;
+    }
+}
+
+TEST(PovWarp, TurbulenceAfterATransformAndOtherWarpsWarn) {
+    Diagnostics diags;
+    const std::optional<Scene> scene = loadPovSceneText(R"(
+sphere { 0, 1 pigment { bozo scale 2 warp { turbulence 0.5 } } }
+sphere { 0, 1 pigment { bozo warp { repeat x } } }
+)", "w.pov", diags);
+    ASSERT_TRUE(scene) << diags.formatAll();
+    EXPECT_EQ(diags.warningCount(), 2) << diags.formatAll();
+    EXPECT_EQ(scene->objects.at(0).texture.pigment.turbulence.amount, Vec3(0, 0, 0));
+}
+
 } // namespace
 } // namespace drt

@@ -40,3 +40,30 @@ bool PovParser::waveModifier(const Tok& t, PatternWave& wave) {
 }
 
 } // namespace drt::pov
+
+namespace drt::pov {
+
+// After 'warp' (the peeked token `t`): `warp { turbulence ... }` before any
+// transform of the pattern is the pattern's turbulence (both warp the
+// untransformed pattern point first); other warps are warnings.
+void PovParser::warpBlock(const Tok& t, Pigment& p) {
+    next();
+    expectSymbol("{", "after 'warp'");
+    if (!peek().isWord("turbulence")) {
+        warnOnce("warp", t.loc, "'warp' is not supported and is ignored");
+        skipBlock();
+        return;
+    }
+    Turbulence turbulence;
+    while (patternModifier(peek(), turbulence)) {
+    }
+    expectSymbol("}", "to end 'warp { turbulence ... }'");
+    if (p.toWorld.isIdentity() && p.turbulence.amount == Vec3(0, 0, 0)) {
+        p.turbulence = turbulence;
+    } else {
+        warnOnce("warp-turbulence", t.loc,
+                 "'warp { turbulence }' after a transform or beside 'turbulence' is not supported and is ignored");
+    }
+}
+
+} // namespace drt::pov

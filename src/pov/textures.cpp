@@ -365,6 +365,8 @@ Pigment PovParser::pigmentBody(const Pigment& base, const char* closer) {
             warnOnce(w, t.loc, "'" + w + "' is not supported; the pattern uses a grey ramp");
             expectSymbol("{", "");
             skipBlock();
+        } else if (w == "warp") {
+            warpBlock(t, p);
         } else if (ignoredPatternModifiers().count(w)) {
             next();
             warnOnce(w, t.loc, "'" + w + "' is not supported and is ignored");
