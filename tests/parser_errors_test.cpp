@@ -271,6 +271,11 @@ const ErrorCase kCases[] = {
     {"MediaIntervals", "media { intervals 0 }", "'intervals' must be between 1 and 4096", 1, 19},
     {"MediaSamples", "media { samples 5000 }", "'samples' must be between 1 and 4096", 1, 17},
     {"MediaMethod", "media { method 4 }", "'method' must be 1, 2 or 3", 1, 16},
+    {"PolyWaveExponent", "sphere { 0, 1 pigment { bozo poly_wave -2 } }", "the 'poly_wave' exponent must be positive", 1, 40},
+    {"PolyWaveExponentNormal", "sphere { 0, 1 normal { bumps poly_wave 0 } }", "the 'poly_wave' exponent must be positive", 1, 40},
+    {"WaveMisspelt", "sphere { 0, 1 pigment { bozo sine_wav } }", "unknown keyword 'sine_wav'; did you mean 'sine_wave'?", 1, 30},
+    {"FrequencyValue", "sphere { 0, 1 pigment { bozo frequency } }", "expected a value (a number, a vector <x, y, z> or a name), found '}'", 1, 40},
+    {"WaveOnBlockTexture", "sphere { 0, 1 texture { checker texture { pigment { rgb 1 } } texture { pigment { rgb 0 } } sine_wave } }", "unknown keyword 'sine_wave'", 1, 93},
     {"DensityUnknown", "media { density { bozzo } }", "unknown keyword 'bozzo'; did you mean 'bozo'?", 1, 19},
 };
 // clang-format on

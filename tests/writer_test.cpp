@@ -41,6 +41,10 @@ struct Differ {
         bool ok = eq(a.pattern, b.pattern, p + ".pattern") && eq(a.color, b.color, p + ".color") &&
                   eq(a.gradientAxis, b.gradientAxis, p + ".gradientAxis") &&
                   eq(a.brickSize, b.brickSize, p + ".brickSize") && eq(a.mortar, b.mortar, p + ".mortar") &&
+                  eq(a.wave.kind, b.wave.kind, p + ".wave.kind") &&
+                  eq(a.wave.frequency, b.wave.frequency, p + ".wave.frequency") &&
+                  eq(a.wave.phase, b.wave.phase, p + ".wave.phase") &&
+                  eq(a.wave.exponent, b.wave.exponent, p + ".wave.exponent") &&
                   // A solid colour's transform is unused (and not written).
                   (a.pattern == PatternKind::Solid || transform(a.toWorld, b.toWorld, p + ".toWorld")) &&
                   eq(a.colorMap.size(), b.colorMap.size(), p + ".colorMap.size") &&
@@ -401,6 +405,31 @@ difference { box { -1, 1 translate -4 * x } sphere { 0, 1.2 clipped_by { box { 0
     const std::optional<Scene> again = roundTrip(*scene, &text);
     ASSERT_TRUE(again);
     EXPECT_TRUE(drtInexpressible(*scene).empty());
+    EXPECT_EQ(writeDrtScene(*again, {"test"}), text);
+    const Image a = renderSmall(*scene), b = renderSmall(*again);
+    EXPECT_TRUE(a.pixels == b.pixels);
+}
+
+TEST(Writer, PatternWavesRoundTripToTheSameModelAndTheSameImage) {
+    const std::optional<Scene> scene = loadText(R"(
+camera { location <0, 1, -5> look_at <0, 0.5, 0> }
+light_source { <5, 8, -5>, rgb 1 }
+plane { y, 0 pigment { gradient x color_map { [0 rgb <1, 0, 0>] [1 rgb <0, 0, 1>] } frequency 2 phase 0.25 triangle_wave } }
+sphere { <-1.2, 1, 0>, 1 pigment { marble poly_wave 2.5 frequency 3 } normal { bumps 0.6 sine_wave scale 0.2 } }
+sphere { <1.2, 1, 0>, 1 pigment { onion scallop_wave scale 0.3 } }
+box { <-3, 0, 1>, <3, 2, 1.5> texture { gradient y texture_map { [0 pigment { rgb 1 }] [1 pigment { rgb <0, 1, 0> }] } cubic_wave frequency -1.5 } }
+cylinder { <0, 0, -2>, <0, 2, -2>, 0.3 pigment { bozo ramp_wave phase 0.5 } }
+)");
+    ASSERT_TRUE(scene);
+    std::string text;
+    const std::optional<Scene> again = roundTrip(*scene, &text);
+    ASSERT_TRUE(again);
+    EXPECT_NE(text.find("triangle_wave"), std::string::npos) << text;
+    EXPECT_NE(text.find("poly_wave 2.5"), std::string::npos) << text;
+    EXPECT_NE(text.find("cubic_wave"), std::string::npos) << text;
+    EXPECT_NE(text.find("sine_wave"), std::string::npos) << text;
+    EXPECT_EQ(again->objects.at(1).texture.normal->wave.kind, WaveKind::Sine);
+    EXPECT_EQ(again->objects.at(3).texture.pigment.wave.frequency, -1.5);
     EXPECT_EQ(writeDrtScene(*again, {"test"}), text);
     const Image a = renderSmall(*scene), b = renderSmall(*again);
     EXPECT_TRUE(a.pixels == b.pixels);

@@ -169,6 +169,8 @@ private:
     Finish finish();
     Normal normal();
     bool turbulenceItem(Turbulence& turbulence);
+    bool waveItem(PatternWave& wave); // parser_pattern_wave.cpp
+    static const std::vector<std::string>& waveWords();
     void reflectionBlock(Finish& f);
     Interior interior();
     // parser_media.cpp

@@ -102,6 +102,7 @@ Texture Parser::patternedTexture(TokenKind closer, const char* where) {
         if (std::optional<Transform> tr = transformItem()) {
             transformTextureSpaces(tex, *tr);
         } else if (turbulenceItem(pattern.turbulence)) {
+        } else if (!block && waveItem(pattern.wave)) {
         } else if (checkWord("texture_map")) {
             if (block) fail(current_.loc, "'" + w + "' takes its textures directly, not a texture_map");
             tex.map = textureMap(pattern.pattern == PatternKind::Average);
@@ -117,8 +118,10 @@ Texture Parser::patternedTexture(TokenKind closer, const char* where) {
             pattern.mortar = floatExpr();
             if (pattern.mortar < 0) error(vloc, "'mortar' must not be negative");
         } else if (check(TokenKind::Identifier)) {
-            failUnknown(current_, {"texture_map", "brick_size", "mortar", "turbulence", "octaves", "omega", "lambda",
-                                   "translate", "rotate", "scale", "matrix"});
+            std::vector<std::string> known{"texture_map", "brick_size", "mortar", "turbulence", "octaves", "omega",
+                                           "lambda", "translate", "rotate", "scale", "matrix"};
+            if (!block) known.insert(known.end(), waveWords().begin(), waveWords().end());
+            failUnknown(current_, known);
         } else {
             failExpected((std::string("'texture_map', a pattern modifier, a transform or ") + where).c_str());
         }

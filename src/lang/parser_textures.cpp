@@ -99,6 +99,7 @@ Pigment Parser::pigmentBody(TokenKind closer, const char* where) {
                                            "color_map", "pigment_map", "average", "image_map", "turbulence", "octaves", "omega", "lambda",
                                            "translate", "rotate",   "scale",   "matrix"};
             known.insert(known.end(), kNoiseWords.begin(), kNoiseWords.end());
+            known.insert(known.end(), waveWords().begin(), waveWords().end());
             failUnknown(current_, known);
         }
         failExpected((std::string("a colour, a pattern or ") + where).c_str());
@@ -108,7 +109,7 @@ Pigment Parser::pigmentBody(TokenKind closer, const char* where) {
 
 // pigment-item = colour | "checker" [ list ] | "hexagon" [ list ] | "brick" [ list ]
 //              | "brick_size" vector | "mortar" float | "gradient" vector | "radial" | "onion"
-//              | noise-pattern | turbulence-item | colour-map | transform
+//              | noise-pattern | turbulence-item | wave-item | colour-map | transform
 bool Parser::pigmentItem(Pigment& p) {
     const SourceLoc loc = current_.loc;
     if (std::optional<Transform> t = transformItem()) {
@@ -188,6 +189,7 @@ bool Parser::pigmentItem(Pigment& p) {
         p.children.clear();
         if (p.colorMap.empty()) p.colorMap = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}}; // grey ramp
     } else if (turbulenceItem(p.turbulence)) {
+    } else if (waveItem(p.wave)) {
     } else if (w == "color_map" || w == "colour_map") {
         colorMap(p);
     } else if (w == "pigment_map") {
@@ -260,7 +262,7 @@ bool Parser::turbulenceItem(Turbulence& t) {
     return true;
 }
 
-// normal = "normal" "{" noise-pattern [ float ] { turbulence-item | transform } "}"
+// normal = "normal" "{" noise-pattern [ float ] { turbulence-item | wave-item | transform } "}"
 // The float is the bump amount (default 0.5).
 Normal Parser::normal() {
     const Token keyword = current_;
@@ -277,8 +279,11 @@ Normal Parser::normal() {
         if (std::optional<Transform> tr = transformItem()) {
             n.toWorld = n.toWorld.then(*tr);
         } else if (turbulenceItem(n.turbulence)) {
+        } else if (waveItem(n.wave)) {
         } else if (check(TokenKind::Identifier)) {
-            failUnknown(current_, {"turbulence", "octaves", "omega", "lambda", "translate", "rotate", "scale", "matrix"});
+            std::vector<std::string> known{"turbulence", "octaves", "omega", "lambda", "translate", "rotate", "scale", "matrix"};
+            known.insert(known.end(), waveWords().begin(), waveWords().end());
+            failUnknown(current_, known);
         } else {
             failExpected("'turbulence', a transform or '}' in normal");
         }

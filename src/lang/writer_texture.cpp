@@ -67,6 +67,24 @@ static std::string turbulenceText(const Turbulence& t) {
     return text;
 }
 
+// " frequency ... phase ... triangle_wave" for the non-default items.
+static std::string waveText(const PatternWave& w) {
+    const PatternWave d;
+    std::string text;
+    if (w.frequency != d.frequency) text += " frequency " + number(w.frequency);
+    if (w.phase != d.phase) text += " phase " + number(w.phase);
+    switch (w.kind) {
+    case WaveKind::PatternDefault: break;
+    case WaveKind::Ramp: text += " ramp_wave"; break;
+    case WaveKind::Triangle: text += " triangle_wave"; break;
+    case WaveKind::Sine: text += " sine_wave"; break;
+    case WaveKind::Scallop: text += " scallop_wave"; break;
+    case WaveKind::Cubic: text += " cubic_wave"; break;
+    case WaveKind::Poly: text += " poly_wave " + number(w.exponent); break;
+    }
+    return text;
+}
+
 std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& exact) {
     const Transform after = writer::compose(suffix);
     std::vector<Step> own;
@@ -76,7 +94,7 @@ std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& e
     }
     const char* keyword = noiseKeyword(n.pattern);
     return std::string(" ") + (keyword ? keyword : "bumps") + " " + number(n.amount) + turbulenceText(n.turbulence) +
-           formatSteps(own);
+           waveText(n.wave) + formatSteps(own);
 }
 
 bool isDefaultFinish(const Finish& f) {
@@ -199,7 +217,7 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         break;
     }
     if (p.pattern != PatternKind::Solid)
-        text += turbulenceText(p.turbulence);
+        text += turbulenceText(p.turbulence) + waveText(p.wave);
     const Pigment d;
     if (!(p.brickSize == d.brickSize))
         text += " brick_size " + vector(p.brickSize);
@@ -275,6 +293,7 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
                                                    : blocks(e.texture)) +
                     "]";
         text += " }";
+        text += waveText(p.wave);
     }
     text += turbulenceText(p.turbulence);
     const Pigment d;

@@ -106,6 +106,8 @@ public:
     // After 'normal': the bump pattern, or none (then a warning says why).
     std::optional<Normal> normalBlock(SourceLoc keyword);
     bool patternModifier(const Tok& t, Turbulence& turbulence); // turbulence/octaves/omega/lambda
+    bool waveModifier(const Tok& t, PatternWave& wave); // frequency/phase/wave types (pattern_wave.cpp)
+    void warpBlock(const Tok& t, Pigment& p);           // at 'warp' (pattern_wave.cpp)
     void noiseNote(const std::string& kind, SourceLoc loc);
     std::vector<ColorMapEntry> colorMap(); // after 'color_map'
     // A transform keyword (translate rotate scale matrix transform) at the current token, or nothing.

@@ -163,7 +163,7 @@ Texture PovParser::patternedTexture(const Tok& word, const char* closer) {
             continue;
         }
         if (t.kind != TokKind::Word) failExpected(t, "'texture_map', a pattern modifier or '" + std::string(closer) + "'");
-        if (patternModifier(t, pattern.turbulence)) continue;
+        if (patternModifier(t, pattern.turbulence) || waveModifier(t, pattern.wave)) continue;
         next();
         if (t.text == "texture_map") {
             tex.map = textureMap();
@@ -174,10 +174,7 @@ Texture PovParser::patternedTexture(const Tok& word, const char* closer) {
         } else if (ignoredPatternModifiers().count(t.text)) {
             warnOnce(t.text, t.loc, "'" + t.text + "' is not supported and is ignored");
             if (t.text == "warp") expectSymbol("{", "after 'warp'"), skipBlock();
-            else if (t.text != "ramp_wave" && t.text != "triangle_wave" && t.text != "sine_wave" &&
-                     t.text != "scallop_wave" && t.text != "cubic_wave" &&
-                     (t.text != "poly_wave" || peek().kind == TokKind::Number))
-                expression();
+            else expression();
         } else if (pattern.pattern == PatternKind::Crackle &&
                    (t.text == "metric" || t.text == "form" || t.text == "offset" || t.text == "solid")) {
             warnOnce("crackle-" + t.text, t.loc, "crackle '" + t.text + "' is not supported and is ignored");

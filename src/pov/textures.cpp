@@ -89,9 +89,8 @@ std::optional<PatternKind> noiseKind(const std::string& w) {
 }
 
 const std::set<std::string>& ignoredPatternModifiers() {
-    static const std::set<std::string> words = {"turbulence", "octaves", "omega", "lambda", "frequency", "phase",
-                                                "ramp_wave", "triangle_wave", "sine_wave", "scallop_wave",
-                                                "cubic_wave", "poly_wave", "noise_generator", "warp", "agate_turb"};
+    static const std::set<std::string> words = {"turbulence", "octaves", "omega", "lambda", "noise_generator",
+                                                "warp", "agate_turb"};
     return words;
 }
 
@@ -308,8 +307,6 @@ Pigment PovParser::pigmentBody(const Pigment& base, const char* closer) {
         } else if (w == "spherical") {
             next();
             p.pattern = PatternKind::Spherical;
-        } else if (w == "ramp_wave") { // the default wave: nothing to change
-            next();
         } else if (w == "color_map" || w == "colour_map") {
             next();
             p.colorMap = colorMap();
@@ -325,7 +322,7 @@ Pigment PovParser::pigmentBody(const Pigment& base, const char* closer) {
         } else if (w == "pigment_map") {
             next();
             p.pigmentMap = pigmentMap();
-        } else if (patternModifier(t, p.turbulence)) {
+        } else if (patternModifier(t, p.turbulence) || waveModifier(t, p.wave)) {
         } else if (p.pattern == PatternKind::Crackle && (w == "metric" || w == "form" || w == "offset" || w == "solid")) {
             // crackle's variants: drt has one cellular form (F2 - F1, Euclidean).
             next();
@@ -368,15 +365,16 @@ Pigment PovParser::pigmentBody(const Pigment& base, const char* closer) {
             warnOnce(w, t.loc, "'" + w + "' is not supported; the pattern uses a grey ramp");
             expectSymbol("{", "");
             skipBlock();
+        } else if (w == "warp") {
+            warpBlock(t, p);
         } else if (ignoredPatternModifiers().count(w)) {
             next();
             warnOnce(w, t.loc, "'" + w + "' is not supported and is ignored");
             if (w == "warp") {
                 expectSymbol("{", "after 'warp'");
                 skipBlock();
-            } else if (w == "turbulence" || w == "octaves" || w == "omega" || w == "lambda" || w == "frequency" ||
-                       w == "phase" || w == "poly_wave" || w == "noise_generator") {
-                if (w != "poly_wave" || peek().kind == TokKind::Number) expression();
+            } else {
+                expression();
             }
         } else if (w == "quick_color" || w == "quick_colour") {
             next();
@@ -572,7 +570,7 @@ std::optional<Normal> PovParser::normalBlock(SourceLoc keyword) {
                 if (peek().kind == TokKind::Number || peek().is("(") || peek().is("-")) n.amount = floatExpr();
                 continue;
             }
-            if (patternModifier(t, n.turbulence)) continue;
+            if (patternModifier(t, n.turbulence) || waveModifier(t, n.wave)) continue;
             if (t.text == "accuracy") { // the finite-difference step: drt chooses its own
                 next();
                 floatExpr();

@@ -1,5 +1,7 @@
 #include "render/noise.h"
 
+#include "render/pattern_wave.h"
+
 #include "core/hash.h"
 
 #include <algorithm>
@@ -142,6 +144,16 @@ bool isNoisePattern(PatternKind kind) {
     }
 }
 
+namespace {
+
+// Marble's and wood's value before their built-in triangle wave: x, and the
+// distance from the z axis.
+double bandCoordinate(PatternKind kind, const Vec3& p) {
+    return kind == PatternKind::Marble ? p.x : std::sqrt(p.x * p.x + p.y * p.y);
+}
+
+} // namespace
+
 double noisePatternValue(PatternKind kind, const Turbulence& turbulence, const Vec3& point) {
     const Vec3 p = point + turbulenceOffset(turbulence, point);
     switch (kind) {
@@ -153,8 +165,8 @@ double noisePatternValue(PatternKind kind, const Turbulence& turbulence, const V
     }
     case PatternKind::Granite: return clamp01(absOctaves(p * 4.0, 6));
     case PatternKind::Wrinkles: return clamp01(absOctaves(p, 10));
-    case PatternKind::Marble: return triangleWave(p.x);
-    case PatternKind::Wood: return triangleWave(std::sqrt(p.x * p.x + p.y * p.y));
+    case PatternKind::Marble:
+    case PatternKind::Wood: return triangleWave(bandCoordinate(kind, p));
     case PatternKind::Agate: { // sine bands along z, warped by built-in turbulence (agate_turb 1)
         const double bands = 0.5 + 0.5 * std::sin(2 * kPi * (p.z + absOctaves(p, 6)));
         return clamp01(std::pow(bands, 0.77));
@@ -170,11 +182,20 @@ double noisePatternValue(PatternKind kind, const Turbulence& turbulence, const V
     }
 }
 
+double wavedNoisePatternValue(PatternKind kind, const Turbulence& turbulence, const PatternWave& wave,
+                              const Vec3& point) {
+    if (wave.isIdentity()) return noisePatternValue(kind, turbulence, point);
+    if (kind == PatternKind::Marble || kind == PatternKind::Wood)
+        return applyPatternWave(wave, bandCoordinate(kind, point + turbulenceOffset(turbulence, point)),
+                                WaveKind::Triangle);
+    return applyPatternWave(wave, noisePatternValue(kind, turbulence, point));
+}
+
 Vec3 perturbNormal(const Normal& bump, const Vec3& worldPoint, const Vec3& normal) {
     if (!(bump.amount != 0) || !std::isfinite(bump.amount)) return normal;
     const Vec3 p = bump.toWorld.inversePoint(worldPoint);
     constexpr double h = 1e-3; // pattern-space step; the patterns vary over about 1 unit
-    auto f = [&](const Vec3& q) { return noisePatternValue(bump.pattern, bump.turbulence, q); };
+    auto f = [&](const Vec3& q) { return wavedNoisePatternValue(bump.pattern, bump.turbulence, bump.wave, q); };
     const Vec3 gradient((f(p + Vec3(h, 0, 0)) - f(p - Vec3(h, 0, 0))) / (2 * h),
                         (f(p + Vec3(0, h, 0)) - f(p - Vec3(0, h, 0))) / (2 * h),
                         (f(p + Vec3(0, 0, h)) - f(p - Vec3(0, 0, h))) / (2 * h));

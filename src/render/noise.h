@@ -29,6 +29,12 @@ bool isNoisePattern(PatternKind kind);
 // turbulence warp. For non-noise kinds returns 0.
 double noisePatternValue(PatternKind kind, const Turbulence& turbulence, const Vec3& p);
 
+// noisePatternValue shaped by frequency, phase and wave type (render/pattern_wave.h).
+// Marble and wood apply the wave to their unwrapped band coordinate, with
+// triangle as their own default shape (POV-Ray's).
+double wavedNoisePatternValue(PatternKind kind, const Turbulence& turbulence, const PatternWave& wave,
+                              const Vec3& p);
+
 // The shading normal tilted by the bump pattern: n' = normalize(n - amount g_t),
 // g_t the tangential part of the world-space gradient of the pattern (central
 // differences in pattern space, mapped by the inverse transpose). The tilt is

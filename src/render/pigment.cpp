@@ -2,6 +2,7 @@
 
 #include "render/image_pattern.h"
 #include "render/noise.h"
+#include "render/pattern_wave.h"
 
 #include <cmath>
 
@@ -112,7 +113,7 @@ PatternSample samplePattern(const Pigment& pigment, const Vec3& worldPoint) {
     if (pigment.pattern == PatternKind::Solid || pigment.pattern == PatternKind::Average) return s;
     const Vec3 unwarped = pigment.toWorld.inversePoint(worldPoint);
     if (isNoisePattern(pigment.pattern)) {
-        s.value = noisePatternValue(pigment.pattern, pigment.turbulence, unwarped);
+        s.value = wavedNoisePatternValue(pigment.pattern, pigment.turbulence, pigment.wave, unwarped);
         return s;
     }
     const Vec3 p = unwarped + turbulenceOffset(pigment.turbulence, unwarped);
@@ -126,6 +127,7 @@ PatternSample samplePattern(const Pigment& pigment, const Vec3& worldPoint) {
     case PatternKind::Spherical: s.value = sphericalValue(p); break;
     default: break;
     }
+    if (!s.block && !pigment.wave.isIdentity()) s.value = applyPatternWave(pigment.wave, s.value);
     return s;
 }
 

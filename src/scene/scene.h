@@ -20,6 +20,8 @@
 #include <variant>
 #include <vector>
 
+#include "scene/pattern_wave.h"
+
 namespace drt {
 
 // ---------------------------------------------------------------- textures
@@ -80,6 +82,7 @@ struct Pigment {
     Vec3 brickSize{8, 3, 4.5};
     double mortar = 0.5;
     Turbulence turbulence; // noise and colour-map patterns
+    PatternWave wave;      // value patterns (not block patterns or image maps)
     // Pattern space -> world space, including the transforms of the object the
     // pigment belongs to that came after it. Evaluate at toWorld.inversePoint(p).
     Transform toWorld;
@@ -128,6 +131,7 @@ struct Normal {
     PatternKind pattern = PatternKind::Bumps;
     double amount = 0.5;
     Turbulence turbulence;
+    PatternWave wave; // shapes the bump pattern's scalar field
     Transform toWorld; // as Pigment::toWorld
 };
 
