@@ -177,7 +177,8 @@ void Parser::lightSource() {
         else if (w == "point_at") pointAtLoc = loc, light.pointAt = vectorExpr();
         else if (w == "radius" || w == "falloff") {
             const double a = floatExpr();
-            if (a < 0 || a > 90) error(loc, "'" + w + "' must be between 0 and 90 degrees");
+            // Used through its cosine, as POV-Ray does, so cones wider than 90 degrees work (lights/laser.pov).
+            if (a < 0) error(loc, "'" + w + "' must not be negative");
             (w == "radius" ? light.radius : light.falloff) = a;
         } else if (w == "tightness") {
             light.tightness = floatExpr();
