@@ -5,6 +5,7 @@
 #include "accel/motion.h"
 #include "accel/polynomial.h"
 #include "render/render.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -15,18 +16,8 @@
 namespace drt {
 namespace {
 
-Object makeObject(Shape shape, Transform transform = {}) {
-    Object o;
-    o.shape = std::move(shape);
-    o.transform = transform;
-    return o;
-}
-
-Scene sceneOf(std::vector<Object> objects) {
-    Scene s;
-    s.objects = std::move(objects);
-    return s;
-}
+using test::makeObject;
+using test::sceneOf;
 
 std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction, double time = 0) {
     Ray ray;

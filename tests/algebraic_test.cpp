@@ -5,6 +5,7 @@
 #include "accel/accel.h"
 #include "accel/algebraic_shapes.h"
 #include "accel/polynomial.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -351,18 +352,8 @@ TEST(Superellipsoid, HitsLieOnTheSurfaceAndInsideIsNegative) {
 
 // ------------------------------------------------------------ through the Accelerator
 
-Object makeObject(Shape shape, Transform transform = {}) {
-    Object o;
-    o.shape = std::move(shape);
-    o.transform = transform;
-    return o;
-}
-
-Scene sceneOf(std::vector<Object> objects) {
-    Scene s;
-    s.objects = std::move(objects);
-    return s;
-}
+using test::makeObject;
+using test::sceneOf;
 
 TEST(Algebraic, DifferenceWithASphereMatchesTheSphereVersion) {
     // difference { unit sphere as a quadric, sphere at (0.8, 0, 0) r 0.5 }

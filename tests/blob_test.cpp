@@ -9,6 +9,7 @@
 #include "lang/load.h"
 #include "lang/writer.h"
 #include "pov/load.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -239,18 +240,8 @@ TEST(BlobIntersect, BadBlobsAreRejected) {
 
 // ------------------------------------------------------------ through the Accelerator
 
-Object makeObject(Shape shape, Transform transform = {}) {
-    Object o;
-    o.shape = std::move(shape);
-    o.transform = transform;
-    return o;
-}
-
-Scene sceneOf(std::vector<Object> objects) {
-    Scene s;
-    s.objects = std::move(objects);
-    return s;
-}
+using test::makeObject;
+using test::sceneOf;
 
 TEST(BlobAccel, DifferenceWithABoxMatchesTheClosedFormSphere) {
     // difference { single-component blob (a sphere of radius 1), box x > 0 }:

@@ -2,6 +2,7 @@
 // clips, the open cut, shadows, clips on unions and CSG members, and bounds.
 #include "accel/accel.h"
 #include "render/render.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -10,18 +11,8 @@
 namespace drt {
 namespace {
 
-Object makeObject(Shape shape, Transform transform = {}) {
-    Object o;
-    o.shape = std::move(shape);
-    o.transform = transform;
-    return o;
-}
-
-Scene sceneOf(std::vector<Object> objects) {
-    Scene s;
-    s.objects = std::move(objects);
-    return s;
-}
+using test::makeObject;
+using test::sceneOf;
 
 std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction) {
     Ray ray;

@@ -1,7 +1,11 @@
 // Shared helpers for drt's tests.
 #pragma once
 
+#include "scene/scene.h"
+
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace drt::test {
 
@@ -21,5 +25,20 @@ struct CommandResult {
 };
 // Runs the drt executable with the given argument string (shell-quoted by the caller).
 CommandResult runDrt(const std::string& arguments);
+
+// An object of the given shape and transform, with every other field at its default.
+inline Object makeObject(Shape shape, Transform transform = {}) {
+    Object o;
+    o.shape = std::move(shape);
+    o.transform = transform;
+    return o;
+}
+
+// A scene holding just these objects.
+inline Scene sceneOf(std::vector<Object> objects) {
+    Scene s;
+    s.objects = std::move(objects);
+    return s;
+}
 
 } // namespace drt::test
