@@ -20,11 +20,8 @@ bool Parser::waveItem(PatternWave& wave) {
         (w == "frequency" ? wave.frequency : wave.phase) = floatExpr();
         return true;
     }
-    static const std::pair<const char*, WaveKind> kinds[] = {
-        {"ramp_wave", WaveKind::Ramp},       {"triangle_wave", WaveKind::Triangle}, {"sine_wave", WaveKind::Sine},
-        {"scallop_wave", WaveKind::Scallop}, {"cubic_wave", WaveKind::Cubic},       {"poly_wave", WaveKind::Poly}};
-    for (const auto& [word, kind] : kinds) {
-        if (w != word) continue;
+    if (const std::optional<WaveKind> named = waveKindNamed(w)) {
+        const WaveKind kind = *named;
         advance();
         wave.kind = kind;
         if (kind == WaveKind::Poly) {

@@ -73,15 +73,8 @@ static std::string waveText(const PatternWave& w) {
     std::string text;
     if (w.frequency != d.frequency) text += " frequency " + number(w.frequency);
     if (w.phase != d.phase) text += " phase " + number(w.phase);
-    switch (w.kind) {
-    case WaveKind::PatternDefault: break;
-    case WaveKind::Ramp: text += " ramp_wave"; break;
-    case WaveKind::Triangle: text += " triangle_wave"; break;
-    case WaveKind::Sine: text += " sine_wave"; break;
-    case WaveKind::Scallop: text += " scallop_wave"; break;
-    case WaveKind::Cubic: text += " cubic_wave"; break;
-    case WaveKind::Poly: text += " poly_wave " + number(w.exponent); break;
-    }
+    if (w.kind != WaveKind::PatternDefault) text += " " + std::string(waveKeyword(w.kind));
+    if (w.kind == WaveKind::Poly) text += " " + number(w.exponent);
     return text;
 }
 
