@@ -6,6 +6,7 @@
 #include "accel/shapes.h"
 #include "outline/prism_outline.h"
 #include "outline/text_outline.h"
+#include "test_support.h"
 
 #include <ft2build.h>
 #include FT_FREETYPE_H
@@ -411,10 +412,7 @@ TEST(ExtrusionAccel, DifferenceWithAPrismCutsTheHole) {
     EXPECT_NEAR(dot(hit.geometricNormal, Vec3(1, 0, 0)), 1, 1e-9);
 }
 
-Vec3 randomUnitVector(std::mt19937& rng) {
-    std::normal_distribution<double> g;
-    return normalize(Vec3{g(rng), g(rng), g(rng)});
-}
+using test::randomUnitVector;
 
 // Rays spawned from hits on text (non-convex, thin) and on a rotated conic
 // prism, at several scales: a ray leaving a surface must not hit it again at
@@ -439,20 +437,7 @@ TEST(ExtrusionAccel, SpawnedRaysDoNotReHitTheirSurface) {
                 ray.direction = target - origin;
                 Hit hit;
                 if (!accel.intersect(ray, hit)) continue;
-                const Vec3 outward = dot(hit.geometricNormal, origin - hit.point) > 0 ? hit.geometricNormal
-                                                                                        : -hit.geometricNormal;
-                for (int side : {1, -1}) {
-                    Vec3 d = randomUnitVector(rng);
-                    if (dot(d, side * outward) < 0) d = -d;
-                    Ray spawned;
-                    spawned.direction = d;
-                    spawned.origin = Accelerator::offsetOrigin(hit, d);
-                    Hit again;
-                    ++rays;
-                    if (accel.intersect(spawned, again) && length(again.point - hit.point) < 1e-5 * scale &&
-                        dot(again.geometricNormal, hit.geometricNormal) > 0.99)
-                        ++selfHits;
-                }
+                test::countSelfHits(accel, hit, origin, scale, rng, rays, selfHits);
             }
         }
     EXPECT_EQ(selfHits, 0) << "among " << rays;

@@ -1,8 +1,10 @@
 // Shared helpers for drt's tests.
 #pragma once
 
+#include "accel/accel.h"
 #include "scene/scene.h"
 
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,6 +41,32 @@ inline Scene sceneOf(std::vector<Object> objects) {
     Scene s;
     s.objects = std::move(objects);
     return s;
+}
+
+// A uniformly distributed random unit vector.
+inline Vec3 randomUnitVector(std::mt19937& rng) {
+    std::normal_distribution<double> g;
+    return normalize(Vec3{g(rng), g(rng), g(rng)});
+}
+
+// Spawns one ray in a random direction to each side of the surface at `hit`
+// (reached from `origin`) and counts, in `selfHits`, those that hit the same
+// surface again at their own spawn point (within 1e-5 of `scale`).
+inline void countSelfHits(const Accelerator& accel, const Hit& hit, const Vec3& origin, double scale,
+                          std::mt19937& rng, int& rays, int& selfHits) {
+    const Vec3 outward = dot(hit.geometricNormal, origin - hit.point) > 0 ? hit.geometricNormal : -hit.geometricNormal;
+    for (int side : {1, -1}) {
+        Vec3 d = randomUnitVector(rng);
+        if (dot(d, side * outward) < 0) d = -d;
+        Ray spawned;
+        spawned.direction = d;
+        spawned.origin = Accelerator::offsetOrigin(hit, d);
+        Hit again;
+        ++rays;
+        if (accel.intersect(spawned, again) && length(again.point - hit.point) < 1e-5 * scale &&
+            dot(again.geometricNormal, hit.geometricNormal) > 0.99)
+            ++selfHits;
+    }
 }
 
 } // namespace drt::test
