@@ -125,23 +125,23 @@ TEST(Adaptive, InvalidOptionsAreRenderErrors) {
 
 TEST(Adaptive, SceneBlockSetsTheOptionsAndTheCommandLineOverridesThem) {
     const Scene scene = parse("render { samples 4 adaptive { error 0.05 min_samples 8 max_samples 64 } }");
-    RenderOptions o = resolveRenderOptions(scene, {});
+    RenderOptions o = resolveRenderOptions(scene.render);
     EXPECT_TRUE(o.adaptive);
     EXPECT_EQ(o.adaptiveError, 0.05);
     EXPECT_EQ(o.minSamplesPerPixel, 8);
     EXPECT_EQ(o.maxSamplesPerPixel, 64);
-    RenderOverrides overrides;
+    RenderSettings overrides;
     overrides.adaptive = false;
     overrides.maxSamplesPerPixel = 32;
-    o = resolveRenderOptions(scene, overrides);
+    o = resolveRenderOptions(overlaySettings(scene.render, overrides));
     EXPECT_FALSE(o.adaptive);
     EXPECT_EQ(o.maxSamplesPerPixel, 32);
 
     const Scene bare = parse("render { adaptive }");
-    o = resolveRenderOptions(bare, {});
+    o = resolveRenderOptions(bare.render);
     EXPECT_TRUE(o.adaptive);
     EXPECT_EQ(o.minSamplesPerPixel, RenderOptions{}.minSamplesPerPixel);
-    EXPECT_FALSE(resolveRenderOptions(Scene{}, {}).adaptive);
+    EXPECT_FALSE(resolveRenderOptions(RenderSettings{}).adaptive);
 }
 
 TEST(Adaptive, BadSceneValuesAreErrorsWithALocation) {

@@ -19,7 +19,7 @@ std::optional<Scene> loadPov(const std::string& text, Diagnostics& diags) {
 }
 
 Image renderSmall(const Scene& scene) {
-    RenderOptions options = resolveRenderOptions(scene, {});
+    RenderOptions options = resolveRenderOptions(scene.render);
     options.width = 80;
     options.height = 60;
     options.samplesPerPixel = 1;

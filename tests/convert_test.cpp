@@ -26,7 +26,7 @@ plane { y, 0 pigment { checker color rgb 1, color rgb 0.2 scale 0.5 } rotate 10 
 )";
 
 Image renderSmall(const Scene& scene) {
-    RenderOptions options = resolveRenderOptions(scene, {});
+    RenderOptions options = resolveRenderOptions(scene.render);
     options.width = 48;
     options.height = 36;
     options.samplesPerPixel = 2;

@@ -37,7 +37,7 @@ std::vector<std::string> exampleScenes() {
 
 std::string renderToFile(const Scene& scene, int threads, int tileSize, const std::string& path,
                          RenderResult& result) {
-    RenderOptions options = resolveRenderOptions(scene, {});
+    RenderOptions options = resolveRenderOptions(scene.render);
     options.width = 64;
     options.height = 48;
     options.samplesPerPixel = 4;
@@ -60,8 +60,9 @@ TEST(Determinism, EveryExampleIsByteIdenticalForAnyThreadCountAndTileSize) {
     for (const std::string& scenePath : scenes) {
         SCOPED_TRACE(scenePath);
         Diagnostics diagnostics;
-        const std::optional<Scene> scene = loadSceneFile(scenePath, diagnostics);
+        std::optional<Scene> scene = loadSceneFile(scenePath, diagnostics);
         ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
+        scene = test::withAssets(std::move(*scene));
         const std::string name = fs::path(scenePath).stem().string();
         std::string baseline, baselineVariance;
         RenderResult first;
@@ -134,7 +135,7 @@ TEST(Determinism, ThreadDenormalModeDoesNotReachTheImage) {
         "plane { z, 0 pigment { rgb <1e-39, 0.5, 0.5> } finish { ambient 1 diffuse 0 } }",
         "denormal.drt", diagnostics);
     ASSERT_TRUE(scene) << diagnostics.formatAll();
-    RenderOptions options = resolveRenderOptions(*scene, {});
+    RenderOptions options = resolveRenderOptions(scene->render);
     options.width = 8;
     options.height = 6;
     options.samplesPerPixel = 1;

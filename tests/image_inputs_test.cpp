@@ -1,6 +1,7 @@
 // Image inputs of POV-Ray scenes: height_field (a mesh from an image's grey
 // values) and image_map pigments (texels, projections, interpolation), in the
 // POV front end, the .drt language and the writer.
+#include "assets/assets.h"
 #include "core/diagnostics.h"
 #include "image/srgb.h"
 #include "lang/load.h"
@@ -8,6 +9,7 @@
 #include "pov/load.h"
 #include "render/image_pattern.h"
 #include "render/pigment.h"
+#include "render/render.h"
 #include "scene/height_field.h"
 #include "scene/image_map.h"
 #include "test_support.h"
@@ -50,6 +52,7 @@ std::string quadrants(const std::string& dir) {
 Scene loadPov(const std::string& text, const std::string& dir, Diagnostics& diags) {
     std::optional<Scene> s = loadPovSceneText(text, "s.pov", diags, PovOptions{}, dir);
     EXPECT_TRUE(s) << diags.formatAll();
+    if (s) EXPECT_TRUE(resolveAssets(*s, diags)) << diags.formatAll();
     return s ? *s : Scene{};
 }
 
@@ -172,8 +175,11 @@ TEST(HeightField, UnreadableImageIsAnError) {
     const std::string dir = test::tempDir();
     test::writeFile(dir + "/bad.png", "not a png");
     Diagnostics diags;
-    const auto s = loadPovSceneText("height_field { png \"bad.png\" }", "s.pov", diags, PovOptions{}, dir);
-    EXPECT_FALSE(s);
+    // The file is found while parsing and decoded after it (assets/assets.h),
+    // the error still pointing at the file name.
+    auto s = loadPovSceneText("height_field { png \"bad.png\" }", "s.pov", diags, PovOptions{}, dir);
+    ASSERT_TRUE(s) << diags.formatAll();
+    EXPECT_FALSE(resolveAssets(*s, diags));
     EXPECT_NE(diags.formatAll().find("s.pov:1:20"), std::string::npos) << diags.formatAll();
 }
 
@@ -322,8 +328,10 @@ TEST(ImageMap, UnreadableFileIsAnErrorAndBareNamesGetImageExtensions) {
     const std::string dir = test::tempDir();
     test::writeFile(dir + "/bad.png", "not an image");
     Diagnostics diags;
-    EXPECT_FALSE(loadPovSceneText("sphere { 0, 1 pigment { image_map { png \"bad.png\" } } }", "s.pov", diags,
-                                  PovOptions{}, dir));
+    auto bad = loadPovSceneText("sphere { 0, 1 pigment { image_map { png \"bad.png\" } } }", "s.pov", diags,
+                                PovOptions{}, dir);
+    ASSERT_TRUE(bad) << diags.formatAll();
+    EXPECT_FALSE(resolveAssets(*bad, diags));
     EXPECT_NE(diags.formatAll().find("s.pov:1:41"), std::string::npos) << diags.formatAll();
     // POV-Ray's "sign" finds sign.png (advanced/cliche/cliche.pov relies on it).
     quadrants(dir);
@@ -398,7 +406,22 @@ TEST(ImageMap, PovImageMapConvertsAndRoundTrips) {
     const auto back = loadSceneText(text, "back.drt", again, "/");
     ASSERT_TRUE(back) << again.formatAll() << "\n" << text;
     const Vec3 p{0.4, 0.3, 0};
-    EXPECT_EQ(evaluatePigment(back->objects[0].texture.pigment, p), evaluatePigment(s.objects[0].texture.pigment, p));
+    const Scene backRead = test::withAssets(*back);
+    EXPECT_EQ(evaluatePigment(backRead.objects[0].texture.pigment, p), evaluatePigment(s.objects[0].texture.pigment, p));
+}
+
+TEST(ImageMap, RenderRefusesAnImageThatWasNotRead) {
+    const std::string dir = test::tempDir();
+    quadrants(dir);
+    Diagnostics diags;
+    const auto s = loadPovSceneText("sphere { 0, 1 pigment { image_map { png \"quad.png\" } } }", "s.pov", diags,
+                                    PovOptions{}, dir);
+    ASSERT_TRUE(s) << diags.formatAll();
+    EXPECT_FALSE(assetsResolved(*s));
+    RenderOptions options;
+    options.width = options.height = 4;
+    EXPECT_THROW(render(*s, options), RenderError);
+    EXPECT_TRUE(assetsResolved(test::withAssets(*s)));
 }
 
 } // namespace

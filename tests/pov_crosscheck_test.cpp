@@ -177,13 +177,15 @@ std::optional<Scene> convertedScene(const std::string& povPath) {
         return std::nullopt;
     EXPECT_TRUE(drtInexpressible(*scene).empty());
     Diagnostics again;
-    std::optional<Scene> reloaded = loadSceneText(writeDrtScene(*scene), "converted.drt", again);
+    std::optional<Scene> reloaded =
+        loadSceneText(writeDrtScene(test::withAssets(*scene)), "converted.drt", again);
     EXPECT_TRUE(reloaded) << again.formatAll();
-    return reloaded;
+    if (!reloaded) return std::nullopt;
+    return test::withAssets(std::move(*reloaded));
 }
 
 Image renderDrt(const Scene& scene, int samples) {
-    RenderOptions options = resolveRenderOptions(scene, {});
+    RenderOptions options = resolveRenderOptions(scene.render);
     options.width = kWidth;
     options.height = kHeight;
     options.samplesPerPixel = samples;

@@ -271,7 +271,7 @@ TEST(PovScene, AssumedGammaShadesInTheWorkingSpaceAndDecodesThePixel) {
                               "light_source { <0, 0, -1000> rgb 1 }\n"
                               "plane { z, 0 pigment { rgb 0.5 } finish { ambient 0.2 diffuse 0.6 } }\n";
     const Scene s = loadOk(scene);
-    RenderOptions options = resolveRenderOptions(s, {});
+    RenderOptions options = resolveRenderOptions(s.render);
     options.width = 8;
     options.height = 6;
     options.samplesPerPixel = 1;

@@ -540,10 +540,10 @@ TEST(Render, OptionsComeFromOverridesThenSceneThenDefaults) {
     scene.render.width = 640;
     scene.render.samplesPerPixel = 9;
     scene.render.seed = 3;
-    RenderOverrides overrides;
+    RenderSettings overrides;
     overrides.samplesPerPixel = 4;
     overrides.threads = 2;
-    const RenderOptions o = resolveRenderOptions(scene, overrides);
+    const RenderOptions o = resolveRenderOptions(overlaySettings(scene.render, overrides));
     EXPECT_EQ(o.width, 640);
     EXPECT_EQ(o.height, 240);
     EXPECT_EQ(o.samplesPerPixel, 4);

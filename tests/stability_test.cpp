@@ -441,14 +441,15 @@ TEST(Stability, EveryExampleRendersWithoutNonFiniteSamples) {
     for (const auto& entry : std::filesystem::directory_iterator(test::sourcePath("examples"))) {
         if (entry.path().extension() != ".drt") continue;
         Diagnostics diagnostics;
-        const std::optional<Scene> scene = loadSceneFile(entry.path().string(), diagnostics);
+        std::optional<Scene> scene = loadSceneFile(entry.path().string(), diagnostics);
         ASSERT_TRUE(scene) << entry.path() << "\n" << diagnostics.formatAll();
-        RenderOverrides small;
+        scene = test::withAssets(std::move(*scene));
+        RenderSettings small;
         small.width = 24;
         small.height = 18;
         small.samplesPerPixel = 2;
         small.threads = 2;
-        RenderOptions o = resolveRenderOptions(*scene, small);
+        RenderOptions o = resolveRenderOptions(overlaySettings(scene->render, small));
         o.adaptive = false;
         const RenderResult r = render(*scene, o);
         EXPECT_EQ(r.stats.nonFiniteSamples, 0u) << entry.path();

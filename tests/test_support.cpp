@@ -1,5 +1,9 @@
 #include "test_support.h"
 
+#include "assets/assets.h"
+
+#include <gtest/gtest.h>
+
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +15,12 @@
 namespace fs = std::filesystem;
 
 namespace drt::test {
+
+Scene withAssets(Scene scene) {
+    Diagnostics diags;
+    if (!resolveAssets(scene, diags)) ADD_FAILURE() << diags.formatAll();
+    return scene;
+}
 
 std::string sourcePath(const std::string& relative) { return (fs::path(DRT_SOURCE_DIR) / relative).string(); }
 

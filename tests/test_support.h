@@ -28,6 +28,10 @@ struct CommandResult {
 // Runs the drt executable with the given argument string (shell-quoted by the caller).
 CommandResult runDrt(const std::string& arguments);
 
+// The scene with the files it names read (assets/assets.h), as drt render
+// reads them after parsing; adds a test failure if that reports an error.
+Scene withAssets(Scene scene);
+
 // An object of the given shape and transform, with every other field at its default.
 inline Object makeObject(Shape shape, Transform transform = {}) {
     Object o;

@@ -321,11 +321,11 @@ std::optional<Scene> roundTrip(const Scene& scene, std::string* written = nullpt
 }
 
 Image renderSmall(const Scene& scene) {
-    RenderOptions options = resolveRenderOptions(scene, {});
+    RenderOptions options = resolveRenderOptions(scene.render);
     options.width = 64;
     options.height = 48;
     options.samplesPerPixel = std::min(options.samplesPerPixel, 4);
-    return render(scene, options).color;
+    return render(test::withAssets(scene), options).color;
 }
 
 // ------------------------------------------------------------ examples

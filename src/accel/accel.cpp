@@ -3,7 +3,7 @@
 // so that the point lies on the surface to double precision, which is what
 // offsetOrigin needs to avoid self-intersection.
 #include "accel/accel_impl.h"
-#include "render/render.h"
+#include "core/error.h"
 
 #include <bit>
 #include <cfloat>

@@ -41,6 +41,7 @@
 // bounds beyond ~1.8e18).
 #pragma once
 
+#include "core/ray.h"
 #include "core/vec.h"
 #include "scene/scene.h"
 
@@ -48,14 +49,6 @@
 #include <memory>
 
 namespace drt {
-
-struct Ray {
-    Vec3 origin;
-    Vec3 direction; // need not be unit length; t is in units of |direction|
-    double tMin = 0;
-    double tMax = 1e30;
-    double time = 0; // in [0, 1]: the Motion parameter
-};
 
 struct Hit {
     double t = 0;
@@ -74,7 +67,7 @@ struct Hit {
 
 class Accelerator {
 public:
-    // Throws RenderError (render/render.h) on Embree errors or invalid geometry.
+    // Throws RenderError (core/error.h) on Embree errors or invalid geometry.
     explicit Accelerator(const Scene& scene);
     // For rays that all have time `onlyTime` (a zero-length shutter): moving
     // objects are placed at that time in double precision (MotionPath::at) and

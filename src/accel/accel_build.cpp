@@ -3,7 +3,7 @@
 // flattened, other CSG operations become one primitive each, and every
 // object with Motion gets its own sub-scene under a motion-blurred instance.
 #include "accel/accel_impl.h"
-#include "render/render.h"
+#include "core/error.h"
 
 #include <cmath>
 #include <stdexcept>

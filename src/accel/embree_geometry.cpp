@@ -1,7 +1,7 @@
 // The Embree side of the build: the device with its error callback, the user
 // geometry callbacks for analytic primitives, and triangle geometry.
 #include "accel/built_scene.h"
-#include "render/render.h"
+#include "core/error.h"
 
 #include <cmath>
 #include <string>

@@ -1,6 +1,7 @@
 // The bench runner: scene -> references -> one render per (method, spp,
 // seed) -> metrics -> results.csv, charts and summary.md (bench/report.h).
 #include "bench/bench.h"
+#include "assets/assets.h"
 
 #include "bench/report.h"
 #include "compare/compare.h"
@@ -260,6 +261,7 @@ BenchReport runBench(const BenchOptions& given, std::ostream& log) {
     Diagnostics diagnostics;
     const auto parseStart = std::chrono::steady_clock::now();
     std::optional<Scene> loaded = loadSceneFile(o.scenePath, diagnostics);
+    if (loaded && !diagnostics.hasErrors()) resolveAssets(*loaded, diagnostics);
     const double parseSeconds = secondsSince(parseStart);
     if (diagnostics.hasErrors() || !loaded)
         throw BenchError(diagnostics.formatAll() + fmt::format("{}: {} error(s)", o.scenePath,
@@ -274,7 +276,7 @@ BenchReport runBench(const BenchOptions& given, std::ostream& log) {
     if (std::string problem = checkWritable((dir / "reference.exr").string()); !problem.empty())
         throw BenchError(problem, true);
 
-    RenderOptions base = resolveRenderOptions(scene, {});
+    RenderOptions base = resolveRenderOptions(scene.render);
     const double aspect = double(base.height) / double(base.width);
     base.width = o.width > 0 ? o.width : (o.quick ? 48 : 96);
     base.height = o.height > 0 ? o.height : std::max(1, int(std::lround(base.width * aspect)));

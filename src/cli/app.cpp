@@ -65,7 +65,7 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
 // Copies the options the user gave into the overrides (an option not given
 // leaves the scene's value).
 void fillOverrides(CLI::App& render, RenderArguments& a) {
-    RenderOverrides& o = a.command.overrides;
+    RenderSettings& o = a.command.overrides;
     if (render.count("--width"))
         o.width = a.width;
     if (render.count("--height"))

@@ -37,7 +37,7 @@ struct RenderCommand {
     std::string output;
     std::string varianceOutput; // "" : none; else an .exr path
     std::string sppImageOutput; // "" : none; samples taken per pixel (--spp-image)
-    RenderOverrides overrides;
+    RenderSettings overrides; // what the command line sets over the scene's settings
     std::optional<int> tileSize;
     bool quiet = false;
     bool progress = false; // draw a progress line (the caller checks that stderr is a terminal)

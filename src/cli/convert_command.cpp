@@ -8,6 +8,7 @@
 // clean when it loads without an unsupported-feature warning, the .drt text
 // expresses all of it and loads back, and the result renders (small, 1 spp).
 #include "cli/commands.h"
+#include "assets/assets.h"
 
 #include "lang/load.h"
 #include "lang/writer.h"
@@ -110,7 +111,8 @@ int convertOne(const ConvertCommand& command, std::ostream& out, std::ostream& e
         return kUsageError;
     }
     Diagnostics diags;
-    const std::optional<Scene> scene = loadPovSceneFile(command.scene, diags, povOptions(command.pov));
+    std::optional<Scene> scene = loadPovSceneFile(command.scene, diags, povOptions(command.pov));
+    if (scene && !diags.hasErrors()) resolveAssets(*scene, diags);
     err << diags.formatAll();
     if (diags.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", command.scene, diags.errorCount(),
@@ -151,7 +153,8 @@ ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions&
     ConversionCheck check;
     try {
         Diagnostics diags;
-        const std::optional<Scene> scene = loadPovSceneFile(povPath, diags, povOptions(pov));
+        std::optional<Scene> scene = loadPovSceneFile(povPath, diags, povOptions(pov));
+        if (scene && !diags.hasErrors()) resolveAssets(*scene, diags);
         for (const Diagnostic& d : diags.all()) {
             if (d.severity != Severity::Warning)
                 continue;
@@ -169,7 +172,8 @@ ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions&
         if (check.unsupported.empty()) {
             // Clean means the .drt file itself loads and renders.
             Diagnostics again;
-            const std::optional<Scene> reloaded = loadSceneText(text, "converted.drt", again);
+            std::optional<Scene> reloaded = loadSceneText(text, "converted.drt", again);
+            if (reloaded && !again.hasErrors()) resolveAssets(*reloaded, again);
             if (!reloaded || again.hasErrors()) {
                 check.outcome = ConversionCheck::Outcome::Failed;
                 check.reason = "the written .drt does not load: " + firstError(again);
@@ -177,7 +181,7 @@ ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions&
             }
             toRender = *reloaded;
         }
-        RenderOptions options = resolveRenderOptions(toRender, {});
+        RenderOptions options = resolveRenderOptions(toRender.render);
         options.width = width;
         options.height = height;
         options.samplesPerPixel = 1;

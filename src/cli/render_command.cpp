@@ -1,5 +1,6 @@
 // `drt render` and `drt check`: scene file -> diagnostics -> (render -> image file).
 #include "cli/commands.h"
+#include "assets/assets.h"
 
 #include "cli/progress.h"
 #include "lang/load.h"
@@ -39,7 +40,7 @@ bool looksBinary(const std::string& path) {
 // Loads a scene, printing every diagnostic to `err`. Returns kSuccess and sets
 // `scene`, or the exit status to stop with.
 int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene,
-              const PovCliOptions& pov = {}, const RenderOverrides& overrides = {}) {
+              const PovCliOptions& pov = {}, const RenderSettings& overrides = {}) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !std::ifstream(path)) {
         err << fmt::format("drt: cannot read scene '{}': {}\n", path,
@@ -67,6 +68,7 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
     } else {
         scene = loadSceneFile(path, diagnostics);
     }
+    if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
     err << diagnostics.formatAll();
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),
@@ -149,7 +151,7 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
     if (int status = loadScene(command.scene, err, scene, command.pov, command.overrides); status != kSuccess)
         return status;
 
-    RenderOptions options = resolveRenderOptions(*scene, command.overrides);
+    RenderOptions options = resolveRenderOptions(overlaySettings(scene->render, command.overrides));
     if (command.tileSize)
         options.tileSize = *command.tileSize;
 

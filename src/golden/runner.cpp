@@ -4,6 +4,7 @@
 // spreads its tiles over the cores, and TBB shares the threads between them.
 #include "golden/golden.h"
 
+#include "assets/assets.h"
 #include "lang/load.h"
 #include "render/render.h"
 #include "sampling/sampler.h"
@@ -135,6 +136,7 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
     }
     Diagnostics diagnostics;
     std::optional<Scene> scene = loadSceneFile(scenePath, diagnostics);
+    if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
     if (diagnostics.hasErrors() || !scene) {
         result.message = fmt::format("{}: the scene has {} error{}", scenePath, diagnostics.errorCount(),
                                      diagnostics.errorCount() == 1 ? "" : "s");
@@ -142,14 +144,14 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
         return false;
     }
     p.scene = std::move(*scene);
-    RenderOverrides overrides;
+    RenderSettings overrides;
     overrides.width = p.settings.width;
     overrides.height = p.settings.height;
     overrides.samplesPerPixel = p.settings.samplesPerPixel;
     overrides.seed = p.settings.seed;
     overrides.sampler = p.settings.sampler;
     overrides.threads = p.settings.threads;
-    p.options = resolveRenderOptions(p.scene, overrides);
+    p.options = resolveRenderOptions(overlaySettings(p.scene.render, overrides));
     return true;
 }
 

@@ -1,7 +1,7 @@
 // image-map = "image_map" "{" string { image-map-item } "}" inside a pigment.
 // The file is found beside the including file, then beside the scene.
-#include "image/image_map_load.h"
 #include "lang/parser.h"
+#include "scene/image_map.h"
 
 #include <filesystem>
 
@@ -17,6 +17,7 @@ void Parser::imageMap(Pigment& p) {
     const Token file = expect(TokenKind::String, "the image file name in quotes");
     auto map = std::make_shared<ImageMap>();
     map->file = file.text;
+    map->loc = file.loc;
     std::error_code ec;
     for (const std::string& dir : {sources_.back().dir, sources_.front().dir}) {
         const fs::path candidate = fs::path(file.text).is_absolute() ? fs::path(file.text) : fs::path(dir) / file.text;
@@ -55,7 +56,7 @@ void Parser::imageMap(Pigment& p) {
         }
     }
     map->workingGamma = scene_.global.assumedGamma;
-    if (const std::string reason = loadImageMap(*map); !reason.empty()) fail(file.loc, reason);
+    // The pixels are decoded after parsing (assets/assets.h).
     p.pattern = PatternKind::ImageMap;
     p.imageMap = std::move(map);
     p.children.clear();

@@ -1,11 +1,8 @@
-// height_field { [type] "file" [smooth] [water_level w] [hierarchy b] } as a
-// triangle mesh (scene/height_field.h). Image files are found like include files.
-#include "image/image.h"
+// height_field { [type] "file" [smooth] [water_level w] [hierarchy b] }: a
+// mesh whose triangles come from the image after parsing (Mesh::source,
+// assets/assets.h). Image files are found like include files.
 #include "pov/parser.h"
-#include "scene/height_field.h"
 
-#include <algorithm>
-#include <cmath>
 #include <filesystem>
 
 namespace drt::pov {
@@ -16,24 +13,6 @@ const std::set<std::string>& imageTypeWords() {
     static const std::set<std::string> w = {"gif", "tga", "iff", "ppm", "pgm", "png", "jpeg",
                                             "tiff", "sys", "exr", "hdr", "pot"};
     return w;
-}
-
-// POV-Ray's height of one pixel, in [0, 65535] (HF_VAL), from the values as
-// stored in the file (scaled to [0, 1]): greyscale files use the grey value,
-// colour files deeper than 8 bits their grey (0.297 r + 0.589 g + 0.114 b)
-// and 8-bit colour files red as the high byte and green as the low byte.
-// Palette PNGs use their index instead (below); palette GIFs, which
-// OpenImageIO expands, use the colour rule.
-// Integer samples are read back exactly by rounding (POV-Ray truncates a float
-// product, which can land one step of 1/65536 lower).
-double povHeightValue(const Image& img, const ImageFileInfo& info, int x, int y) {
-    auto clamp16 = [](double v) { return std::clamp(std::round(v), 0.0, 65535.0); };
-    const int c = img.channels;
-    const double r = img.at(x, y, 0);
-    if (c <= 2) return clamp16(r * 65535.0);
-    const double g = img.at(x, y, 1), b = img.at(x, y, 2);
-    if (info.isFloat || info.bitsPerChannel > 8) return clamp16((0.297 * r + 0.589 * g + 0.114 * b) * 65535.0);
-    return clamp16(std::round(r * 255.0) * 256.0 + std::round(g * 255.0));
 }
 
 } // namespace
@@ -83,12 +62,12 @@ std::optional<Mesh> PovParser::heightFieldShape(SourceLoc keyword) {
     const std::string path = findDataFile(name);
     if (path.empty())
         fail(fileLoc, "cannot find image file \"" + name + "\" (searched the scene's folder and the -L paths)");
-    Image img;
-    ImageFileInfo info;
-    if (const std::string error = readImageEncoded(path, img, info); !error.empty()) fail(fileLoc, error);
-    if (img.width < 2 || img.height < 2) fail(fileLoc, "a height_field image needs at least 2x2 pixels");
-    bool smooth = false;
-    double waterLevel = 0;
+    auto source = std::make_shared<MeshSource>();
+    source->kind = MeshSource::Kind::PovHeightField;
+    source->path = path;
+    source->loc = fileLoc;
+    bool& smooth = source->smooth;
+    double& waterLevel = source->waterLevel;
     for (;;) {
         const Tok t = peek();
         if (t.isWord("smooth")) next(), smooth = true;
@@ -97,22 +76,10 @@ std::optional<Mesh> PovParser::heightFieldShape(SourceLoc keyword) {
         else if (t.isWord("gamma") || t.isWord("premultiplied")) next(), floatExpr();
         else break;
     }
-    // Palette images: POV-Ray's height is the palette index times 256, but
-    // OpenImageIO (drt's one image reader) expands palettes, so their colours'
-    // rule applies (docs/pov.md).
-    // POV-Ray puts image row 0 (the top) at z = 1 and scales heights by 1/65536.
-    std::vector<double> heights(size_t(img.width) * img.height);
-    for (int z = 0; z < img.height; ++z)
-        for (int x = 0; x < img.width; ++x) {
-            const int row = img.height - 1 - z;
-            const double value = povHeightValue(img, info, x, row);
-            heights[size_t(z) * img.width + x] = value / 65536.0;
-        }
-    Mesh m = heightFieldMesh(heights, img.width, img.height, smooth, waterLevel);
-    if (m.triangles.empty()) {
-        warn(keyword, "the height_field lies entirely below its water_level; it is left out");
-        return std::nullopt;
-    }
+    // The image is decoded after parsing (assets/assets.h).
+    Mesh m;
+    m.source = std::move(source);
+    (void)keyword;
     return m;
 }
 

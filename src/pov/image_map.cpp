@@ -1,8 +1,8 @@
 // pigment { image_map { [type] "file" [map_type n] [once] [interpolate n]
-// [filter all f] [transmit all t] [gamma g] ... } }: the image is decoded once
-// here (image/image_map_load.h) and shared by every copy of the pigment.
-#include "image/image_map_load.h"
+// [filter all f] [transmit all t] [gamma g] ... } }: the image is found here and
+// decoded once after parsing (assets/assets.h), shared by every copy of the pigment.
 #include "pov/parser.h"
+#include "scene/image_map.h"
 
 namespace drt::pov {
 
@@ -17,6 +17,7 @@ std::optional<Pigment> PovParser::imageMapPigment(SourceLoc keyword) {
     auto map = std::make_shared<ImageMap>();
     const SourceLoc fileLoc = peek().loc;
     map->file = stringExpr();
+    map->loc = fileLoc;
     map->path = findDataFile(map->file);
     if (map->path.empty())
         fail(fileLoc, "cannot find image file \"" + map->file + "\" (searched the scene's folder and the -L paths)");
@@ -62,7 +63,6 @@ std::optional<Pigment> PovParser::imageMapPigment(SourceLoc keyword) {
         }
     }
     map->workingGamma = workingGamma();
-    if (const std::string error = loadImageMap(*map); !error.empty()) fail(fileLoc, error);
     Pigment p;
     p.pattern = PatternKind::ImageMap;
     p.imageMap = std::move(map);

@@ -29,6 +29,7 @@
 // fixed-sample reference. The stratified sampler's strata are permuted over
 // max_spp, so its prefixes are unbiased but not stratified.
 #include "render/render.h"
+#include "assets/assets.h"
 
 #include "accel/accel.h"
 #include "render/camera.h"
@@ -54,21 +55,18 @@
 
 namespace drt {
 
-RenderOptions resolveRenderOptions(const Scene& scene, const RenderOverrides& overrides) {
+RenderOptions resolveRenderOptions(const RenderSettings& settings) {
     RenderOptions options;
-    const RenderSettings& settings = scene.render;
-    options.width = overrides.width.value_or(settings.width.value_or(options.width));
-    options.height = overrides.height.value_or(settings.height.value_or(options.height));
-    options.samplesPerPixel = overrides.samplesPerPixel.value_or(settings.samplesPerPixel.value_or(options.samplesPerPixel));
-    options.seed = overrides.seed.value_or(settings.seed.value_or(options.seed));
-    options.sampler = overrides.sampler.value_or(settings.sampler.value_or(options.sampler));
-    options.threads = overrides.threads.value_or(options.threads);
-    options.adaptive = overrides.adaptive.value_or(settings.adaptive.value_or(options.adaptive));
-    options.adaptiveError = overrides.adaptiveError.value_or(settings.adaptiveError.value_or(options.adaptiveError));
-    options.minSamplesPerPixel =
-        overrides.minSamplesPerPixel.value_or(settings.minSamplesPerPixel.value_or(options.minSamplesPerPixel));
-    options.maxSamplesPerPixel =
-        overrides.maxSamplesPerPixel.value_or(settings.maxSamplesPerPixel.value_or(options.maxSamplesPerPixel));
+    options.width = settings.width.value_or(options.width);
+    options.height = settings.height.value_or(options.height);
+    options.samplesPerPixel = settings.samplesPerPixel.value_or(options.samplesPerPixel);
+    options.seed = settings.seed.value_or(options.seed);
+    options.sampler = settings.sampler.value_or(options.sampler);
+    options.threads = settings.threads.value_or(options.threads);
+    options.adaptive = settings.adaptive.value_or(options.adaptive);
+    options.adaptiveError = settings.adaptiveError.value_or(options.adaptiveError);
+    options.minSamplesPerPixel = settings.minSamplesPerPixel.value_or(options.minSamplesPerPixel);
+    options.maxSamplesPerPixel = settings.maxSamplesPerPixel.value_or(options.maxSamplesPerPixel);
     return options;
 }
 
@@ -216,6 +214,8 @@ private:
 
 RenderResult render(const Scene& scene, const RenderOptions& options) {
     validate(options);
+    if (!assetsResolved(scene))
+        throw RenderError("the scene names image or mesh files that were not read (call resolveAssets after parsing)");
     const ResolvedCamera camera = resolveCamera(scene.camera, options.width, options.height);
     const std::unique_ptr<Sampler> prototype = createSampler(options);
     const Filter filter = sceneFilter(scene);

@@ -1,6 +1,7 @@
 // The renderer: scene model -> film, tile-scheduled over all cores with oneTBB.
 #pragma once
 
+#include "core/error.h"
 #include "image/image.h"
 #include "scene/scene.h"
 
@@ -11,12 +12,6 @@
 #include <string>
 
 namespace drt {
-
-// Anything that goes wrong while building or rendering (e.g. an Embree error).
-class RenderError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
 
 struct RenderOptions {
     int width = 320;
@@ -40,18 +35,10 @@ struct RenderOptions {
     std::function<void(double)> progress;
 };
 
-// Command-line values that override the scene's RenderSettings when given.
-struct RenderOverrides {
-    std::optional<int> width, height, samplesPerPixel, threads;
-    std::optional<uint64_t> seed;
-    std::optional<std::string> sampler;
-    std::optional<bool> adaptive;
-    std::optional<double> adaptiveError;
-    std::optional<int> minSamplesPerPixel, maxSamplesPerPixel;
-};
-
-// Scene settings, then overrides, then defaults (320x240, 1 spp, seed 0).
-RenderOptions resolveRenderOptions(const Scene& scene, const RenderOverrides& overrides);
+// The settings given, else the defaults (320x240, 1 spp, seed 0, all cores).
+// A caller that lets a user override the scene's settings overlays them first
+// (scene/scene.h overlaySettings).
+RenderOptions resolveRenderOptions(const RenderSettings& settings);
 
 // The effects a render used (render/summary: "what the scene used"). Each is
 // true only if its code path ran: a pinhole camera draws no lens samples, a

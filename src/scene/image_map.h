@@ -1,7 +1,10 @@
 // POV-Ray's image_map pigment: an image file projected onto the unit square
-// (planar), a sphere, a cylinder or a torus. The pixels are decoded once, when
-// the scene is read (image/image_map_load.h); render/image_pattern.h evaluates the map.
+// (planar), a sphere, a cylinder or a torus. The front end finds the file; its
+// pixels are decoded once, after parsing (assets/assets.h); render/image_pattern.h
+// evaluates the map.
 #pragma once
+
+#include "core/diagnostics.h"
 
 #include <memory>
 #include <string>
@@ -15,6 +18,7 @@ struct ImageMap {
 
     std::string file; // as written in the scene
     std::string path; // where it was found
+    SourceLoc loc;    // the file name in the scene
     Projection projection = Projection::Planar;
     Interpolation interpolation = Interpolation::None;
     bool once = false;     // no repetition: outside the unit square the map is clear
@@ -23,7 +27,8 @@ struct ImageMap {
     double gamma = 0;      // the file's encoding exponent; 0: sRGB for integer files, linear for float files
     double workingGamma = 1; // the scene's assumed_gamma: texels are encoded with it (c^(1/g)) as scene colours are
 
-    // Decoded texels, linear RGB and transmit (1 - alpha), rows top first.
+    // Decoded texels, linear RGB and transmit (1 - alpha), rows top first;
+    // empty until the assets are resolved.
     int width = 0;
     int height = 0;
     std::vector<float> rgbt; // 4 floats per texel

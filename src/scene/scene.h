@@ -266,7 +266,20 @@ struct Torus { // around the y axis
     double majorRadius = 1;
     double minorRadius = 0.25;
 };
+// A mesh read from a file after parsing (src/assets fills vertices and
+// triangles): the file and what the scene said about it.
+struct MeshSource {
+    enum class Kind { PovHeightField }; // POV-Ray's height_field image rules
+    Kind kind = Kind::PovHeightField;
+    std::string path; // found by the front end
+    bool smooth = false;
+    double waterLevel = 0;
+    SourceLoc loc; // the file name in the scene
+};
+
 struct Mesh {
+    // Set while the triangles are still to be read from a file (src/assets).
+    std::shared_ptr<const MeshSource> source;
     std::vector<Vec3> vertices;
     std::vector<std::array<int, 3>> triangles;
     // Optional per-vertex normals (smooth_triangle, mesh2 normal_vectors);
@@ -416,7 +429,8 @@ struct GlobalSettings {
     double adcBailout = 1.0 / 255.0;
 };
 
-// Image size and sampling set from the scene; the command line overrides them.
+// Image size and sampling set from the scene; the command line overrides them
+// (overlaySettings). An empty value means "not set here".
 struct RenderSettings {
     std::optional<int> width;
     std::optional<int> height;
@@ -430,7 +444,28 @@ struct RenderSettings {
     std::optional<double> adaptiveError;
     std::optional<int> minSamplesPerPixel;
     std::optional<int> maxSamplesPerPixel;
+    // Worker threads: only ever set by the caller (0: all cores), never by a scene.
+    std::optional<int> threads;
 };
+
+// `base` with every value that `top` sets replaced by top's.
+inline RenderSettings overlaySettings(RenderSettings base, const RenderSettings& top) {
+    auto take = [](auto& to, const auto& from) {
+        if (from) to = from;
+    };
+    take(base.width, top.width);
+    take(base.height, top.height);
+    take(base.samplesPerPixel, top.samplesPerPixel);
+    take(base.seed, top.seed);
+    take(base.sampler, top.sampler);
+    take(base.filter, top.filter);
+    take(base.adaptive, top.adaptive);
+    take(base.adaptiveError, top.adaptiveError);
+    take(base.minSamplesPerPixel, top.minSamplesPerPixel);
+    take(base.maxSamplesPerPixel, top.maxSamplesPerPixel);
+    take(base.threads, top.threads);
+    return base;
+}
 
 // POV-Ray fog. Along a ray segment of fog depth z (the path length for
 // constant fog; for ground fog the path integral of the density below), the

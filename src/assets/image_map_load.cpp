@@ -1,4 +1,4 @@
-#include "image/image_map_load.h"
+#include "assets/loaders.h"
 
 #include "image/image.h"
 #include "image/srgb.h"

@@ -1,0 +1,54 @@
+// Visiting every object and every pigment of a scene model, wherever it sits
+// (CSG members, clips, texture layers and maps, media densities, the sky).
+#pragma once
+
+#include "scene/scene.h"
+
+#include <type_traits>
+
+namespace drt {
+
+// Calls fn(object) for every object, members of CSGs and clip objects included,
+// parents before their members.
+template <class SceneT, class Fn>
+void forEachObject(SceneT& scene, Fn&& fn) {
+    using ObjectT = std::conditional_t<std::is_const_v<SceneT>, const Object, Object>;
+    auto visit = [&](auto& self, ObjectT& object) -> void {
+        fn(object);
+        if (auto* csg = std::get_if<Csg>(&object.shape))
+            for (ObjectT& child : csg->children) self(self, child);
+        for (ObjectT& clip : object.clippedBy) self(self, clip);
+    };
+    for (ObjectT& object : scene.objects) visit(visit, object);
+}
+
+// Calls fn(pigment) for every pigment, sub-pigments and pigment-map entries included.
+template <class SceneT, class Fn>
+void forEachPigment(SceneT& scene, Fn&& fn) {
+    constexpr bool isConst = std::is_const_v<SceneT>;
+    using PigmentT = std::conditional_t<isConst, const Pigment, Pigment>;
+    using TextureT = std::conditional_t<isConst, const Texture, Texture>;
+    using MediaT = std::conditional_t<isConst, const Media, Media>;
+    using ObjectT = std::conditional_t<isConst, const Object, Object>;
+    auto pigment = [&](auto& self, PigmentT& p) -> void {
+        fn(p);
+        for (PigmentT& child : p.children) self(self, child);
+        for (auto& entry : p.pigmentMap) self(self, entry.pigment);
+    };
+    auto texture = [&](auto& self, TextureT& t) -> void {
+        pigment(pigment, t.pigment);
+        for (auto& entry : t.map) self(self, entry.texture);
+        for (TextureT& layer : t.layersAbove) self(self, layer);
+    };
+    auto media = [&](MediaT& m) {
+        for (PigmentT& density : m.densities) pigment(pigment, density);
+    };
+    forEachObject(scene, [&](ObjectT& object) {
+        texture(texture, object.texture);
+        for (MediaT& m : object.interior.media) media(m);
+    });
+    for (PigmentT& sky : scene.sky) pigment(pigment, sky);
+    for (MediaT& m : scene.media) media(m);
+}
+
+} // namespace drt
