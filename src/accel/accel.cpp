@@ -109,10 +109,13 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     // Find the level the hit geometry lives in and the ray in that level's space.
     const Level* level = &impl_->top;
     std::optional<Transform> motion; // level space -> world, if the top level's is not world
+    hit.instance = -1;
     if (rayhit.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-        const Instance& instance = impl_->instances[impl_->top.geometries[rayhit.hit.instID[0]].index];
+        const size_t index = impl_->top.geometries[rayhit.hit.instID[0]].index;
+        const Instance& instance = impl_->instances[index];
         level = instance.level.get();
         motion = instance.toWorld(rayhit.ray.time);
+        hit.instance = static_cast<int>(index);
     }
     const bool shiftedTop = !motion && impl_->shifted;
     const Vec3 o = motion ? motion->inversePoint(ray.origin) : shiftedTop ? ray.origin - impl_->frameOrigin : ray.origin;
@@ -163,11 +166,13 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         extent = mesh.extent;
     }
     if (motion) {
+        hit.restPoint = impl_->shifted ? point + impl_->frameOrigin : point;
         hit.point = motion->point(point);
         hit.geometricNormal = unitOr(motion->normal(geometric), towardOrigin);
         hit.shadingNormal = unitOr(motion->normal(shading), hit.geometricNormal);
     } else {
         hit.point = shiftedTop ? point + impl_->frameOrigin : point;
+        hit.restPoint = hit.point;
         hit.geometricNormal = geometric;
         hit.shadingNormal = shading;
     }
@@ -224,6 +229,11 @@ Vec3 Accelerator::offsetOrigin(const Hit& hit, const Vec3& direction) {
 }
 
 bool Accelerator::hasMotion() const { return !impl_->instances.empty(); }
+
+Transform Accelerator::restToWorld(const Hit& hit, double time) const {
+    if (hit.instance < 0 || size_t(hit.instance) >= impl_->instances.size()) return Transform();
+    return impl_->instances[size_t(hit.instance)].motion.at(std::fmin(1.0, std::fmax(0.0, time)));
+}
 
 void Accelerator::bounds(Vec3& lower, Vec3& upper) const {
     if (impl_->bounded) {

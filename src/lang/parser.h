@@ -130,8 +130,8 @@ private:
     void addChild(ParsedObject& parent, ParsedObject child);
     void applyTransform(ParsedObject& po, const Transform& t, const SourceLoc& loc);
     void addObjectToScene(ParsedObject po);
-    void flatten(ParsedObject& po, const Transform& parent, const std::optional<Motion>& parentMotion,
-                 bool noShadow, bool hollow, const std::vector<Object>& parentClips = {});
+    void flatten(ParsedObject& po, const Transform& parentBefore, const MotionChain& parentChain, bool noShadow,
+                 bool hollow, const std::vector<Object>& parentClips = {});
     void clippedBy(Object& clipped);
     std::vector<Object> csgChildren(ParsedObject& po, const Transform& csgToWorld);
     double positiveRadius(const char* what);

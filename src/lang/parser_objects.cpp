@@ -336,28 +336,57 @@ bool Parser::objectModifier(ParsedObject& po) {
     return true;
 }
 
-// motion = "motion" "{" { ("translate" | "rotate" | "scale") vector } "}"
+// motion = "motion" "{" [ "spline" ] ( key_items | { "at" float key_items } ) "}"
+// key_items = { ("translate" | "rotate" | "scale") vector3 }   (each at most once per key)
+// Without `at` the items are one key at time 1; keyed or not, the path starts
+// from the identity at time 0 unless a key is given there (scene/motion.h).
 void Parser::motion(Object& object) {
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'motion'");
     Motion m;
+    bool keyed = false;
     bool seen[3] = {false, false, false};
+    const auto startKey = [&](double time) {
+        m.keys.push_back(MotionKey{time});
+        seen[0] = seen[1] = seen[2] = false;
+    };
     while (!match(TokenKind::RightBrace)) {
-        if (!check(TokenKind::Identifier)) failExpected("'translate', 'rotate', 'scale' or '}' in motion");
+        if (!check(TokenKind::Identifier)) failExpected("'at', 'translate', 'rotate', 'scale', 'spline' or '}' in motion");
         const Token word = current_;
+        if (word.text == "spline") {
+            advance();
+            if (m.spline) error(word.loc, "'spline' given twice in motion");
+            m.spline = true;
+            continue;
+        }
+        if (word.text == "at") {
+            advance();
+            if (!keyed && !m.keys.empty()) error(word.loc, "'at' after key items without a time; begin with 'at'");
+            keyed = true;
+            const SourceLoc loc = current_.loc;
+            const double time = floatExpr("a time");
+            if (!(time >= 0 && time <= 1)) error(loc, "motion key times must be in [0, 1]");
+            else if (!m.keys.empty() && !(time > m.keys.back().time)) error(loc, "motion key times must increase");
+            startKey(time);
+            continue;
+        }
         const int index = word.text == "translate" ? 0 : word.text == "rotate" ? 1 : word.text == "scale" ? 2 : -1;
-        if (index < 0) failUnknown(word, {"translate", "rotate", "scale"});
+        if (index < 0) failUnknown(word, {"at", "translate", "rotate", "scale", "spline"});
         advance();
-        if (seen[index]) error(word.loc, "'" + word.text + "' given twice in motion");
+        if (m.keys.empty()) startKey(1);
+        if (seen[index]) error(word.loc, "'" + word.text + "' given twice in " + (keyed ? "one motion key" : "motion"));
         seen[index] = true;
         const SourceLoc loc = current_.loc;
         const Vec3 v = vectorExpr();
-        if (index == 0) m.translate = v;
-        else if (index == 1) m.rotate = v;
+        MotionKey& key = m.keys.back();
+        if (index == 0) key.translate = v;
+        else if (index == 1) key.rotate = v;
         else if (v.x == 0 || v.y == 0 || v.z == 0) error(loc, "motion scale has a zero component");
-        else m.scale = v;
+        else key.scale = v;
     }
-    object.motion = m;
+    if (m.keys.empty()) m.keys.push_back(MotionKey{1});
+    if (m.keys.front().time > 0) m.keys.insert(m.keys.begin(), MotionKey{0});
+    object.motion.push_back(MotionStage{std::move(m), Transform()});
 }
 
 // clipped_by = "clipped_by" "{" object { object } "}". The clips are kept in
@@ -365,6 +394,7 @@ void Parser::motion(Object& object) {
 // them, those written after this block do (applyTransform).
 void Parser::clippedBy(Object& clipped) {
     const SourceLoc loc = current_.loc;
+    if (!clipped.motion.empty()) error(loc, "clipped_by after 'motion' is not supported; put it before the motion");
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'clipped_by'");
     size_t count = 0;
@@ -372,7 +402,7 @@ void Parser::clippedBy(Object& clipped) {
         if (!atObjectWord()) failExpected("an object or '}' in clipped_by");
         ParsedObject po = object();
         Object clip = std::move(po.object);
-        if (clip.motion) error(clip.loc, "'motion' on a clipped_by object is not supported");
+        if (!clip.motion.empty()) error(clip.loc, "'motion' on a clipped_by object is not supported");
         if (isCsg(po)) std::get<Csg>(clip.shape).children = csgChildren(po, clip.transform);
         clipped.clippedBy.push_back(std::move(clip));
         ++count;
@@ -380,24 +410,18 @@ void Parser::clippedBy(Object& clipped) {
     if (count == 0) error(loc, "clipped_by needs at least one object");
 }
 
-static bool isPureTranslation(const Motion& m) { return m.rotate == Vec3(0) && m.scale == Vec3(1); }
-
-// A transform after `motion`: world(t) = T * M(t) * O. That is again of the
-// form M'(t) * (T * O) only when M(t) is a translation: then M' translates by
-// T's linear part applied to the motion's translation.
-void Parser::applyTransform(ParsedObject& po, const Transform& t, const SourceLoc& loc) {
+// A transform goes after everything written so far, motions included
+// (scene/motion.h). Textures and interiors are placed in the rest pose, so
+// every transform moves them; clips are folded into the rest pose when the
+// object reaches the scene (flatten), so only transforms before a motion move
+// them here.
+void Parser::applyTransform(ParsedObject& po, const Transform& t, const SourceLoc&) {
     Object& o = po.object;
-    if (o.motion) {
-        if (!isPureTranslation(*o.motion)) {
-            error(loc, "a transform after 'motion' needs a motion with translation only; put 'motion' last");
-        } else {
-            o.motion->translate = t.vector(o.motion->translate);
-        }
-    }
-    o.transform = o.transform.then(t);
+    if (o.motion.empty())
+        for (Object& clip : o.clippedBy) clip.transform = clip.transform.then(t);
+    appendTransform(o.transform, o.motion, t);
     transformTextureSpaces(o.texture, t);
     transformInteriorSpaces(o.interior, t);
-    for (Object& clip : o.clippedBy) clip.transform = clip.transform.then(t);
 }
 
 static void inheritTexture(ParsedObject& po, const Texture& texture) {
@@ -426,61 +450,40 @@ void Parser::addChild(ParsedObject& parent, ParsedObject child) {
 }
 
 void Parser::addObjectToScene(ParsedObject po) {
-    flatten(po, Transform{}, std::nullopt, false, false);
+    flatten(po, Transform{}, MotionChain{}, false, false);
 }
 
 // A union reaches the scene as its leaves, each carrying the union's
-// transforms: the same surfaces as the union itself. `worldMotion` is an
-// enclosing union's motion, already expressed in world space.
-//
-// Motion M applies after an object's transform but before the transforms P
-// above it: world(t) = P * M(t) * O = (P M(t) P^-1) * (P O). The conjugate is a
-// Motion again when P is the identity or M is a translation (then by P's
-// linear part applied to M's translation).
-void Parser::flatten(ParsedObject& po, const Transform& parent, const std::optional<Motion>& worldMotion,
+// transforms and motions after its own (scene/motion.h appendPlacement): the
+// same surfaces as the union itself, moving as it does. `parentBefore` and
+// `parentChain` place the enclosing union in the world.
+void Parser::flatten(ParsedObject& po, const Transform& parentBefore, const MotionChain& parentChain,
                      bool noShadow, bool hollow, const std::vector<Object>& parentClips) {
     Object& o = po.object;
-    std::optional<Motion> motion = o.motion;
-    if (motion && !parent.isIdentity()) {
-        if (isPureTranslation(*motion)) motion->translate = parent.vector(motion->translate);
-        else error(o.loc, "'motion' with rotate or scale inside a transformed union is not supported");
-    }
-    if (worldMotion) {
-        // Translations commute with everything that follows them in time.
-        if (!motion) motion = worldMotion;
-        else if (isPureTranslation(*worldMotion)) motion->translate += worldMotion->translate;
-        else error(o.loc, "a moving object inside a union moving with rotate or scale is not supported");
-    }
+    Transform before = o.transform;
+    MotionChain chain = o.motion;
+    appendPlacement(before, chain, parentBefore, parentChain);
+    const Transform parentRest = restPlacement(parentBefore, parentChain);
     noShadow = noShadow || o.noShadow;
     hollow = hollow || o.hollow;
-    const Transform toWorld = o.transform.then(parent);
-    // Clips go to world space; an enclosing union's clips apply to every leaf.
+    // Clips go to the rest pose's world; an enclosing union's clips apply to every leaf.
     std::vector<Object> clips = parentClips;
+    const Transform clipToRest = restPlacement(Transform{}, o.motion).then(parentRest);
     for (Object& clip : o.clippedBy) {
-        clip.transform = clip.transform.then(parent);
+        clip.transform = clip.transform.then(clipToRest);
         clips.push_back(std::move(clip));
     }
     o.clippedBy.clear();
     if (isSolidCsg(po)) {
-        if (motion) error(o.loc, "'motion' on merge, difference or intersection is not supported");
-        std::get<Csg>(o.shape).children = csgChildren(po, toWorld);
-        o.transform = toWorld;
-        transformTextureSpaces(o.texture, parent);
-        transformInteriorSpaces(o.interior, parent);
-        o.noShadow = noShadow;
-        o.hollow = hollow;
-        o.clippedBy = std::move(clips);
-        scene_.objects.push_back(std::move(o));
+        std::get<Csg>(o.shape).children = csgChildren(po, restPlacement(before, chain));
+    } else if (isCsg(po)) {
+        for (ParsedObject& child : po.children) flatten(child, before, chain, noShadow, hollow, clips);
         return;
     }
-    if (isCsg(po)) {
-        for (ParsedObject& child : po.children) flatten(child, toWorld, motion, noShadow, hollow, clips);
-        return;
-    }
-    o.transform = toWorld;
-    transformTextureSpaces(o.texture, parent);
-    transformInteriorSpaces(o.interior, parent);
-    o.motion = motion;
+    o.transform = before;
+    o.motion = std::move(chain);
+    transformTextureSpaces(o.texture, parentRest);
+    transformInteriorSpaces(o.interior, parentRest);
     o.noShadow = noShadow;
     o.hollow = hollow;
     o.clippedBy = std::move(clips);
@@ -494,7 +497,7 @@ std::vector<Object> Parser::csgChildren(ParsedObject& po, const Transform& csgTo
     std::vector<Object> children;
     for (ParsedObject& child : po.children) {
         Object o = std::move(child.object);
-        if (o.motion) error(o.loc, "'motion' inside merge, difference or intersection is not supported");
+        if (!o.motion.empty()) error(o.loc, "'motion' inside merge, difference or intersection is not supported");
         transformTextureSpaces(o.texture, csgToWorld);
         transformInteriorSpaces(o.interior, csgToWorld);
         if (isCsg(child)) std::get<Csg>(o.shape).children = csgChildren(child, o.transform.then(csgToWorld));

@@ -86,14 +86,16 @@ class SceneWriter {
     void camera(const CameraSpec& c);
     void light(const Light& l);
     void topLevelObject(const Object& o);
-    void flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow, bool hollow,
-                      const std::optional<Motion>& motion, const std::vector<Object>& clips);
+    void flattenUnion(const Object& o, const Transform& parentBefore, const MotionChain& parentChain, bool inverse,
+                      bool noShadow, bool hollow, const std::vector<Object>& clips);
     void clips(const std::vector<Object>& clippedBy, int indent);
+    void writeClips(const Object& o, const Transform& toWritten, int indent);
     void object(const Object& o, int indent);
     std::string shapeHead(const Object& o, int indent);
     std::string meshText(const Mesh& m, int indent);
     void texture(const Texture& t, const std::string& pigment, const std::string& normal, int indent);
     static std::string motionText(const Motion& m);
+    std::string placementText(const Object& o);
 
     WriterOptions options_;
     std::string out_;
@@ -285,7 +287,7 @@ void SceneWriter::light(const Light& l) {
 
 void SceneWriter::topLevelObject(const Object& o) {
     if (const Csg* csg = std::get_if<Csg>(&o.shape); csg && csg->op == Csg::Op::Union) {
-        flattenUnion(o, Transform{}, false, false, false, std::nullopt, {});
+        flattenUnion(o, Transform{}, MotionChain{}, false, false, false, {});
         return;
     }
     out_ += "\n";
@@ -293,32 +295,24 @@ void SceneWriter::topLevelObject(const Object& o) {
 }
 
 // The .drt parser stores a union as its members, each with the union's
-// transforms after its own; the renderer treats both forms alike.
-void SceneWriter::flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow,
-                               bool hollow, const std::optional<Motion>& motion,
-                               const std::vector<Object>& parentClips) {
+// transforms and motions after its own; the renderer treats both forms alike.
+void SceneWriter::flattenUnion(const Object& o, const Transform& parentBefore, const MotionChain& parentChain,
+                               bool inverse, bool noShadow, bool hollow, const std::vector<Object>& parentClips) {
     Object leaf = o;
-    leaf.transform = o.transform.then(parent);
-    // Clips live in the object's parent space: take them to world space.
+    appendPlacement(leaf.transform, leaf.motion, parentBefore, parentChain);
+    // Clips live in the object's parent space: take them to the rest pose's world.
+    const Transform clipToRest = restPlacement(Transform{}, o.motion).then(restPlacement(parentBefore, parentChain));
     leaf.clippedBy = parentClips;
     for (const Object& clip : o.clippedBy) {
         leaf.clippedBy.push_back(clip);
-        leaf.clippedBy.back().transform = clip.transform.then(parent);
+        leaf.clippedBy.back().transform = clip.transform.then(clipToRest);
     }
     leaf.inverse = o.inverse != inverse;
     leaf.noShadow = o.noShadow || noShadow;
     leaf.hollow = o.hollow || hollow;
-    if (motion) {
-        if (leaf.motion)
-            problems_.insert("motion on both a union and one of its members");
-        else
-            leaf.motion = motion;
-    }
     if (const Csg* csg = std::get_if<Csg>(&o.shape); csg && csg->op == Csg::Op::Union) {
-        if (leaf.motion && !parent.isIdentity())
-            problems_.insert("motion inside a transformed union");
         for (const Object& child : csg->children)
-            flattenUnion(child, leaf.transform, leaf.inverse, leaf.noShadow, leaf.hollow, leaf.motion,
+            flattenUnion(child, leaf.transform, leaf.motion, leaf.inverse, leaf.noShadow, leaf.hollow,
                          leaf.clippedBy);
         return;
     }
@@ -335,26 +329,40 @@ void SceneWriter::object(const Object& o, int indent) {
     if (head.empty())
         return;
     line(indent, head);
+    // A moving object's textures and clips are in its rest pose: the
+    // transforms written after its motions take them there again.
+    const Transform afterMotions = restPlacement(Transform{}, o.motion);
+    const Transform undoAfterMotions = afterMotions.inverted();
     if (const Csg* csg = std::get_if<Csg>(&o.shape)) {
         for (const Object& child : csg->children) {
             Object baked = child;
             baked.transform = child.transform.then(o.transform);
             for (Object& clip : baked.clippedBy) clip.transform = clip.transform.then(o.transform);
+            if (!o.motion.empty()) {
+                transformTextureSpaces(baked.texture, undoAfterMotions);
+                transformInteriorSpaces(baked.interior, undoAfterMotions);
+            }
             object(baked, indent + 1);
         }
-        clips(o.clippedBy, indent + 1);
+        writeClips(o, undoAfterMotions, indent + 1);
         if (o.inverse)
             line(indent + 1, "inverse");
         if (o.noShadow)
             line(indent + 1, "no_shadow");
         if (o.hollow)
             line(indent + 1, "hollow");
-        if (o.motion)
-            line(indent + 1, motionText(*o.motion));
+        for (const MotionStage& stage : o.motion) {
+            line(indent + 1, motionText(stage.motion));
+            if (const std::vector<Step> after = decompose(stage.after); !after.empty())
+                line(indent + 1, formatSteps(after).substr(1));
+        }
         line(indent, "}");
         return;
     }
-    const std::vector<Step> steps = decompose(o.transform);
+    // Texture placement is decided on the rest pose; the placement itself is
+    // written as the transforms, motions and transforms after them.
+    const std::vector<Step> steps = decompose(restPlacement(o.transform, o.motion));
+    const std::string placement = placementText(o);
     // A texture moves with the transforms written after it. Before the
     // transforms, a pattern placed with the object needs no transform of its
     // own; after them, it needs its whole pattern -> world map. Take the form
@@ -372,8 +380,8 @@ void SceneWriter::object(const Object& o, int indent) {
         if (textureBefore)
             for (const std::string& block : before)
                 line(indent + 1, block);
-        if (!steps.empty())
-            line(indent + 1, formatSteps(steps).substr(1));
+        if (!placement.empty())
+            line(indent + 1, placement);
         if (!textureBefore)
             for (const std::string& block : after)
                 line(indent + 1, block);
@@ -393,8 +401,8 @@ void SceneWriter::object(const Object& o, int indent) {
                                    (!exactBefore && !exactAfter);
         if (textureBefore && !untextured)
             texture(t, before, normalBefore, indent + 1);
-        if (!steps.empty())
-            line(indent + 1, formatSteps(steps).substr(1));
+        if (!placement.empty())
+            line(indent + 1, placement);
         if (!textureBefore)
             texture(t, after, normalAfter, indent + 1);
     }
@@ -409,10 +417,45 @@ void SceneWriter::object(const Object& o, int indent) {
         flags += " inverse";
     if (!flags.empty())
         line(indent + 1, flags.substr(1));
-    if (o.motion)
-        line(indent + 1, motionText(*o.motion));
-    clips(o.clippedBy, indent + 1);
+    if (o.motion.empty())
+        clips(o.clippedBy, indent + 1);
     line(indent, "}");
+}
+
+// The object's transforms, motions and the transforms after them. A moving
+// object's clips are written before its first motion (clipped_by may not
+// follow one), in the space there.
+std::string SceneWriter::placementText(const Object& o) {
+    std::string text = formatSteps(decompose(o.transform));
+    if (o.motion.empty())
+        return text.empty() ? text : text.substr(1);
+    if (!o.clippedBy.empty()) {
+        const std::string saved = out_;
+        out_.clear();
+        writeClips(o, restPlacement(Transform{}, o.motion).inverted(), 0);
+        std::string block = out_;
+        out_ = saved;
+        while (!block.empty() && block.back() == '\n')
+            block.pop_back();
+        for (char& c : block)
+            if (c == '\n')
+                c = ' ';
+        text += " " + block;
+    }
+    for (const MotionStage& stage : o.motion)
+        text += " " + motionText(stage.motion) + formatSteps(decompose(stage.after));
+    return text.substr(1);
+}
+
+// Clips stored in the rest pose's world, written where `toWritten` maps them.
+void SceneWriter::writeClips(const Object& o, const Transform& toWritten, int indent) {
+    if (o.motion.empty()) {
+        clips(o.clippedBy, indent);
+        return;
+    }
+    std::vector<Object> moved = o.clippedBy;
+    for (Object& clip : moved) clip.transform = clip.transform.then(toWritten);
+    clips(moved, indent);
 }
 
 // After the object's transforms, so that none of them moves the clips again.
@@ -430,14 +473,27 @@ void SceneWriter::clips(const std::vector<Object>& clippedBy, int indent) {
     line(indent, "}");
 }
 
+// One key at time 1 from the identity at 0 is written without `at`.
 std::string SceneWriter::motionText(const Motion& m) {
-    std::string text = "motion {";
-    if (!(m.translate == Vec3(0)))
-        text += " translate " + vector(m.translate);
-    if (!(m.rotate == Vec3(0)))
-        text += " rotate " + vector(m.rotate);
-    if (!(m.scale == Vec3(1)))
-        text += " scale " + vector(m.scale);
+    const auto items = [](const MotionKey& k) {
+        std::string text;
+        if (!(k.translate == Vec3(0)))
+            text += " translate " + vector(k.translate);
+        if (!(k.rotate == Vec3(0)))
+            text += " rotate " + vector(k.rotate);
+        if (!(k.scale == Vec3(1)))
+            text += " scale " + vector(k.scale);
+        return text;
+    };
+    std::string text = m.spline ? "motion { spline" : "motion {";
+    const bool oneStep = m.keys.size() == 2 && m.keys[0] == MotionKey{0} && m.keys[1].time == 1;
+    if (oneStep)
+        return text + items(m.keys[1]) + " }";
+    for (size_t i = 0; i < m.keys.size(); ++i) {
+        if (i == 0 && m.keys[0] == MotionKey{0})
+            continue; // the parser adds it again
+        text += " at " + number(m.keys[i].time) + items(m.keys[i]);
+    }
     return text + " }";
 }
 

@@ -40,7 +40,7 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
         if (!accel.intersect(ray, blocker)) return mediaScene ? transmittance * throughMedia(nullptr, 1) : transmittance;
         if (mediaScene) transmittance *= throughMedia(&blocker, blocker.t);
         if (!blocker.object->noShadow) {
-            transmittance *= textureFilter(blocker.object->texture, blocker.point);
+            transmittance *= textureFilter(blocker.object->texture, blocker.restPoint);
             if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
         if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
