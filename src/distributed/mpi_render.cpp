@@ -3,7 +3,7 @@
 // Protocol (point-to-point, MPI_BYTE messages; only each rank's main thread
 // calls MPI, its render threads run beside it):
 //   worker -> 0  kRequest  int n: "send me n more tasks"
-//   0 -> worker  kTask     TileTask, then (adaptive) the tile's packed pixel states
+//   0 -> worker  kTask     TileTask, then (adaptive, after the first round) the tile's packed pixel states
 //   worker -> 0  kResult   TileTask + TileCounts, then the tile's packed pixels
 //   0 -> worker  kStop     no more tasks: the render is finished or cancelled
 // A worker keeps as many tasks asked for or queued as it has threads, so its
@@ -313,7 +313,8 @@ TileRenderInfo renderAsRank0(MpiJob& job, const Scene& scene, const RenderOption
                 if (!task) return;
                 std::vector<std::byte> payload;
                 append(payload, *task);
-                if (state.adaptive())
+                // A tile's states before the first round are the initial ones, which the rank has.
+                if (state.adaptive() && task->round > 0)
                     pool.withState([&](const RenderState& s) { s.packTile(task->tile, payload); });
                 traffic.send(std::move(payload), rank, kTask);
                 --wanted[size_t(rank)];
@@ -419,7 +420,7 @@ TileRenderInfo renderAsWorker(MpiJob& job, const Scene& scene, const RenderOptio
             } else if (tag == kTask) {
                 const auto task = readAt<TileTask>(message, 0);
                 try {
-                    if (state.adaptive())
+                    if (state.adaptive() && message.size() > sizeof task)
                         scheduler.unpack(task.tile, message.data() + sizeof task, message.size() - sizeof task);
                 } catch (const RenderError& e) {
                     abortOn(job, e);
