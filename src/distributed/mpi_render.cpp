@@ -298,12 +298,23 @@ struct RankFigures {
     job.abort(1);
 }
 
+// Ends the job if this rank's render thread failed.
+void abortIfFailed(MpiJob& job, const RenderThread& thread) {
+    if (std::exception_ptr error = thread.error()) {
+        try {
+            std::rethrow_exception(error);
+        } catch (const std::exception& e) {
+            abortOn(job, e);
+        }
+    }
+}
+
 TileRenderInfo renderAsRank0(MpiJob& job, const Scene& scene, const RenderOptions& options, RenderState& state,
                              LocalTileScheduler& pool, DistributedReport* report) {
     CountingScheduler local(pool);
     RenderThread thread(scene, options, state, local);
     Outbox traffic;
-    std::vector<int> wanted(size_t(job.size()), 0), remoteTasks(size_t(job.size()), 0);
+    std::vector<int> wanted(size_t(job.size()), 0); // tasks each rank asked for and has not had
     std::vector<std::byte> message;
     int from = 0, tag = 0;
     const auto serve = [&] {
@@ -318,17 +329,10 @@ TileRenderInfo renderAsRank0(MpiJob& job, const Scene& scene, const RenderOption
                     pool.withState([&](const RenderState& s) { s.packTile(task->tile, payload); });
                 traffic.send(std::move(payload), rank, kTask);
                 --wanted[size_t(rank)];
-                ++remoteTasks[size_t(rank)];
             }
     };
     while (true) {
-        if (std::exception_ptr error = thread.error()) {
-            try {
-                std::rethrow_exception(error);
-            } catch (const std::exception& e) {
-                abortOn(job, e);
-            }
-        }
+        abortIfFailed(job, thread);
         traffic.progress();
         bool busy = false;
         while (receive(MPI_ANY_SOURCE, message, from, tag)) {
@@ -394,13 +398,7 @@ TileRenderInfo renderAsWorker(MpiJob& job, const Scene& scene, const RenderOptio
     std::vector<std::byte> message;
     int from = 0, tag = 0;
     while (!stopped) {
-        if (std::exception_ptr error = thread.error()) {
-            try {
-                std::rethrow_exception(error);
-            } catch (const std::exception& e) {
-                abortOn(job, e);
-            }
-        }
+        abortIfFailed(job, thread);
         traffic.progress();
         bool busy = false;
         for (std::vector<std::byte>& result : scheduler.takeResults()) {
