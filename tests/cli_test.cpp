@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 namespace fs = std::filesystem;
 
@@ -193,6 +194,37 @@ TEST(Cli, RenderWritesImageWithMetadataAndVariance) {
     // No temporary files are left behind.
     for (const auto& entry : fs::directory_iterator(dir))
         EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
+}
+
+TEST(Cli, RenderStatsJsonHasTheRayCountsAndRates) {
+    const std::string dir = test::tempDir();
+    const std::string scene = test::writeFile(dir + "/tiny.drt", kTinyScene);
+    const auto r = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.exr") +
+                          " --width 20 --height 10 --spp 3 --threads 2 --quiet --stats " +
+                          quoted(dir + "/stats.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json stats = nlohmann::json::parse(test::readFile(dir + "/stats.json"));
+    EXPECT_EQ(stats.at("width"), 20);
+    EXPECT_EQ(stats.at("spp"), 3);
+    EXPECT_EQ(stats.at("threads"), 2);
+    // One camera ray per sample; the light is visible from the floor, so shadow rays are traced too.
+    EXPECT_EQ(stats.at("camera_rays"), 20 * 10 * 3);
+    EXPECT_EQ(stats.at("pixel_samples"), 20 * 10 * 3);
+    EXPECT_GT(stats.at("shadow_rays").get<uint64_t>(), 0u);
+    EXPECT_EQ(stats.at("total_rays").get<uint64_t>(),
+              stats.at("camera_rays").get<uint64_t>() + stats.at("shadow_rays").get<uint64_t>() +
+                  stats.at("secondary_rays").get<uint64_t>());
+    const double trace = stats.at("trace_seconds"), rate = stats.at("mrays_per_second");
+    EXPECT_NEAR(rate, stats.at("total_rays").get<double>() / trace / 1e6, 1e-6 * rate);
+    EXPECT_GE(stats.at("total_seconds").get<double>(), stats.at("render_seconds").get<double>());
+    EXPECT_FALSE(fs::exists(dir + "/stats.json.tmp"));
+
+    // A folder that does not exist is an I/O error before rendering: no image either.
+    const auto missing = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/second.exr") + " --stats " +
+                                quoted(dir + "/no/such/stats.json"));
+    EXPECT_EQ(missing.exitCode, 3);
+    EXPECT_NE(missing.err.find("does not exist"), std::string::npos) << missing.err;
+    EXPECT_FALSE(fs::exists(dir + "/second.exr"));
 }
 
 TEST(Cli, CompareExitStatusesEndToEnd) {

@@ -55,6 +55,8 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("--max-spp", a.maxSpp, "Adaptive: samples no pixel exceeds")->check(CLI::Range(1, 1 << 24));
     render->add_option("--spp-image", a.command.sppImageOutput,
                        "Also write the samples taken per pixel to this image (.exr: counts; else scaled to the most)");
+    render->add_option("--stats", a.command.statsOutput,
+                       "Also write the render's times, ray counts and rates to this JSON file");
     render->add_flag("-q,--quiet", a.command.quiet, "No progress line and no summary");
     render->add_option("-L,--include-path", a.command.pov.includePaths,
                        "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <ostream>
 
 namespace fs = std::filesystem;
@@ -109,6 +110,49 @@ std::string millions(uint64_t n) {
     return fmt::format("{:.2f}M", double(n) / 1e6);
 }
 
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// `--stats FILE`: what the summary line says, as JSON for benchmark scripts.
+// load = parse + files the scene names; render = build + trace; total = the
+// whole command after start-up (load, render, writing every output).
+std::string writeStatsJson(const RenderCommand& command, const RenderOptions& options, const RenderResult& result,
+                           double loadSeconds, double renderSeconds, double totalSeconds) {
+    const RenderStats& s = result.stats;
+    const double traceSeconds = s.renderSeconds > 0 ? s.renderSeconds : renderSeconds;
+    const nlohmann::json stats = {
+        {"scene", command.scene},
+        {"output", command.output},
+        {"width", result.color.width},
+        {"height", result.color.height},
+        {"spp", options.samplesPerPixel},
+        {"adaptive", options.adaptive},
+        {"threads", options.threads},
+        {"pixel_samples", s.pixelSamples},
+        {"load_seconds", loadSeconds},
+        {"build_seconds", s.buildSeconds},
+        {"trace_seconds", traceSeconds},
+        {"render_seconds", renderSeconds},
+        {"total_seconds", totalSeconds},
+        {"camera_rays", s.cameraRays},
+        {"shadow_rays", s.shadowRays},
+        {"secondary_rays", s.secondaryRays},
+        {"total_rays", s.totalRays()},
+        {"mrays_per_second", traceSeconds > 0 ? double(s.totalRays()) / traceSeconds / 1e6 : 0.0},
+        {"nonfinite_samples", s.nonFiniteSamples},
+    };
+    const std::string temporary = command.statsOutput + ".tmp";
+    {
+        std::ofstream file(temporary);
+        file << stats.dump(2) << "\n";
+        if (!file.flush()) return fmt::format("cannot write '{}'", command.statsOutput);
+    }
+    std::error_code ec;
+    fs::rename(temporary, command.statsOutput, ec);
+    return ec ? fmt::format("cannot write '{}': {}", command.statsOutput, ec.message()) : "";
+}
+
 } // namespace
 
 Metadata renderMetadata(const std::string& scenePath, const RenderOptions& options, const RenderStats& stats,
@@ -147,9 +191,11 @@ int runCheck(const std::string& scenePath, const PovCliOptions& pov, std::ostrea
 
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
     (void)out;
+    const auto commandStart = std::chrono::steady_clock::now();
     std::optional<Scene> scene;
     if (int status = loadScene(command.scene, err, scene, command.pov, command.overrides); status != kSuccess)
         return status;
+    const double loadSeconds = secondsSince(commandStart);
 
     RenderOptions options = resolveRenderOptions(overlaySettings(scene->render, command.overrides));
     if (command.tileSize)
@@ -174,6 +220,15 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
     if (!command.sppImageOutput.empty()) {
         if (std::string problem = checkWritable(command.sppImageOutput); !problem.empty()) {
             err << "drt: " << problem << "\n";
+            return kIoError;
+        }
+    }
+    if (!command.statsOutput.empty()) {
+        const fs::path folder = fs::absolute(command.statsOutput).parent_path();
+        std::error_code ec;
+        if (!fs::is_directory(folder, ec)) {
+            err << fmt::format("drt: cannot write '{}': the folder '{}' does not exist\n", command.statsOutput,
+                               folder.string());
             return kIoError;
         }
     }
@@ -219,6 +274,15 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
         Image counts = sampleCountImage(result.sampleCount, lowerExtension(command.sppImageOutput) == ".exr");
         sppMetadata.emplace_back("drt:content", "samples per pixel");
         if (std::string problem = writeImage(command.sppImageOutput, counts, sppMetadata); !problem.empty()) {
+            err << "drt: " << problem << "\n";
+            return kIoError;
+        }
+    }
+
+    if (!command.statsOutput.empty()) {
+        if (std::string problem = writeStatsJson(command, options, result, loadSeconds, seconds,
+                                                 secondsSince(commandStart));
+            !problem.empty()) {
             err << "drt: " << problem << "\n";
             return kIoError;
         }
