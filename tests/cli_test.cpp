@@ -227,6 +227,43 @@ TEST(Cli, RenderStatsJsonHasTheRayCountsAndRates) {
     EXPECT_FALSE(fs::exists(dir + "/second.exr"));
 }
 
+// OpenImageIO is a module loaded on the first image operation: a command that
+// needs no image never loads it, and a missing or foreign module is a clear
+// I/O error before any rendering.
+TEST(Cli, ImageModuleIsLoadedOnlyForImagesAndItsAbsenceIsAnIoError) {
+    const std::string dir = test::tempDir();
+    const std::string scene = test::writeFile(dir + "/tiny.drt", kTinyScene);
+    // drt children inherit the variable; this test process does no image I/O meanwhile.
+    struct ModuleOverride {
+        explicit ModuleOverride(const std::string& path) { setenv("DRT_OIIO_MODULE", path.c_str(), 1); }
+        ~ModuleOverride() { unsetenv("DRT_OIIO_MODULE"); }
+    };
+    {
+        const ModuleOverride missing(dir + "/no-such-module.so");
+        const auto check = runDrt("check " + quoted(scene));
+        EXPECT_EQ(check.exitCode, 0) << check.err; // no image involved: the module is not needed
+        EXPECT_EQ(runDrt("--version").exitCode, 0);
+
+        const auto render = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.png"));
+        EXPECT_EQ(render.exitCode, 3);
+        EXPECT_NE(render.err.find("cannot load drt's OpenImageIO module libdrt_oiio.so"), std::string::npos)
+            << render.err;
+        EXPECT_NE(render.err.find("no-such-module.so: no such file"), std::string::npos) << render.err;
+        EXPECT_EQ(render.err.find("Mrays/s"), std::string::npos) << render.err; // nothing rendered
+        EXPECT_FALSE(fs::exists(dir + "/out.png"));
+    }
+    {
+        // A shared library that is not drt's module (the C library) is refused.
+        const ModuleOverride foreign("/lib/x86_64-linux-gnu/libc.so.6");
+        const auto render = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.png"));
+        EXPECT_EQ(render.exitCode, 3);
+        EXPECT_NE(render.err.find("not a module of this drt build"), std::string::npos) << render.err;
+    }
+    // Without the override the module is found again.
+    EXPECT_EQ(runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.png") + " --quiet").exitCode, 0);
+    EXPECT_TRUE(fs::exists(dir + "/out.png"));
+}
+
 TEST(Cli, CompareExitStatusesEndToEnd) {
     const std::string dir = test::tempDir();
     Image reference(16, 16, 3);
