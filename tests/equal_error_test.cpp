@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <csignal>
 #include <random>
 
 using namespace drt;
@@ -177,6 +178,12 @@ TEST(ProcessRun, CapturesOutputStatusFolderAndEnvironment) {
     EXPECT_TRUE(killed.started);
     EXPECT_EQ(killed.signal, 9);
     EXPECT_EQ(killed.exitCode, -1);
+
+    const ProcessRun slow = runProcess({"sleep", "30"}, "", {}, 0.2);
+    EXPECT_TRUE(slow.timedOut);
+    EXPECT_EQ(slow.signal, SIGKILL);
+    EXPECT_LT(slow.wallSeconds, 20); // killed, not waited for
+    EXPECT_FALSE(runProcess({"true"}, "", {}, 30).timedOut);
 
     const ProcessRun missing = runProcess({"/nonexistent/program"});
     EXPECT_FALSE(missing.started);

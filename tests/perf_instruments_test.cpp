@@ -3,6 +3,7 @@
 // summary's tables come from medians and best curves. Running the instruments
 // themselves takes minutes and POV-Ray: that is `drt_perf`, not a test.
 #include "pov/load.h"
+#include "pov_scenes.h"
 #include "test_support.h"
 #include "versus.h"
 #include "versus_report.h"
@@ -150,4 +151,17 @@ TEST(PerfReports, SummaryTablesUseMediansAndTheBestCurve) {
     const std::string csv = formatVersusCsv(report);
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 12);
     EXPECT_EQ(csv.rfind("scene,renderer,setting,repetition,exit_code,wall_seconds", 0), 0u) << csv;
+}
+
+TEST(PerfSceneRule, BenchmarkFirstThenByHash) {
+    // FNV-1a 64: the offset basis for "", and the published value for "a".
+    EXPECT_EQ(fnv1a64(""), 0xcbf29ce484222325ull);
+    EXPECT_EQ(fnv1a64("a"), 0xaf63dc4c8601ec8cull);
+    const std::vector<std::string> ordered =
+        orderScenes({"b.pov", "a.pov", "advanced/benchmark/benchmark.pov", "c.pov"});
+    ASSERT_EQ(ordered.size(), 4u);
+    EXPECT_EQ(ordered[0], "advanced/benchmark/benchmark.pov");
+    for (size_t i = 2; i < ordered.size(); ++i)
+        EXPECT_LT(fnv1a64(ordered[i - 1]), fnv1a64(ordered[i]));
+    EXPECT_EQ(orderScenes(ordered), ordered); // a fixed order, whatever the input order
 }

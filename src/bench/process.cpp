@@ -1,13 +1,17 @@
 #include "bench/process.h"
 
 #include <chrono>
+#include <condition_variable>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <mutex>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 
 namespace drt::bench {
@@ -32,7 +36,7 @@ std::string readAll(int fd) {
 } // namespace
 
 ProcessRun runProcess(const std::vector<std::string>& argv, const std::string& workingDir,
-                      const std::vector<std::string>& environment) {
+                      const std::vector<std::string>& environment, double timeoutSeconds) {
     ProcessRun run;
     if (argv.empty()) {
         run.output = "no program given";
@@ -94,12 +98,39 @@ ProcessRun runProcess(const std::vector<std::string>& argv, const std::string& w
         (void)!write(2, message, sizeof message - 1);
         _exit(127);
     }
+    // The watchdog kills the child at the deadline unless it ended first.
+    std::mutex mutex;
+    std::condition_variable ended;
+    bool done = false, killed = false;
+    std::thread watchdog;
+    if (timeoutSeconds > 0)
+        watchdog = std::thread([&] {
+            std::unique_lock lock(mutex);
+            if (!ended.wait_for(lock, std::chrono::duration<double>(timeoutSeconds), [&] { return done; })) {
+                kill(pid, SIGKILL);
+                killed = true;
+            }
+        });
+    // Wait for the end without reaping, so the pid cannot be reused while the
+    // watchdog may still send its signal; then stop the watchdog and reap.
+    siginfo_t info{};
+    while (waitid(P_PID, id_t(pid), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+    }
+    if (watchdog.joinable()) {
+        {
+            std::lock_guard lock(mutex);
+            done = true;
+        }
+        ended.notify_one();
+        watchdog.join();
+    }
     int status = 0;
     rusage usage{};
     while (wait4(pid, &status, 0, &usage) < 0) {
         if (errno != EINTR)
             break;
     }
+    run.timedOut = killed;
     run.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     run.started = true;
     run.userSeconds = seconds(usage.ru_utime);

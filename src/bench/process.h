@@ -17,6 +17,7 @@ struct ProcessRun {
     double wallSeconds = 0; // from just before fork to the end of wait4
     double userSeconds = 0, systemSeconds = 0;
     double peakRssMiB = 0; // ru_maxrss of the child
+    bool timedOut = false; // killed (SIGKILL) after the time limit
     std::string output;    // its stdout and stderr, interleaved
     double cpuSeconds() const { return userSeconds + systemSeconds; }
     bool succeeded() const { return started && exitCode == 0; }
@@ -25,9 +26,10 @@ struct ProcessRun {
 // Runs argv[0] (looked up in PATH if it has no '/') with the arguments in
 // `argv`, in `workingDir` ("" = the current folder), with stdin from /dev/null
 // and stdout + stderr captured. `environment` entries "NAME=value" are added
-// to the current environment. Never throws for a failing program.
+// to the current environment. With `timeoutSeconds` > 0 the program is killed
+// once it runs that long. Never throws for a failing program.
 ProcessRun runProcess(const std::vector<std::string>& argv, const std::string& workingDir = "",
-                      const std::vector<std::string>& environment = {});
+                      const std::vector<std::string>& environment = {}, double timeoutSeconds = 0);
 
 // The absolute path of the running executable (/proc/self/exe), or "".
 std::string currentExecutable();
