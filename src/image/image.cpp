@@ -1,14 +1,26 @@
-// The image I/O entry points: each forwards to the OpenImageIO module,
-// loaded once, on the first call (image/image_io_module.h says why). The
-// module is $DRT_OIIO_MODULE if that is set (and then nothing else is tried);
-// else it is looked for beside the executable, in ../lib/drt beside it (an
-// installed drt), and in the build tree it was built in.
+// The image I/O entry points. Every image goes through OpenImageIO, in the
+// module libdrt_oiio.so (image/oiio/), loaded once, on the first call
+// (image/image_io_module.h says why); the file handling around it stays here:
+// writes go to a temporary file (registered for removal on a signal) renamed
+// over the real one when complete. The module is $DRT_OIIO_MODULE if that is
+// set (and then nothing else is tried); else it is looked for beside the
+// executable, in ../lib/drt beside it (an installed drt), and in the build
+// tree it was built in.
 #include "image/image.h"
 #include "image/image_io_module.h"
 
+#include "core/temporary_files.h"
+
+#include <atomic>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <dlfcn.h>
 #include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <system_error>
+#include <unistd.h>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -74,16 +86,84 @@ const LoadedModule& imageIo() {
     return loaded;
 }
 
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// A name for the temporary file beside `path`, unique within this machine
+// (pid) and this process (counter). It keeps no extension: the writer is
+// chosen from the real path.
+fs::path temporaryPath(const fs::path& path) {
+    static std::atomic<unsigned> counter{0};
+    return path.parent_path() / fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(), counter++);
+}
+
+fs::path folderOf(const std::string& path) {
+    fs::path folder = fs::path(path).parent_path();
+    return folder.empty() ? fs::path(".") : folder;
+}
+
 } // namespace
 
 std::string checkWritable(const std::string& path) {
+    if (path.empty())
+        return "no output file given";
+    if (fs::path(path).filename().empty())
+        return "'" + path + "' names a folder, not a file";
     const LoadedModule& io = imageIo();
-    return io.module ? io.module->checkWritable(path) : io.error;
+    if (!io.module)
+        return io.error;
+    if (!io.module->hasWriter(path))
+        return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) +
+               "' (use .png, .jpg, .tif, .exr or .hdr)";
+    const fs::path folder = folderOf(path);
+    std::error_code ec;
+    if (!fs::exists(folder, ec))
+        return "cannot write '" + path + "': folder '" + folder.string() + "' does not exist";
+    if (!fs::is_directory(folder, ec))
+        return "cannot write '" + path + "': '" + folder.string() + "' is not a folder";
+    if (fs::is_directory(path, ec))
+        return "cannot write '" + path + "': it is a folder";
+    // access() is not enough (root passes it everywhere, read-only mounts do
+    // not show in the mode bits): create and remove a probe file instead.
+    const fs::path probe = temporaryPath(fs::path(path));
+    {
+        std::ofstream out(probe, std::ios::binary);
+        if (!out) {
+            const int error = errno;
+            return "cannot write '" + path + "': " + std::strerror(error != 0 ? error : EACCES);
+        }
+    }
+    fs::remove(probe, ec);
+    return "";
 }
 
 std::string writeImage(const std::string& path, const Image& image, const Metadata& metadata) {
+    if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
+        image.pixels.size() != size_t(image.width) * image.height * image.channels)
+        return "cannot write '" + path + "': the image is empty or malformed";
     const LoadedModule& io = imageIo();
-    return io.module ? io.module->writeImage(path, image, metadata) : io.error;
+    if (!io.module)
+        return io.error;
+    if (!io.module->hasWriter(path))
+        return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) + "'";
+    const fs::path temporary = temporaryPath(fs::path(path));
+    const TemporaryFile removedOnSignal(temporary.string());
+    std::error_code ec;
+    auto fail = [&](const std::string& reason) {
+        fs::remove(temporary, ec);
+        return "cannot write '" + path + "': " + reason;
+    };
+    if (std::string problem = io.module->writeFile(temporary.string(), path, image, metadata);
+        !problem.empty())
+        return fail(problem);
+    fs::rename(temporary, path, ec);
+    if (ec)
+        return fail(ec.message());
+    return "";
 }
 
 std::string readImage(const std::string& path, Image& image, Metadata* metadata) {

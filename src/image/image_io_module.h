@@ -17,10 +17,17 @@ namespace drt {
 // Bumped whenever this table changes: a module from another build is refused.
 inline constexpr int kImageIoModuleVersion = 1;
 
+// The module does the OpenImageIO work only; the files around it (temporary
+// names, renames, removal on a signal) are handled by image/image.cpp.
 struct ImageIoModule {
     int version;
-    std::string (*checkWritable)(const std::string& path);
-    std::string (*writeImage)(const std::string& path, const Image& image, const Metadata& metadata);
+    // True if OpenImageIO has a writer for the format `path`'s extension names.
+    bool (*hasWriter)(const std::string& path);
+    // Encodes `image` into `file` in the format `path`'s extension names
+    // (integer formats sRGB-encoded). Returns "" or OpenImageIO's reason.
+    std::string (*writeFile)(const std::string& file, const std::string& path, const Image& image,
+                             const Metadata& metadata);
+    // As image/image.h's readImage and readImageEncoded.
     std::string (*readImage)(const std::string& path, Image& image, Metadata* metadata);
     std::string (*readImageEncoded)(const std::string& path, Image& image, ImageFileInfo& info);
 };

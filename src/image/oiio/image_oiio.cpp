@@ -1,22 +1,18 @@
-// Image I/O through OpenImageIO: the one path every image in drt takes to and
-// from disk. Built as the module libdrt_oiio.so, which image/image.cpp loads on
-// the first image operation (image/image_io_module.h says why).
+// Image I/O through OpenImageIO: every image drt reads or writes is decoded
+// or encoded here. Built as the module libdrt_oiio.so, which image/image.cpp
+// loads on the first image operation (image/image_io_module.h says why); the
+// file handling around it (temporary names, renames, clean-up on a signal)
+// stays in image/image.cpp.
 #include "image/image.h"
 #include "image/image_io_module.h"
 
 #include "image/srgb.h"
 
 #include <OpenImageIO/imageio.h>
-#include <fmt/format.h>
 
-#include <atomic>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <system_error>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -47,19 +43,6 @@ bool isIntegerType(OIIO::TypeDesc type) {
            type.basetype != OIIO::TypeDesc::DOUBLE;
 }
 
-// A name for the temporary file beside `path`, unique within this machine
-// (pid) and this process (counter). It keeps no extension: the writer is
-// chosen from the real path.
-fs::path temporaryPath(const fs::path& path) {
-    static std::atomic<unsigned> counter{0};
-    return path.parent_path() / fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(), counter++);
-}
-
-fs::path folderOf(const std::string& path) {
-    fs::path folder = fs::path(path).parent_path();
-    return folder.empty() ? fs::path(".") : folder;
-}
-
 // TIFF and JPEG keep only the description writeImage composes,
 // "drt key=value key=value ...": recover the keys the file did not keep.
 void recoverFromDescription(const std::string& description, Metadata& metadata) {
@@ -86,51 +69,20 @@ void recoverFromDescription(const std::string& description, Metadata& metadata) 
 
 } // namespace
 
-std::string checkWritable(const std::string& path) {
-    if (path.empty())
-        return "no output file given";
-    if (fs::path(path).filename().empty())
-        return "'" + path + "' names a folder, not a file";
-    {
-        auto output = OIIO::ImageOutput::create(path);
-        if (!output) {
-            OIIO::geterror(); // clear OpenImageIO's pending message
-            return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) +
-                   "' (use .png, .jpg, .tif, .exr or .hdr)";
-        }
-    }
-    const fs::path folder = folderOf(path);
-    std::error_code ec;
-    if (!fs::exists(folder, ec))
-        return "cannot write '" + path + "': folder '" + folder.string() + "' does not exist";
-    if (!fs::is_directory(folder, ec))
-        return "cannot write '" + path + "': '" + folder.string() + "' is not a folder";
-    if (fs::is_directory(path, ec))
-        return "cannot write '" + path + "': it is a folder";
-    // access() is not enough (root passes it everywhere, read-only mounts do
-    // not show in the mode bits): create and remove a probe file instead.
-    const fs::path probe = temporaryPath(fs::path(path));
-    {
-        std::ofstream out(probe, std::ios::binary);
-        if (!out) {
-            const int error = errno;
-            return "cannot write '" + path + "': " + std::strerror(error != 0 ? error : EACCES);
-        }
-    }
-    fs::remove(probe, ec);
-    return "";
+bool hasWriter(const std::string& path) {
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output)
+        OIIO::geterror(); // clear OpenImageIO's pending message
+    return bool(output);
 }
 
-std::string writeImage(const std::string& path, const Image& image, const Metadata& metadata) {
-    if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
-        image.pixels.size() != size_t(image.width) * image.height * image.channels)
-        return "cannot write '" + path + "': the image is empty or malformed";
+std::string writeFile(const std::string& file, const std::string& path, const Image& image,
+                      const Metadata& metadata) {
     auto output = OIIO::ImageOutput::create(path);
     if (!output) {
         OIIO::geterror();
-        return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) + "'";
+        return "unknown image format '" + lowerExtension(path) + "'";
     }
-
     const OIIO::TypeDesc type = storageType(path);
     const bool encode = isIntegerType(type);
     OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
@@ -151,24 +103,9 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
     if (encode)
         for (float& v : stored)
             v = static_cast<float>(srgbEncode(v));
-
-    const fs::path temporary = temporaryPath(fs::path(path));
-    std::error_code ec;
-    auto fail = [&](const std::string& reason) {
-        output.reset(); // closes the file before it is removed
-        fs::remove(temporary, ec);
-        return "cannot write '" + path + "': " + reason;
-    };
-    if (!output->open(temporary.string(), spec))
-        return fail(output->geterror());
-    if (!output->write_image(OIIO::TypeDesc::FLOAT, stored.data()))
-        return fail(output->geterror());
-    if (!output->close())
-        return fail(output->geterror());
-    output.reset();
-    fs::rename(temporary, path, ec);
-    if (ec)
-        return fail(ec.message());
+    if (!output->open(file, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, stored.data()) ||
+        !output->close())
+        return output->geterror();
     return "";
 }
 
@@ -195,8 +132,10 @@ std::string readImageEncoded(const std::string& path, Image& image, ImageFileInf
     info.bitsPerChannel = info.isFloat ? 32 : (bits > 0 ? bits : int(spec.format.size()) * 8);
     const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
     info.srgbEncoded = !info.isFloat && colorSpace != "Linear" && colorSpace.rfind("Gamma", 0) != 0;
-    if (colorSpace == "Linear") info.fileGamma = 1;
-    else if (colorSpace.rfind("Gamma", 0) == 0) info.fileGamma = spec.get_float_attribute("oiio:Gamma", 0);
+    if (colorSpace == "Linear")
+        info.fileGamma = 1;
+    else if (colorSpace.rfind("Gamma", 0) == 0)
+        info.fileGamma = spec.get_float_attribute("oiio:Gamma", 0);
     input->close();
     image = std::move(result);
     return "";
@@ -238,8 +177,8 @@ std::string readImage(const std::string& path, Image& image, Metadata* metadata)
 } // namespace drt::oiio
 
 extern "C" const drt::ImageIoModule* drt_image_io_module() {
-    static const drt::ImageIoModule module = {drt::kImageIoModuleVersion, &drt::oiio::checkWritable,
-                                              &drt::oiio::writeImage, &drt::oiio::readImage,
+    static const drt::ImageIoModule module = {drt::kImageIoModuleVersion, &drt::oiio::hasWriter,
+                                              &drt::oiio::writeFile, &drt::oiio::readImage,
                                               &drt::oiio::readImageEncoded};
     return &module;
 }

@@ -1,0 +1,43 @@
+// The pieces of `drt render` shared by cli/render_command.cpp (scene, outputs)
+// and cli/render_run.cpp (the render: processes, interruption, checkpoints).
+#pragma once
+
+#include "cli/commands.h"
+#include "distributed/render_identity.h"
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace drt::cli {
+
+// Loads a scene, printing every diagnostic to `err`. Returns kSuccess and sets
+// `scene`, or the exit status to stop with.
+int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov = {},
+              const RenderSettings& overrides = {});
+
+// ".png" for "a/b.PNG".
+std::string lowerExtension(const std::string& path);
+
+// Checks, before rendering, that every output can be written. Returns kSuccess or the status.
+int checkOutputs(const RenderCommand& command, std::ostream& err);
+
+// Writes the colour, variance and samples-per-pixel images (NaN/Inf cleared:
+// `nonFinitePixels` counts them) and removes a stale checkpoint. Returns kSuccess or the status.
+int writeOutputs(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
+                 RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err);
+
+// `--stats FILE`: the summary line's figures as JSON, for benchmark scripts.
+// load = parse + the files the scene names; render = build + trace; total =
+// the whole command after start-up (load, render, writing every output).
+struct RenderTimes {
+    double loadSeconds = 0, renderSeconds = 0, totalSeconds = 0;
+};
+std::string writeStatsJson(const RenderCommand& command, const RenderOptions& options, const RenderResult& result,
+                           const RenderTimes& times);
+
+// The one-line summary after a render.
+void printSummary(const RenderCommand& command, const RenderOptions& options, const RenderResult& result,
+                  uint64_t nonFinitePixels, double seconds, std::ostream& err);
+
+} // namespace drt::cli
