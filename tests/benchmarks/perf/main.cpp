@@ -2,7 +2,9 @@
 // subcommand each. Run from the build folder; `drt_perf SUBCOMMAND --help`.
 #include "pov_scenes.h"
 #include "rays.h"
+#include "report.h"
 #include "startup.h"
+#include "time_to_error.h"
 #include "versus.h"
 
 #include <CLI/CLI.hpp>
@@ -96,6 +98,41 @@ int main(int argc, char** argv) {
     scenesCommand->add_option("--pov-examples", scenes.povExamples, "POV-Ray's sample scene folder");
     scenesCommand->add_flag("--quick", scenesQuick, "10 scenes");
 
+    drt::perf::TimeToErrorOptions timeToError;
+    CLI::App* timeCommand = app.add_subcommand(
+        "time-to-error",
+        "How much sooner each drt reaches the error one drt reaches at N spp (examples/cook.drt)");
+    timeCommand->add_option("-o,--output", timeToError.outputDir, "Output folder (created if missing)")
+        ->required();
+    timeCommand->add_option("--drt", drtTexts,
+                            "LABEL=PATH of a drt to measure (repeatable; the first renders the reference)");
+    timeCommand->add_option("--scene", timeToError.scene, "A drt scene (default examples/cook.drt)");
+    timeCommand->add_option("--target", timeToError.target,
+                            "Label of the drt whose error at --target-spp is the target (default: the last)");
+    timeCommand
+        ->add_option("--target-spp", timeToError.targetSpp, "Samples per pixel of the target (default 16)")
+        ->check(CLI::Range(1, 1 << 16));
+    timeCommand->add_option("--spp", timeToError.spp, "Sample counts measured, comma-separated")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 1 << 16));
+    timeCommand
+        ->add_option("--reference-spp", timeToError.referenceSpp, "Samples per pixel of a reference render")
+        ->check(CLI::Range(1, 1 << 20));
+    timeCommand->add_option("--threads", timeToError.threads, "Threads")->check(CLI::Range(1, 256));
+    timeCommand->add_option("--repetitions", timeToError.repetitions, "Runs of every render (default 3)")
+        ->check(CLI::Range(1, 100));
+
+    drt::perf::ReportOptions report;
+    bool reportNoPovray = false;
+    CLI::App* reportCommand = app.add_subcommand(
+        "report", "Every instrument in one run (startup, rays, time-to-error, versus-povray) and report.md");
+    reportCommand->add_option("-o,--output", report.outputDir, "Output folder (created if missing)")
+        ->required();
+    reportCommand->add_option("--drt", drtTexts, "LABEL=PATH of a drt to measure (repeatable)");
+    reportCommand->add_flag("--quick", report.quick, "Every instrument in its lighter form");
+    reportCommand->add_flag("--no-povray", reportNoPovray,
+                            "Leave out drt against POV-Ray (the longest part)");
+
     CLI11_PARSE(app, argc, argv);
     try {
         if (versusCommand->parsed()) {
@@ -111,6 +148,15 @@ int main(int argc, char** argv) {
         if (startupCommand->parsed()) {
             startup.drt = drtBinaries(drtTexts);
             return drt::perf::runStartup(startup, std::cerr);
+        }
+        if (timeCommand->parsed()) {
+            timeToError.drt = drtBinaries(drtTexts);
+            return drt::perf::runTimeToError(timeToError, std::cerr);
+        }
+        if (reportCommand->parsed()) {
+            report.drt = drtBinaries(drtTexts);
+            report.povray = !reportNoPovray;
+            return drt::perf::runReport(report, std::cerr);
         }
         if (raysCommand->parsed()) {
             rays.drt = drtBinaries(drtTexts);
