@@ -86,13 +86,6 @@ const LoadedModule& imageIo() {
     return loaded;
 }
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    for (char& c : ext)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 // A name for the temporary file beside `path`, unique within this machine
 // (pid) and this process (counter). It keeps no extension: the writer is
 // chosen from the real path.

@@ -10,6 +10,8 @@
 
 #include "image/image.h"
 
+#include <cctype>
+#include <filesystem>
 #include <string>
 
 namespace drt {
@@ -31,6 +33,14 @@ struct ImageIoModule {
     std::string (*readImage)(const std::string& path, Image& image, Metadata* metadata);
     std::string (*readImageEncoded)(const std::string& path, Image& image, ImageFileInfo& info);
 };
+
+// The extension of `path`, lower case ("" if none): it names the format.
+inline std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
 
 // The file name of the module, and the symbol it exports
 // (extern "C" const ImageIoModule* drt_image_io_module()).

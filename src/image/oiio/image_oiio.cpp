@@ -20,13 +20,6 @@ namespace drt::oiio {
 
 namespace {
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    for (char& c : ext)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 // How pixels are stored in a format: float formats keep linear values, integer
 // formats store sRGB-encoded values.
 OIIO::TypeDesc storageType(const std::string& path) {

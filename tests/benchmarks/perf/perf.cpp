@@ -166,6 +166,20 @@ std::string readTextFile(const std::string& path) {
     return text.str();
 }
 
+Image readImageOrThrow(const std::string& path) {
+    Image image;
+    if (std::string problem = readImage(path, image); !problem.empty())
+        throw std::runtime_error(problem);
+    return image;
+}
+
+std::string lastLines(const std::string& text, size_t lines) {
+    size_t position = text.size();
+    for (size_t i = 0; i <= lines && position != std::string::npos && position > 0; ++i)
+        position = text.rfind('\n', position - 1);
+    return position == std::string::npos ? text : text.substr(position + 1);
+}
+
 std::string Csv::text() const {
     const auto line = [](const std::vector<std::string>& row) {
         std::string out;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "bench/process.h"
+#include "image/image.h"
 
 #include <cstdint>
 #include <string>
@@ -59,6 +60,10 @@ inline constexpr const char* kPovExamples = "/usr/share/doc/povray/examples";
 // Text written through a temporary file renamed over `path`. Throws std::runtime_error.
 void writeTextFile(const std::string& path, const std::string& text);
 std::string readTextFile(const std::string& path); // "" if unreadable
+// An image through image/image.h. Throws std::runtime_error with its reason.
+Image readImageOrThrow(const std::string& path);
+// The last `lines` lines of a program's output, for error messages.
+std::string lastLines(const std::string& text, size_t lines = 6);
 
 // A CSV table: a header, then rows of already formatted cells.
 struct Csv {

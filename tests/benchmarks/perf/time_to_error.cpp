@@ -34,20 +34,6 @@ struct Render {
     double relMse = NAN; // against the reference, its noise taken out
 };
 
-Image readOrThrow(const std::string& path) {
-    Image image;
-    if (std::string problem = readImage(path, image); !problem.empty())
-        throw std::runtime_error(problem);
-    return image;
-}
-
-std::string tail(const std::string& text, size_t lines = 6) {
-    size_t position = text.size();
-    for (size_t i = 0; i <= lines && position != std::string::npos && position > 0; ++i)
-        position = text.rfind('\n', position - 1);
-    return position == std::string::npos ? text : text.substr(position + 1);
-}
-
 // The median relMSE at each spp of one drt, and its best curve on wall or CPU time.
 std::vector<bench::SettingPoint> points(const std::vector<Render>& renders, size_t drt, bool cpu) {
     std::map<int, std::pair<std::vector<double>, std::vector<double>>> bySpp;
@@ -78,7 +64,7 @@ void measure(std::vector<Render>& renders, const bench::AveragedImage& reference
     for (Render& r : renders) {
         if (!r.run.process.succeeded())
             continue;
-        const Image candidate = readOrThrow(r.image);
+        const Image candidate = readImageOrThrow(r.image);
         r.relMse = compareImages(candidate, reference.mean).relMse - noise;
     }
 }
@@ -133,7 +119,7 @@ int runTimeToError(const TimeToErrorOptions& o, std::ostream& log) {
                     r.run = runDrtRender(o.drt[d], scene, r.image, args, work.string());
                     if (!r.run.process.succeeded())
                         throw std::runtime_error(fmt::format("drt {} failed on {}:\n{}", o.drt[d].label,
-                                                             scene, tail(r.run.process.output)));
+                                                             scene, lastLines(r.run.process.output)));
                     log << fmt::format(
                         "time-to-error: rep {}/{} drt {:<8} {:4} spp {:7.2f} s wall {:7.2f} s cpu\n", rep,
                         repetitions, o.drt[d].label, spp, r.run.process.wallSeconds,
@@ -153,8 +139,8 @@ int runTimeToError(const TimeToErrorOptions& o, std::ostream& log) {
             const DrtRender run = runDrtRender(o.drt.front(), scene, part, args, work.string());
             if (!run.process.succeeded())
                 throw std::runtime_error(fmt::format("drt {} failed on {}:\n{}", o.drt.front().label, scene,
-                                                     tail(run.process.output)));
-            parts.push_back(readOrThrow(part));
+                                                     lastLines(run.process.output)));
+            parts.push_back(readImageOrThrow(part));
             fs::remove(part, ec);
             if (parts.size() < size_t(kReferenceMinParts))
                 continue;
@@ -225,7 +211,7 @@ int runTimeToError(const TimeToErrorOptions& o, std::ostream& log) {
             std::vector<Image> own;
             for (const Render& r : renders)
                 if (r.drt == d && r.spp == spps.back())
-                    own.push_back(readOrThrow(r.image));
+                    own.push_back(readImageOrThrow(r.image));
             const bench::AveragedImage mean = bench::averageImages(own);
             md += "- " +
                   bench::formatAgreement(bench::compareReferences(mean.mean, reference.mean),

@@ -59,20 +59,6 @@ void recordIdentity(const fs::path& image, const std::string& identity, double s
                   nlohmann::json{{"identity", identity}, {"seconds", seconds}, {"parts", parts}}.dump(2));
 }
 
-Image readOrThrow(const std::string& path) {
-    Image image;
-    if (std::string problem = readImage(path, image); !problem.empty())
-        throw std::runtime_error(problem);
-    return image;
-}
-
-std::string tail(const std::string& text, size_t lines = 6) {
-    size_t position = text.size();
-    for (size_t i = 0; i <= lines && position != std::string::npos && position > 0; ++i)
-        position = text.rfind('\n', position - 1);
-    return position == std::string::npos ? text : text.substr(position + 1);
-}
-
 std::vector<std::string> povArguments(const Context& c, const std::string& scene, const std::string& output,
                                       const PovSetting& setting, const std::string& sceneFolder) {
     std::vector<std::string> args = {"+I" + scene,
@@ -104,18 +90,19 @@ Image povReferenceImage(const Context& c, const VersusScene& scene, const std::s
                     c.options.width, c.options.height, c.options.threads);
     if (cached(image, identity)) {
         c.log << fmt::format("versus: {}: reusing {}\n", scene.name, image.string());
-        return readOrThrow(image.string());
+        return readImageOrThrow(image.string());
     }
     c.log << fmt::format("versus: {}: POV-Ray reference ({})...\n", scene.name, setting.name);
     const std::string file = writeSceneCopy(c, text, setting, stem);
     const PovRender run =
         runPovray(povArguments(c, file, fs::absolute(image).string(), setting, sceneFolder), c.work.string());
     if (!run.process.succeeded())
-        throw std::runtime_error(fmt::format("POV-Ray failed on {}:\n{}", file, tail(run.process.output)));
+        throw std::runtime_error(
+            fmt::format("POV-Ray failed on {}:\n{}", file, lastLines(run.process.output)));
     recordIdentity(image, identity, run.process.wallSeconds);
     c.log << fmt::format("versus: {}: POV-Ray reference done in {:.1f} s\n", scene.name,
                          run.process.wallSeconds);
-    return readOrThrow(image.string());
+    return readImageOrThrow(image.string());
 }
 
 // drt's reference: the mean of independent renders (seeds apart) and the
@@ -135,7 +122,7 @@ bench::AveragedImage drtReferenceImage(const Context& c, const VersusScene& scen
             partsUsed = nlohmann::json::parse(readTextFile(image.string() + ".json")).at("parts");
         } catch (const nlohmann::json::exception&) {
         }
-        return {readOrThrow(image.string()), readOrThrow(variance.string())};
+        return {readImageOrThrow(image.string()), readImageOrThrow(variance.string())};
     }
     c.log << fmt::format(
         "versus: {}: drt reference ({}, renders of {} spp until its noise is below {:.1e})...\n", scene.name,
@@ -153,8 +140,8 @@ bench::AveragedImage drtReferenceImage(const Context& c, const VersusScene& scen
                                            c.work.string());
         if (!run.process.succeeded())
             throw std::runtime_error(
-                fmt::format("drt failed on {}:\n{}", scenePath, tail(run.process.output)));
-        parts.push_back(readOrThrow(part));
+                fmt::format("drt failed on {}:\n{}", scenePath, lastLines(run.process.output)));
+        parts.push_back(readImageOrThrow(part));
         seconds += run.process.wallSeconds;
         fs::remove(part);
         if (parts.size() >= size_t(kDrtReferenceMinParts)) {
@@ -287,7 +274,7 @@ SceneResult runScene(const Context& c, const VersusScene& scene) {
             }
             if (!row.process.succeeded())
                 c.log << fmt::format("versus: {} {} ({}) failed:\n{}\n", scene.name, row.renderer,
-                                     row.setting, tail(row.process.output));
+                                     row.setting, lastLines(row.process.output));
             c.log << fmt::format(
                 "versus: {} rep {}/{}: {:<12} {:<32} {:6.2f} s wall {:6.2f} s cpu  relMSE {:.3e}\n",
                 scene.name, rep, repetitions, row.renderer, row.setting, row.process.wallSeconds,
