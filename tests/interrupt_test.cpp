@@ -31,7 +31,7 @@ namespace {
 class Child {
 public:
     Child(const std::vector<std::string>& args, const std::string& errPath) {
-        std::vector<std::string> argv = {DRT_EXECUTABLE};
+        std::vector<std::string> argv = {test::drtExecutable()};
         argv.insert(argv.end(), args.begin(), args.end());
         std::vector<char*> pointers;
         for (std::string& a : argv) pointers.push_back(a.data());

@@ -25,6 +25,8 @@ struct CommandResult {
     std::string out; // stdout
     std::string err; // stderr
 };
+// The path of the drt executable built with these tests.
+std::string drtExecutable();
 // Runs the drt executable with the given argument string (shell-quoted by the caller).
 CommandResult runDrt(const std::string& arguments);
 
