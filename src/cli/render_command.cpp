@@ -2,9 +2,11 @@
 #include "cli/commands.h"
 #include "assets/assets.h"
 
+#include "cli/paths.h"
 #include "cli/progress.h"
 #include "lang/load.h"
 #include "pov/load.h"
+#include "render/camera.h"
 #include "sampling/sampler.h"
 
 #include <algorithm>
@@ -69,6 +71,16 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         scene = loadSceneFile(path, diagnostics);
     }
     if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+    if (scene && !diagnostics.hasErrors()) {
+        // The camera's problems (sky or up along the view, ...) are found by
+        // check too, and reported at the camera.
+        const RenderOptions size = resolveRenderOptions(overlaySettings(scene->render, overrides));
+        try {
+            resolveCamera(scene->camera, size.width, size.height);
+        } catch (const RenderError& e) {
+            diagnostics.error(scene->camera.loc, e.what());
+        }
+    }
     err << diagnostics.formatAll();
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),
@@ -147,6 +159,15 @@ int runCheck(const std::string& scenePath, const PovCliOptions& pov, std::ostrea
 
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
     (void)out;
+    // Refused before anything is read: an output that would replace the scene
+    // or another output, whatever the spelling.
+    if (std::string clash = outputClash({{"the scene", command.scene}}, {{"-o", command.output},
+                                                                        {"--variance", command.varianceOutput},
+                                                                        {"--spp-image", command.sppImageOutput}});
+        !clash.empty()) {
+        err << "drt render: " << clash << "\n";
+        return kUsageError;
+    }
     std::optional<Scene> scene;
     if (int status = loadScene(command.scene, err, scene, command.pov, command.overrides); status != kSuccess)
         return status;
@@ -154,6 +175,13 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
     RenderOptions options = resolveRenderOptions(overlaySettings(scene->render, command.overrides));
     if (command.tileSize)
         options.tileSize = *command.tileSize;
+    // Sizes and thread counts past the limits are refused before the render
+    // allocates anything: a usage error when the command line asked for them.
+    if (std::string problem = renderLimitProblem(options); !problem.empty()) {
+        const bool fromCommandLine = command.overrides.width || command.overrides.height || command.overrides.threads;
+        err << fmt::format("drt: {}: {}\n", fromCommandLine ? "render" : command.scene, problem);
+        return fromCommandLine ? kUsageError : kSceneError;
+    }
 
     // Every output is checked before the (possibly long) render starts.
     if (std::string problem = checkWritable(command.output); !problem.empty()) {

@@ -79,6 +79,13 @@ struct RenderResult {
     RenderStats stats;
 };
 
+// The memory a render's image buffers take (colour, variance, sample counts,
+// adaptive state, the copy an image file is written from), computed without
+// overflow; and "" or why `options` are refused before anything is allocated
+// (core/limits.h: image_memory_mb, threads).
+uint64_t renderImageBytes(const RenderOptions& options);
+std::string renderLimitProblem(const RenderOptions& options);
+
 // Throws RenderError on failure.
 RenderResult render(const Scene& scene, const RenderOptions& options);
 
