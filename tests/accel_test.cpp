@@ -18,6 +18,7 @@ namespace drt {
 namespace {
 
 using test::makeObject;
+using test::buildAccelerator;
 using test::sceneOf;
 
 std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction, double time = 0) {

@@ -353,6 +353,7 @@ TEST(Superellipsoid, HitsLieOnTheSurfaceAndInsideIsNegative) {
 // ------------------------------------------------------------ through the Accelerator
 
 using test::makeObject;
+using test::buildAccelerator;
 using test::sceneOf;
 
 TEST(Algebraic, DifferenceWithASphereMatchesTheSphereVersion) {

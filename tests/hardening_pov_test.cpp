@@ -38,25 +38,25 @@ struct Case {
 TEST(HardeningPov, FloatsThatBecomeCountsOrIndicesAreRangeChecked) {
     const Case cases[] = {
         {"camera { cylinder 1e10 }", "s.pov:1:19: error: invalid cylinder camera type: valid are types 1 to 4"},
-        {"#declare A = array[3];\n#declare B = A[1e10];", "s.pov:2:16: error: array index 1e+10 is out of range (0 to 2)"},
-        {"#declare A = array[3];\n#ifdef (A[1e10]) #end", "s.pov:2:11: error: array index 1e+10 is out of range (0 to 2)"},
+        {"#declare A = array[3];\n#declare B = A[1e10];", "s.pov:2:16: error: array index 10000000000 is out of range (0 to 2)"},
+        {"#declare A = array[3];\n#ifdef (A[1e10]) #end", "s.pov:2:11: error: array index 10000000000 is out of range (0 to 2)"},
         {"#declare A = array[3];\n#declare A[-1] = 1;", "s.pov:2:12: error: array index -1 is out of range (0 to 2)"},
-        {"#declare A = array[1e10];", "s.pov:1:20: error: array size 1e+10 is out of range (1 to 10000000)"},
+        {"#declare A = array[1e10];", "s.pov:1:20: error: array size 10000000000 is out of range (1 to 10000000)"},
         {"sphere { 0, 1 hollow interior { media { intervals 1e10 } } }",
-         "s.pov:1:51: error: media intervals 1e+10 is out of range (1 to 4096)"},
+         "s.pov:1:51: error: media intervals 10000000000 is out of range (1 to 4096)"},
         {"mesh2 { vertex_vectors { 3, <0,0,0>, <1,0,0>, <0,1,0> } face_indices { 1, <0, 1, 1e10> } }",
-         "s.pov:1:76: error: vertex index 1e+10 is out of range (0 to 2)"},
-        {"mesh2 { vertex_vectors { 1e10, <0,0,0> } }", "s.pov:1:26: error: mesh2 vector count 1e+10 is out of range"},
-        {"polygon { 1e10, <0, 0>, <1, 0>, <0, 1> }", "s.pov:1:11: error: polygon point count 1e+10 is out of range"},
+         "s.pov:1:76: error: vertex index 10000000000 is out of range (0 to 2)"},
+        {"mesh2 { vertex_vectors { 1e10, <0,0,0> } }", "s.pov:1:26: error: mesh2 vector count 10000000000 is out of range"},
+        {"polygon { 1e10, <0, 0>, <1, 0>, <0, 1> }", "s.pov:1:11: error: polygon point count 10000000000 is out of range"},
         {"light_source { 0, 1 area_light x, z, 1e10, 2 }",
-         "s.pov:1:38: error: area_light size 1e+10 is out of range (1 to 65536)"},
+         "s.pov:1:38: error: area_light size 10000000000 is out of range (1 to 65536)"},
         {"light_source { 0, 1 area_light x, z, 300, 300 }",
          "s.pov:1:38: error: the area_light's sample count 300 x 300 = 90000 is over the limit of 65536 (limit "
          "area_light_samples = 65536; raise it with --limit area_light_samples=N)"},
         {"sphere { 0, 1 pigment { bozo turbulence 1 octaves 1e10 } }",
-         "s.pov:1:52: error: octaves 1e+10 is out of range"},
-        {"#declare S = str(1, 1e10, 0);", "s.pov:1:21: error: str() width 1e+10 is out of range"},
-        {"#declare C = chr(1e10);", "s.pov:1:18: error: chr() code 1e+10 is out of range (0 to 255)"},
+         "s.pov:1:52: error: octaves 10000000000 is out of range"},
+        {"#declare S = str(1, 1e10, 0);", "s.pov:1:21: error: str() width 10000000000 is out of range"},
+        {"#declare C = chr(1e10);", "s.pov:1:18: error: chr() code 10000000000 is out of range (0 to 255)"},
         {"#declare B = bitwise_and(1e30, 1);", "s.pov:1:26: error: bitwise operand 1e+30 is out of range"},
         {"#declare R = seed(1e30);", "s.pov:1:19: error: seed 1e+30 is out of range"},
     };
@@ -102,7 +102,7 @@ TEST(HardeningPov, ALoopAddingSpheresForeverStopsAtTheObjectLimit) {
 TEST(HardeningPov, ConcatDoublingStopsAtTheStringLimit) {
     const Outcome o = checkPov("#declare S = \"ab\";\n#while (1)\n  #declare S = concat(S, S);\n#end\n");
     EXPECT_EQ(o.exitCode, 1);
-    EXPECT_CONTAINS(o.err, "s.pov:3:16: error: the string's length 1048576 is over the limit of 1048576");
+    EXPECT_CONTAINS(o.err, "s.pov:3:16: error: the string's length 2097152 is over the limit of 1048576");
 }
 
 TEST(HardeningPov, ObjectDoublingStopsAtALimit) {

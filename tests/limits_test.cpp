@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -55,7 +56,8 @@ TEST(Limits, MessagesNameTheLimitAndHowToRaiseIt) {
     limits.objects = 10;
     EXPECT_EQ(limitExceeded(limits, &Limits::objects, "the object count", 11),
               "the object count 11 is over the limit of 10 (limit objects = 10; raise it with --limit objects=N)");
-    EXPECT_EQ(checkCount("array index", 1e10, 0, 2), "array index 1e+10 is out of range (0 to 2)");
+    EXPECT_EQ(checkCount("array index", 1e10, 0, 2), "array index 10000000000 is out of range (0 to 2)");
+    EXPECT_EQ(checkCount("seed", 1e30, 0, 2), "seed 1e+30 is out of range (0 to 2)");
     EXPECT_EQ(checkCount("array index", 2.9, 0, 2), ""); // truncated toward zero, as POV-Ray does
     EXPECT_NE(checkCount("count", std::nan(""), 0, 2), "");
     EXPECT_NE(checkCount("count", -std::numeric_limits<double>::infinity(), 0, 2), "");

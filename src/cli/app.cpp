@@ -40,7 +40,12 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("--threads", a.threads, "Worker threads (0: all cores)")
         ->check(CLI::NonNegativeNumber);
     render->add_option("--seed", a.seed, "Random seed, 0 to 2^64-1 (overrides the scene)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Validator(
+            [](std::string& value) {
+                return value.find('-') == 0 ? std::string("the seed must be a whole number from 0 to 2^64-1")
+                                            : std::string();
+            },
+            "0..2^64-1"));
     render->add_option("--sampler", a.sampler, "Sampler (overrides the scene)")
         ->check(CLI::IsMember(samplerNames()));
     render->add_option("--tile-size", a.tileSize, "Tile edge in pixels (the image does not depend on it)")

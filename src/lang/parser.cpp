@@ -61,6 +61,10 @@ void Parser::advance() {
     if (previous_.kind == TokenKind::LeftBrace) ++braceDepth_;
     if (previous_.kind == TokenKind::RightBrace) --braceDepth_;
     for (;;) {
+        if (sources_.size() > 1 && sources_.back().fileId == abandonedFile_) {
+            sources_.pop_back();
+            continue;
+        }
         Token t = sources_.back().lexer->next();
         if (t.kind == TokenKind::Error) {
             error(t.loc, t.text);
@@ -111,7 +115,8 @@ void Parser::include(const Token& directive) {
     const std::vector<SourceLoc> outer = includeChain(directive.loc);
     chain.insert(chain.end(), outer.begin(), outer.end());
     includeChains_[fileId] = std::move(chain);
-    sources_.push_back({std::make_unique<Lexer>(std::move(text), fileId), id, fs::path(path).parent_path().string()});
+    sources_.push_back(
+        {std::make_unique<Lexer>(std::move(text), fileId), id, fs::path(path).parent_path().string(), fileId});
 }
 
 bool Parser::match(TokenKind kind) {
@@ -141,6 +146,10 @@ std::vector<SourceLoc> Parser::includeChain(const SourceLoc& loc) const {
 
 void Parser::error(const SourceLoc& loc, const std::string& message) {
     diags_.report(Severity::Error, loc, message, includeChain(loc));
+    // An included file that is no scene (an #include of /etc/passwd) is read
+    // no further after its first error, so its contents do not leak into the
+    // messages token by token.
+    if (loc.valid() && !diags_.files().quotable(loc.file)) abandonedFile_ = loc.file;
 }
 
 void Parser::warning(const SourceLoc& loc, const std::string& message) {
@@ -195,7 +204,7 @@ void Parser::synchronize() {
 // ---------------------------------------------------------------- statements
 
 void Parser::parseFile(int fileId, const std::string& path, const std::string& dir) {
-    sources_.push_back({std::make_unique<Lexer>(diags_.files().text(fileId), fileId), identity(path), dir});
+    sources_.push_back({std::make_unique<Lexer>(diags_.files().text(fileId), fileId), identity(path), dir, fileId});
     advance();
     while (!check(TokenKind::EndOfFile)) {
         const long start = tokensRead_;

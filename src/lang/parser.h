@@ -58,6 +58,7 @@ private:
         std::unique_ptr<Lexer> lexer;
         std::string canonicalPath;
         std::string dir;
+        int fileId = -1;
     };
     void advance();
     void include(const Token& directive);
@@ -195,6 +196,7 @@ private:
     static int64_t valueWeight(const Value& value, int64_t cap);
     void countBuilt(const SourceLoc& loc, int64_t weight);
     int64_t built_ = 0;
+    int abandonedFile_ = -1; // an included file that is no scene, read no further after its first error
     std::map<std::string, int64_t> symbolWeights_;
 };
 
