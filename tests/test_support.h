@@ -49,6 +49,12 @@ inline Scene sceneOf(std::vector<Object> objects) {
     return s;
 }
 
+// Builds (and drops) an accelerator for `scene`: for tests of the errors a
+// build throws. The scene outlives the accelerator, as Accelerator requires.
+inline void buildAccelerator(const Scene& scene) {
+    Accelerator accel(scene);
+}
+
 // A uniformly distributed random unit vector.
 inline Vec3 randomUnitVector(std::mt19937& rng) {
     std::normal_distribution<double> g;

@@ -2,6 +2,9 @@
 // from disk.
 #include "image/image.h"
 
+#include "core/limits.h"
+#include "core/temporary_files.h"
+
 #include "image/srgb.h"
 #include "core/temporary_files.h"
 
@@ -52,6 +55,24 @@ bool isIntegerType(OIIO::TypeDesc type) {
 fs::path temporaryPath(const fs::path& path) {
     static std::atomic<unsigned> counter{0};
     return path.parent_path() / fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(), counter++);
+}
+
+// A header may claim any size: a file that would need more than the image
+// memory limit (core/limits.h) is refused before its pixels are allocated.
+std::string headerSizeProblem(const std::string& path, const OIIO::ImageSpec& spec) {
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1 || spec.depth > 1)
+        return fmt::format("cannot read '{}': its header gives a {} x {} image with {} channels", path, spec.width,
+                           spec.height, spec.nchannels);
+    const Limits& limits = defaultLimits();
+    const uint64_t bytes = saturatingBytes(saturatingBytes(uint64_t(spec.width), uint64_t(spec.height)),
+                                           uint64_t(spec.nchannels) * sizeof(float));
+    const uint64_t megabytes = (bytes + (1 << 20) - 1) >> 20;
+    if (megabytes > uint64_t(limits.imageMemoryMB))
+        return fmt::format("cannot read '{}': its header gives a {} x {} image, which needs {} MB, over the limit of "
+                           "{} MB ({})",
+                           path, spec.width, spec.height, megabytes, limits.imageMemoryMB,
+                           limitHint(limits, &Limits::imageMemoryMB));
+    return "";
 }
 
 fs::path folderOf(const std::string& path) {
@@ -152,7 +173,7 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
             v = static_cast<float>(srgbEncode(v));
 
     const fs::path temporary = temporaryPath(fs::path(path));
-    const TemporaryFile removedOnSignal(temporary.string());
+    const TemporaryFile registered(temporary.string()); // removed if a signal ends the process
     std::error_code ec;
     auto fail = [&](const std::string& reason) {
         output.reset(); // closes the file before it is removed
@@ -185,6 +206,7 @@ std::string readImageEncoded(const std::string& path, Image& image, ImageFileInf
         return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
     }
     const OIIO::ImageSpec& spec = input->spec();
+    if (std::string problem = headerSizeProblem(path, spec); !problem.empty()) return problem;
     Image result(spec.width, spec.height, spec.nchannels);
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
         const std::string reason = input->geterror();
@@ -212,6 +234,7 @@ std::string readImage(const std::string& path, Image& image, Metadata* metadata)
         return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
     }
     const OIIO::ImageSpec& spec = input->spec();
+    if (std::string problem = headerSizeProblem(path, spec); !problem.empty()) return problem;
     Image result(spec.width, spec.height, spec.nchannels);
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
         const std::string reason = input->geterror();

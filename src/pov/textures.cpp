@@ -539,7 +539,7 @@ bool PovParser::patternModifier(const Tok& t, Turbulence& turbulence) {
     if (w != "turbulence" && w != "octaves" && w != "omega" && w != "lambda") return false;
     next();
     if (w == "turbulence") turbulence.amount = vectorExpr();
-    else if (w == "octaves") turbulence.octaves = std::clamp(int(floatExpr()), 1, 10);
+    else if (w == "octaves") turbulence.octaves = std::clamp(countExpr("octaves", -1e9, 1e9), 1, 10);
     else if (w == "omega") turbulence.omega = floatExpr();
     else turbulence.lambda = floatExpr();
     noiseNote("turbulence", t.loc);

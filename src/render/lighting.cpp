@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace drt {
@@ -132,7 +133,10 @@ public:
     AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex)
         : light_(light), area_(*light.area), point_(point),
           frame_(areaFrame(area_, light.position, point)), n1_(std::max(1, area_.size1)),
-          n2_(std::max(1, area_.size2)), count_(n1_ * n2_), dimension_(lightDimension(depth, lightIndex)) {
+          n2_(std::max(1, area_.size2)),
+          // The front ends keep n1 n2 within Limits::areaLightSamples; a scene
+          // built in code is clamped rather than overflow.
+          count_(int(std::min<int64_t>(int64_t(n1_) * n2_, std::numeric_limits<int>::max()))), dimension_(lightDimension(depth, lightIndex)) {
         const Vec3 normal = cross(frame_.axis1, frame_.axis2);
         areaMeasure_ = length(normal);
         if (area_.circular) areaMeasure_ *= kPi / 4;

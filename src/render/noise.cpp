@@ -3,6 +3,7 @@
 #include "render/pattern_wave.h"
 
 #include "core/hash.h"
+#include "core/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,7 +42,7 @@ double gradientDot(long long i, long long j, long long k, uint64_t seed, double 
 double signedNoise(const Vec3& p, uint64_t seed) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return 0;
     const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
-    const long long i = static_cast<long long>(fx), j = static_cast<long long>(fy), k = static_cast<long long>(fz);
+    const long long i = saturatingInteger(fx), j = saturatingInteger(fy), k = saturatingInteger(fz);
     const double x = p.x - fx, y = p.y - fy, z = p.z - fz;
     const double u = fade(x), v = fade(y), w = fade(z);
     auto g = [&](int a, int b, int c) { return gradientDot(i + a, j + b, k + c, seed, x - a, y - b, z - c); };
@@ -66,9 +67,9 @@ double crackleValue(const Vec3& p) {
         for (int b = -1; b <= 1; ++b)
             for (int c = -1; c <= 1; ++c) {
                 const Vec3 cell(fx + a, fy + b, fz + c);
-                const uint64_t h = hashValues({static_cast<uint64_t>(static_cast<long long>(cell.x)),
-                                               static_cast<uint64_t>(static_cast<long long>(cell.y)),
-                                               static_cast<uint64_t>(static_cast<long long>(cell.z)), 77});
+                const uint64_t h = hashValues({static_cast<uint64_t>(saturatingInteger(cell.x)),
+                                               static_cast<uint64_t>(saturatingInteger(cell.y)),
+                                               static_cast<uint64_t>(saturatingInteger(cell.z)), 77});
                 const Vec3 feature = cell + Vec3(unitFromHash(mix64(h)), unitFromHash(mix64(h + 1)),
                                                  unitFromHash(mix64(h + 2)));
                 const double d = length(feature - p);

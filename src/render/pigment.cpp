@@ -1,5 +1,7 @@
 #include "render/pigment.h"
 
+#include "core/limits.h"
+
 #include "render/image_pattern.h"
 #include "render/noise.h"
 #include "render/pattern_wave.h"
@@ -39,9 +41,10 @@ ColorFT mix(const ColorFT& a, const ColorFT& b, double t) {
 } // namespace
 
 int checkerIndex(const Vec3& p) {
-    const long long sum = static_cast<long long>(std::floor(p.x + kBlockTolerance)) +
-                          static_cast<long long>(std::floor(p.y + kBlockTolerance)) +
-                          static_cast<long long>(std::floor(p.z + kBlockTolerance));
+    // Parity of the cell coordinates' sum, added modulo 2 so that no sum overflows.
+    const long long sum = (saturatingInteger(std::floor(p.x + kBlockTolerance)) & 1) +
+                          (saturatingInteger(std::floor(p.y + kBlockTolerance)) & 1) +
+                          (saturatingInteger(std::floor(p.z + kBlockTolerance)) & 1);
     return static_cast<int>(sum & 1);
 }
 
@@ -60,7 +63,7 @@ int hexagonIndex(const Vec3& p) {
         rq = -rr - rs;
     else if (dr > ds)
         rr = -rq - rs;
-    const long long k = (static_cast<long long>(rr) - static_cast<long long>(rq)) % 3;
+    const long long k = (saturatingInteger(rr) % 3 - saturatingInteger(rq) % 3) % 3;
     return static_cast<int>(k < 0 ? k + 3 : k);
 }
 

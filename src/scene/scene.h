@@ -5,6 +5,7 @@
 
 #include "core/color.h"
 #include "core/diagnostics.h"
+#include "core/heap_optional.h"
 #include "core/transform.h"
 #include "core/vec.h"
 #include "scene/algebraic.h"
@@ -147,7 +148,7 @@ struct Normal {
 struct Texture {
     Pigment pigment;
     Finish finish;
-    std::optional<Normal> normal; // none: the surface's own normal
+    HeapOptional<Normal> normal; // none: the surface's own normal (on the heap: most textures have none)
     struct MapEntry;
     std::vector<MapEntry> map;
     std::vector<Texture> layersAbove;
@@ -313,7 +314,7 @@ struct Motion {
 struct Object {
     Shape shape;
     Transform transform; // object -> world
-    std::optional<Motion> motion;
+    HeapOptional<Motion> motion; // on the heap: most objects do not move
     Texture texture;
     Interior interior;
     bool noShadow = false;
