@@ -1,0 +1,34 @@
+// The pieces of `drt render` shared by cli/render_command.cpp (scene, outputs)
+// and cli/render_run.cpp (the render: processes, interruption, checkpoints).
+#pragma once
+
+#include "cli/commands.h"
+#include "distributed/render_identity.h"
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace drt::cli {
+
+// Loads a scene, printing every diagnostic to `err`. Returns kSuccess and sets
+// `scene`, or the exit status to stop with.
+int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov = {},
+              const RenderSettings& overrides = {});
+
+// ".png" for "a/b.PNG".
+std::string lowerExtension(const std::string& path);
+
+// Checks, before rendering, that every output can be written. Returns kSuccess or the status.
+int checkOutputs(const RenderCommand& command, std::ostream& err);
+
+// Writes the colour, variance and samples-per-pixel images (NaN/Inf cleared:
+// `nonFinitePixels` counts them) and removes a stale checkpoint. Returns kSuccess or the status.
+int writeOutputs(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
+                 RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err);
+
+// The one-line summary after a render.
+void printSummary(const RenderCommand& command, const RenderOptions& options, const RenderResult& result,
+                  uint64_t nonFinitePixels, double seconds, std::ostream& err);
+
+} // namespace drt::cli
