@@ -18,6 +18,10 @@
 # write files), one thread each, under a CPU-time limit ($DRT_WIDE_CPU_LIMIT
 # seconds, default 300).
 #
+# $DRT_WIDE_DRT picks another drt binary (default BUILD_DIR/drt) and
+# $DRT_WIDE_RUN the cache sub-folder of its renders (default "drt"), e.g. to keep
+# the figures of an older drt beside the current ones.
+#
 # Settings: 160x120; POV-Ray `+A0.3` (its adaptive anti-aliasing); drt 16
 # samples per pixel, seed 1. Animated scenes render their first frame
 # (clock = 0) in both. Needs Debian's povray, povray-examples, povray-includes.
@@ -41,7 +45,9 @@ cpu_limit=${DRT_WIDE_CPU_LIMIT:-300}
 width=160 height=120 spp=16 threshold=0.05
 doc=$root/docs/pov-crosscheck.md
 causes=$root/tests/pov_crosscheck/wide-causes.txt
-export cache cpu_limit width height spp build examples
+drtbin=${DRT_WIDE_DRT:-$build/drt}
+run=${DRT_WIDE_RUN:-drt}
+export cache cpu_limit width height spp build examples drtbin run
 
 all_scenes() { (cd "$examples" && find . -name '*.pov' | sed 's|^\./||' | LC_ALL=C sort); }
 
@@ -82,7 +88,7 @@ reference_one() {
 # "STATUS<TAB>MAE<TAB>SECONDS<TAB>DETAIL" (STATUS: compared, drt-failed, no-reference).
 drt_one() {
     scene=$1
-    out=$cache/drt/${scene%.pov}
+    out=$cache/$run/${scene%.pov}
     ref=$cache/pov/${scene%.pov}
     mkdir -p "$(dirname "$out")"
     dir=$cache/tree-drt/$(dirname "$scene")
@@ -90,7 +96,7 @@ drt_one() {
     rm -f "$out.png" "$out.result"
     start=$(date +%s)
     (cd "$dir" && ulimit -t "$cpu_limit" &&
-        exec "$build/drt" render "$file" -o "$out.png" --width "$width" --height "$height" --spp "$spp" \
+        exec "$drtbin" render "$file" -o "$out.png" --width "$width" --height "$height" --spp "$spp" \
             --threads 1 --seed 1 --quiet >"$out.log" 2>&1)
     status=$?
     seconds=$(($(date +%s) - start))
@@ -119,7 +125,8 @@ reference() {
 }
 
 drt_renders() {
-    cmake --build "$build" --target drt drt_wide_compare >/dev/null || exit 1
+    [ -n "${DRT_WIDE_DRT:-}" ] || cmake --build "$build" --target drt >/dev/null || exit 1
+    cmake --build "$build" --target drt_wide_compare >/dev/null || exit 1
     tree drt
     if [ $# -eq 0 ]; then
         all_scenes
@@ -139,7 +146,7 @@ flags() {
 
 # The unsupported-feature warnings drt gave, shortened and joined.
 warnings_of() {
-    grep -E 'not supported|approximated|ignored' "$cache/drt/${1%.pov}.log" 2>/dev/null |
+    grep -E 'not supported|approximated|ignored' "$cache/$run/${1%.pov}.log" 2>/dev/null |
         sed -E 's/^[^:]*:[0-9]+:[0-9]+: warning: //; s/ is not supported( and is ignored)?//' |
         LC_ALL=C sort -u | head -n 3 | paste -sd ';' | sed 's/;/; /g' | cut -c 1-160
 }
@@ -149,7 +156,7 @@ table() {
     local clock=0 radiosity=0 photons=0
     while read -r scene; do
         total=$((total + 1))
-        result=$cache/drt/${scene%.pov}.result
+        result=$cache/$run/${scene%.pov}.result
         cause=$(grep -F -m 1 "$scene	" "$causes" 2>/dev/null | cut -f 2)
         f=$(flags "$scene")
         if [ ! -f "$result" ]; then
