@@ -570,7 +570,9 @@ TEST(Pigment, BlockPatterns) {
     EXPECT_EQ(checkerIndex({0.5, 0.0, 0.5}), 0);
     EXPECT_EQ(checkerIndex({1.5, 0.0, 0.5}), 1);
     EXPECT_EQ(checkerIndex({-0.5, 0.0, 0.5}), 1);
-    EXPECT_EQ(checkerIndex({0.5, -1e-9, 0.5}), 0); // a plane at y = 0 stays on one side
+    EXPECT_EQ(checkerIndex({0.5, -1e-11, 0.5}), 0); // a plane at y = 0 stays on one side
+    EXPECT_EQ(checkerIndex({0.5, -1e-9, 0.5}), 1);  // POV-Ray's tolerance is 1e-10, no more
+    EXPECT_EQ(checkerIndex({0.5, -0.0005, 0.5}), 1);
     EXPECT_EQ(hexagonIndex({0, 0, 0}), 0);
     EXPECT_EQ(hexagonIndex({0, 0, std::sqrt(3.0)}), 1);
     EXPECT_EQ(hexagonIndex({1.5, 0, std::sqrt(3.0) / 2}), 2);

@@ -41,6 +41,9 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
         if (!accel.intersect(ray, blocker)) return mediaScene ? transmittance * throughMedia(nullptr, 1) : transmittance;
         if (mediaScene) transmittance *= throughMedia(&blocker, blocker.t);
         if (!blocker.object->noShadow) {
+            // Leaving an object: the segment before this hit ran inside it (POV-Ray fades shadows too).
+            if (dot(ray.direction, blocker.geometricNormal) > 0)
+                transmittance *= interiorAttenuation(blocker.object->interior, blocker.t * length(ray.direction));
             transmittance *= textureFilter(blocker.object->texture, blocker.point);
             if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
