@@ -18,7 +18,7 @@ namespace {
 
 std::vector<fs::path> reproducers(const std::string& harness) {
     std::vector<fs::path> files;
-    const fs::path dir = fs::path(test::sourcePath("tests/fuzz/regressions")) / harness;
+    const fs::path dir = fs::path(drt::test::sourcePath("tests/fuzz/regressions")) / harness;
     for (const auto& entry : fs::directory_iterator(dir))
         if (entry.is_regular_file() && entry.path().filename() != "README") files.push_back(entry.path());
     std::sort(files.begin(), files.end());

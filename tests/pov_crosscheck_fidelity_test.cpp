@@ -33,11 +33,13 @@ struct FidelityScene {
 
 // The figure of the fix's scene before the fix, for the record:
 //   checker_edge     0.366 (cell tolerance 1e-3: the floor just below y = 0 took the cells above)
+//   interior_fade    0.028 (fade_power 1000+ taken as a power law; shadow rays not faded)
 //   leopard_normal   0.061 (normals tilted by the world-space gradient: steep at small scales)
 //   normal_gradient  0.077 (gradient normals were ignored)
 //   waves            0.065 (invented wave sources and weights)
 const FidelityScene kScenes[] = {
     {"checker_edge", 0.01},
+    {"interior_fade", 0.012},
     {"leopard_normal", 0.015},
     {"normal_gradient", 0.02},
     {"waves", 0.025},
