@@ -45,7 +45,7 @@ TEST(HardeningPov, FloatsThatBecomeCountsOrIndicesAreRangeChecked) {
         {"sphere { 0, 1 hollow interior { media { intervals 1e10 } } }",
          "s.pov:1:51: error: media intervals 10000000000 is out of range (1 to 4096)"},
         {"mesh2 { vertex_vectors { 3, <0,0,0>, <1,0,0>, <0,1,0> } face_indices { 1, <0, 1, 1e10> } }",
-         "s.pov:1:76: error: vertex index 10000000000 is out of range (0 to 2)"},
+         "s.pov:1:75: error: vertex index 10000000000 is out of range (0 to 2)"},
         {"mesh2 { vertex_vectors { 1e10, <0,0,0> } }", "s.pov:1:26: error: mesh2 vector count 10000000000 is out of range"},
         {"polygon { 1e10, <0, 0>, <1, 0>, <0, 1> }", "s.pov:1:11: error: polygon point count 10000000000 is out of range"},
         {"light_source { 0, 1 area_light x, z, 1e10, 2 }",
@@ -54,7 +54,7 @@ TEST(HardeningPov, FloatsThatBecomeCountsOrIndicesAreRangeChecked) {
          "s.pov:1:38: error: the area_light's sample count 300 x 300 = 90000 is over the limit of 65536 (limit "
          "area_light_samples = 65536; raise it with --limit area_light_samples=N)"},
         {"sphere { 0, 1 pigment { bozo turbulence 1 octaves 1e10 } }",
-         "s.pov:1:52: error: octaves 10000000000 is out of range"},
+         "s.pov:1:51: error: octaves 10000000000 is out of range"},
         {"#declare S = str(1, 1e10, 0);", "s.pov:1:21: error: str() width 10000000000 is out of range"},
         {"#declare C = chr(1e10);", "s.pov:1:18: error: chr() code 10000000000 is out of range (0 to 255)"},
         {"#declare B = bitwise_and(1e30, 1);", "s.pov:1:26: error: bitwise operand 1e+30 is out of range"},

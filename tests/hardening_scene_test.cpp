@@ -56,7 +56,7 @@ TEST(HardeningScene, PatternsScaledBy1eMinus20RenderWithoutUndefinedBehaviour) {
 TEST(HardeningScene, AreaLightGridPastTheLimitIsALocatedError) {
     const Outcome o = runOn("a.drt", "light_source { <0, 5, 0> color 1\n  area_light <1, 0, 0>, <0, 0, 1>, 65536, 65536 }\n");
     EXPECT_EQ(o.exitCode, 1);
-    EXPECT_CONTAINS(o.err, "a.drt:2:34: error: the area_light's sample count 65536 x 65536 = 4294967296 is over "
+    EXPECT_CONTAINS(o.err, "a.drt:2:36: error: the area_light's sample count 65536 x 65536 = 4294967296 is over "
                            "the limit of 65536 (limit area_light_samples = 65536; raise it with --limit "
                            "area_light_samples=N)");
     // Within a raised limit the same scene checks.

@@ -26,8 +26,12 @@ TEST(Limits, SetLimitParsesNamesValuesAndSuffixes) {
     EXPECT_EQ(limits.objects, 12);
     EXPECT_EQ(setLimit(limits, "loop_iterations=3k"), "");
     EXPECT_EQ(limits.loopIterations, 3000);
-    EXPECT_EQ(setLimit(limits, "memory_mb=2G"), "");
-    EXPECT_EQ(limits.memoryMB, 2'000'000'000);
+    EXPECT_EQ(setLimit(limits, "memory_mb=2k"), "");
+    EXPECT_EQ(limits.memoryMB, 2000);
+    EXPECT_EQ(setLimit(limits, "objects=1G"), "");
+    EXPECT_EQ(limits.objects, 1'000'000'000);
+    EXPECT_NE(setLimit(limits, "memory_mb=2G").find("not a whole number from 1 to"), std::string::npos);
+    EXPECT_EQ(setLimit(limits, "objects=12"), "");
     EXPECT_NE(setLimit(limits, "objects").find("NAME=VALUE"), std::string::npos);
     EXPECT_NE(setLimit(limits, "objects=0").find("not a whole number from 1 to"), std::string::npos);
     EXPECT_NE(setLimit(limits, "objects=-5").find("not a whole number"), std::string::npos);

@@ -100,9 +100,11 @@ void Parser::include(const Token& directive) {
         error(name.loc, "include cycle: " + chain + fs::path(id).filename().string());
         return;
     }
-    if (int64_t(sources_.size()) >= diags_.limits().includeDepth) {
+    // sources_ holds the scene file and the includes open now; this include
+    // would make sources_.size() includes open at once.
+    if (int64_t(sources_.size()) > diags_.limits().includeDepth) {
         error(name.loc, limitExceeded(diags_.limits(), &Limits::includeDepth, "include depth",
-                                      double(sources_.size() + 1)));
+                                      double(sources_.size())));
         return;
     }
     std::string text;

@@ -339,12 +339,16 @@ void PovParser::globalSettings() {
             if (!(*assumedGamma_ > 0)) fail(at, "'assumed_gamma' must be positive");
         } else if (w == "max_trace_level") {
             const SourceLoc at = peek().loc;
-            const int level = std::max(1, countExpr("max_trace_level", -1e9, 1e9));
+            // Any finite level is accepted (POV-Ray caps it too); above drt's
+            // limit the limit is used, with a warning.
+            const double value = floatExpr();
+            if (!std::isfinite(value)) fail(at, "max_trace_level must be a finite number");
+            const double level = std::max(1.0, std::trunc(value));
             const int64_t limit = diags_.limits().traceLevel;
-            if (level > limit)
-                warn(at, fmt::format("max_trace_level {} is above drt's {}; {} is used ({})", level, limit, limit,
+            if (level > double(limit))
+                warn(at, fmt::format("max_trace_level {:.0f} is above drt's {}; {} is used ({})", level, limit, limit,
                                      limitHint(diags_.limits(), &Limits::traceLevel)));
-            scene_.global.maxTraceLevel = int(std::min<int64_t>(level, limit));
+            scene_.global.maxTraceLevel = int(std::min(level, double(limit)));
         } else if (w == "ambient_light") {
             scene_.global.ambientLight = toColorFT(colorExpr()).rgb;
         } else if (w == "adc_bailout") {
