@@ -295,7 +295,9 @@ Light PovParser::lightSource(SourceLoc loc, std::optional<PovObject>* looksLike)
                                        fmt::format("the area_light's sample count {} x {} =", a.size1, a.size2),
                                        samples));
             // POV-Ray's semantics: edge-to-edge grid, shadow-only averaging unless area_illumination.
-            a.sampling = AreaSampling::PovGrid;
+            // The grid's points are shared out over the pixel's samples (Cook's association,
+            // render/lighting.h), which converges to POV-Ray's sum over the grid.
+            a.sampling = AreaSampling::Grid;
             l.area = a;
         } else if (w == "adaptive" || w == "jitter" || w == "circular" || w == "orient") {
             AreaLight& target = l.area ? *l.area : early;
