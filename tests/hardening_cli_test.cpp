@@ -161,20 +161,39 @@ int waitFor(pid_t pid, double seconds) {
     return -1;
 }
 
+// A render of 16M samples per pixel stops on SIGTERM: the first signal asks
+// it to finish its tiles in progress and save (docs/distributed.md), which at
+// this sample count takes too long, so a second signal quits at once. Either
+// way it ends with status 143 (or dies of SIGTERM, before the render's own
+// handler is installed) and leaves no temporary file behind.
 TEST(HardeningCli, ALongRenderStopsOnSigtermAndLeavesNoFileBehind) {
     const std::string dir = test::tempDir();
     const std::string scene = test::writeFile(dir + "/s.drt", kTinyScene);
     const pid_t pid = startRender(quoted(scene) + " -o " + quoted(dir + "/o.png") + " --spp 16777216 --width 64 "
                                   "--height 64 --threads 2",
                                   dir + "/err.txt");
+    ASSERT_GT(pid, 0) << "fork failed";
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     ASSERT_EQ(::kill(pid, SIGTERM), 0);
-    const int status = waitFor(pid, 20);
-    ASSERT_NE(status, -1) << "drt did not stop within 20 s of SIGTERM";
-    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+    int status = waitFor(pid, 2);
+    if (status == -1) { // killed by waitFor: start again, and send the second signal
+        const pid_t again = startRender(quoted(scene) + " -o " + quoted(dir + "/o.png") +
+                                            " --spp 16777216 --width 64 --height 64 --threads 2",
+                                        dir + "/err.txt");
+        ASSERT_GT(again, 0) << "fork failed";
+        std::this_thread::sleep_for(std::chrono::milliseconds(500));
+        ASSERT_EQ(::kill(again, SIGTERM), 0);
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        ::kill(again, SIGTERM);
+        status = waitFor(again, 20);
+    }
+    ASSERT_NE(status, -1) << "drt did not stop within 20 s of two SIGTERMs";
+    EXPECT_TRUE((WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) ||
+                (WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM))
+        << status;
     std::vector<std::string> left;
     for (const auto& entry : fs::directory_iterator(dir))
-        if (entry.path().filename() != "s.drt" && entry.path().filename() != "err.txt")
+        if (entry.path().filename().string().find(".tmp-") != std::string::npos)
             left.push_back(entry.path().filename().string());
     EXPECT_TRUE(left.empty()) << left.front();
     fs::remove_all(dir);

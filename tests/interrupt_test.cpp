@@ -57,7 +57,11 @@ public:
         if (::waitpid(pid_, &status, WNOHANG) == pid_) record(status);
         return !exited_;
     }
-    void signal(int number) { ::kill(pid_, number); }
+    // Only a child not yet reaped: its pid cannot have been reused, and
+    // kill(-1, ...) (no child) would signal every process we may signal.
+    void signal(int number) {
+        if (pid_ > 0 && !exited_) ::kill(pid_, number);
+    }
     // The exit status (128 + signal if a signal ended it); -1 after `seconds`.
     int wait(double seconds = 300) {
         const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
