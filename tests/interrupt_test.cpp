@@ -101,17 +101,17 @@ bool waitForWrites(Child& child, const std::string& path, int times) {
 std::vector<std::string> renderArgs(const std::string& output, bool adaptive) {
     std::vector<std::string> args = {"render",   test::sourcePath("examples/soft_shadows.drt"),
                                      "-o",       output,
-                                     "--width",  "64",
-                                     "--height", "48",
+                                     "--width",  "96",
+                                     "--height", "72",
                                      "--seed",   "5",
                                      "--tile-size", "8",
                                      "--threads", "1",
                                      "-q"};
     if (adaptive) {
-        for (const char* a : {"--adaptive", "--min-spp", "8", "--max-spp", "128", "--adaptive-error", "0.02"})
+        for (const char* a : {"--adaptive", "--min-spp", "16", "--max-spp", "512", "--adaptive-error", "0.01"})
             args.push_back(a);
     } else {
-        args.insert(args.end(), {"--spp", "40"});
+        args.insert(args.end(), {"--spp", "160"}); // long enough for several checkpoints
     }
     return args;
 }
@@ -224,8 +224,8 @@ TEST(Interrupt, ResumeRefusesAMissingCheckpointOrOneOfAnotherRender) {
     }
     const std::pair<std::vector<std::string>, std::string> refusals[] = {
         {{"--seed", "6"}, "has other settings: seed=5 there, seed=6 here"},
-        {{"--width", "65"}, "size=64x48 there, size=65x48 here"},
-        {{"--spp", "41"}, "spp=40 there, spp=41 here"},
+        {{"--width", "97"}, "size=96x72 there, size=97x72 here"},
+        {{"--spp", "161"}, "spp=160 there, spp=161 here"},
         {{"--crop", "0,8,0,8"}, "is of the whole image, this render is of the crop 0,8,0,8"},
     };
     for (const auto& [extra, message] : refusals) {
