@@ -31,6 +31,14 @@ void Diagnostics::report(Severity s, SourceLoc loc, std::string message, std::ve
     diagnostics_.push_back({s, loc, std::move(message), std::move(includedFrom)});
 }
 
+void Diagnostics::attachNote(SourceLoc loc, std::string message, std::vector<SourceLoc> includedFrom) {
+    if (diagnostics_.empty()) {
+        report(Severity::Note, loc, std::move(message), std::move(includedFrom));
+        return;
+    }
+    diagnostics_.back().notes.push_back({Severity::Note, loc, std::move(message), std::move(includedFrom), {}});
+}
+
 static const char* severityName(Severity s) {
     switch (s) {
     case Severity::Note: return "note";
@@ -44,7 +52,11 @@ std::string Diagnostics::format(const Diagnostic& d) const {
     std::string out;
     for (auto it = d.includedFrom.rbegin(); it != d.includedFrom.rend(); ++it)
         if (it->valid()) out += fmt::format("In file included from {}:{}:\n", files_->path(it->file), it->line);
-    if (!d.loc.valid()) return out + fmt::format("drt: {}: {}\n", severityName(d.severity), d.message);
+    if (!d.loc.valid()) {
+        out += fmt::format("drt: {}: {}\n", severityName(d.severity), d.message);
+        for (const Diagnostic& n : d.notes) out += format(n);
+        return out;
+    }
     out += fmt::format("{}:{}:{}: {}: {}\n", files_->path(d.loc.file), d.loc.line, d.loc.column,
                        severityName(d.severity), d.message);
     std::string src = files_->line(d.loc.file, d.loc.line);
@@ -53,6 +65,7 @@ std::string Diagnostics::format(const Diagnostic& d) const {
     for (int i = 0; i + 1 < d.loc.column && i < static_cast<int>(src.size()); ++i)
         caret += (src[i] == '\t') ? '\t' : ' ';
     out += fmt::format("  {}\n  {}^\n", src, caret);
+    for (const Diagnostic& n : d.notes) out += format(n);
     return out;
 }
 
