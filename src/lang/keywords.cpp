@@ -240,6 +240,7 @@ std::string cameraKeyword(const CameraSpec& camera) {
 const std::vector<AreaSamplingWord>& areaSamplingWords() {
     static const std::vector<AreaSamplingWord> words{{"stratified", AreaSampling::Stratified},
                                                      {"solid_angle", AreaSampling::SolidAngle},
+                                                     {"grid", AreaSampling::Grid},
                                                      {"pov_grid", AreaSampling::PovGrid}};
     return words;
 }

@@ -19,7 +19,9 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
     l.mediaAttenuation = scene().mediaAttenuationDefault;
     l.areaIllumination = scene().fullAreaLights;
     AreaLight area; // area-light modifiers may come before area_light (POV-Ray keeps them as flags)
-    area.sampling = scene().fullAreaLights ? AreaSampling::Stratified : AreaSampling::PovGrid;
+    // POV-Ray's dialect: its grid points, shared out over the pixel's samples (render/lighting.h),
+    // which converges to POV-Ray's sum over the grid.
+    area.sampling = scene().fullAreaLights ? AreaSampling::Stratified : AreaSampling::Grid;
     bool hasArea = false;
     SourceLoc pointAtLoc;
     const Token first = peek();
@@ -109,7 +111,7 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
             bool found = false;
             for (const AreaSamplingWord& s : areaSamplingWords())
                 if (name.isWord(s.word)) area.sampling = s.sampling, found = true;
-            if (!found) failExpected(name, "'stratified', 'solid_angle' or 'pov_grid' after 'area_sampling'");
+            if (!found) failExpected(name, "'stratified', 'solid_angle', 'grid' or 'pov_grid' after 'area_sampling'");
         } else if (w == "looks_like" && looksLike) {
             // POV-Ray: the object is moved to the light's position, moves with
             // the light's later transforms and casts no shadow.
