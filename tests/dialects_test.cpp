@@ -179,7 +179,7 @@ const DirectiveError kDirectiveErrors[] = {
     {"ForNeedsName", "#for (1, 0, 10)\n#end\n", "expected the loop identifier, found '1'", 1, 7},
     {"WhileNeedsParen", "#while 1\n#end\n", "expected '(' after #while, found '1'", 1, 8},
     {"MacroArgumentCount", "#macro M(A) sphere { 0, A } #end\nM(1, 2)\n", "macro 'M' takes 1 parameter", 2, 1},
-    {"ArrayIndexOutOfRange", "#declare A = array[2] { 1, 2 };\nsphere { 0, A[2] }\n", "array index 2 out of range 0..1 for 'A'", 2, 14},
+    {"ArrayIndexOutOfRange", "#declare A = array[2] { 1, 2 };\nsphere { 0, A[2] }\n", "array index 2 is out of range (0 to 1)", 2, 15},
     {"ArrayElementUnset", "#declare A = array[2];\nsphere { 0, A[1] }\n", "array element of 'A' used before it was given a value", 2, 13},
     {"UndefinedAfterUndef", "#declare Size = 1;\n#undef Size\nsphere { 0, Size }\n", "unknown identifier 'Size'", 3, 13},
 };
@@ -192,7 +192,8 @@ TEST(DrtDirectives, ARunawayLoopStopsWithOneError) {
     auto l = load("#declare I = 0;\n#while (1)\n  #declare I = I + 1;\n#end\n", "e.drt");
     EXPECT_FALSE(l->scene);
     ASSERT_EQ(l->diags.errorCount(), 1) << l->diags.formatAll();
-    EXPECT_EQ(l->diags.all()[0].message, "#while loop ran more than 10000000 times; stopping");
+    EXPECT_EQ(l->diags.all()[0].message, "this #while loop's pass 10000001 is over the limit of 10000000 (limit "
+                                         "loop_iterations = 10000000; raise it with --limit loop_iterations=N)");
     EXPECT_EQ(l->diags.all()[0].loc.line, 2);
 }
 

@@ -4,11 +4,13 @@
 #include "cli/commands.h"
 #include "assets/assets.h"
 
+#include "cli/paths.h"
 #include "cli/progress.h"
 #include "accel/geometry_query.h"
 #include "cli/render_parts.h"
 #include "distributed/checkpoint.h"
 #include "lang/load.h"
+#include "render/camera.h"
 #include "sampling/sampler.h"
 
 #include <algorithm>
@@ -66,6 +68,16 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
     options.geometry = geometry.get();
     scene = drt::loadScene(path, diagnostics, options);
     if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+    if (scene && !diagnostics.hasErrors()) {
+        // The camera's problems (sky or up along the view, ...) are found by
+        // check too, and reported at the camera.
+        const RenderOptions size = resolveRenderOptions(overlaySettings(scene->render, overrides));
+        try {
+            resolveCamera(scene->camera, size.width, size.height);
+        } catch (const RenderError& e) {
+            diagnostics.error(scene->camera.loc, e.what());
+        }
+    }
     err << diagnostics.formatAll();
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),

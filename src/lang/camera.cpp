@@ -122,7 +122,9 @@ CameraSpec Evaluator::camera(const CameraSpec& base, SourceLoc loc) {
             if (w == "cylinder") {
                 const double n = floatExpr("the cylinder camera type");
                 if (!(n >= 1 && n < 5) || (n != std::floor(n) && !pov))
-                    fail(at, "'cylinder' camera type must be 1, 2, 3 or 4" + got(n));
+                    fail(at, (pov ? "invalid cylinder camera type: valid are types 1 to 4"
+                                  : "'cylinder' camera type must be 1, 2, 3 or 4") +
+                                 got(n));
                 // POV-Ray truncates the type number.
                 c.mapping = static_cast<CameraMapping>(static_cast<int>(CameraMapping::Cylinder1) + int(n) - 1);
             }

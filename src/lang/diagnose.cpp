@@ -21,6 +21,10 @@ std::vector<SourceLoc> Evaluator::includeChain() const {
 void Evaluator::report(Severity severity, SourceLoc loc, const std::string& message) {
     if (severity == Severity::Warning && options_.strict) severity = Severity::Error;
     diags_.report(severity, loc, message, includeChain());
+    // An included file that is no scene (an #include of /etc/passwd) is read
+    // no further after its first error, so its contents do not leak into the
+    // messages token by token.
+    if (severity == Severity::Error && loc.valid() && !diags_.files().quotable(loc.file)) abandonedFile_ = loc.file;
     // An error inside a macro body names the calls that led there, innermost first.
     if (severity == Severity::Error)
         for (auto it = frames_.rbegin(); it != frames_.rend(); ++it)

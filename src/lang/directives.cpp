@@ -9,8 +9,6 @@ namespace drt::lang {
 
 namespace {
 
-constexpr long kMaxLoopIterations = 10000000; // per #while / #for
-
 bool opensBlock(const std::string& d) {
     return d == "if" || d == "ifdef" || d == "ifndef" || d == "switch" || d == "while" || d == "for" || d == "macro";
 }
@@ -256,6 +254,9 @@ void Evaluator::declareDirective(const Token& t, bool local) {
         value.origin = text.empty() ? nullptr : std::make_shared<const Origin>(Origin{name.text, text});
     }
     const bool needsSemicolon = value.isNumeric() && syntax().requireCommas;
+    // A declared scene item may be a copy of copies (a doubling "billion
+    // laughs"): look at the memory the scene takes before keeping it.
+    if (!value.isNumeric() && value.kind != Value::Kind::String) checkMemoryAt(name.loc);
     if (element) **element = value;
     else declare(name.text, value, local);
     if (peekOperator().is(";")) next();
@@ -418,11 +419,7 @@ void Evaluator::endDirective(const Token& t) {
     }
     Cond& c = conds_.back();
     if (c.type == Cond::Type::While) {
-        if (++c.iterations > kMaxLoopIterations) {
-            const SourceLoc loc = c.loc;
-            conds_.pop_back(); // its #end was just read
-            fail(loc, fmt::format("#while loop ran more than {} times; stopping", kMaxLoopIterations));
-        }
+        countIteration("#while");
         const long iterations = c.iterations;
         const Cond saved = c;
         conds_.pop_back();
@@ -440,11 +437,7 @@ void Evaluator::endDirective(const Token& t) {
         return;
     }
     if (c.type == Cond::Type::For) {
-        if (++c.iterations > kMaxLoopIterations) {
-            const SourceLoc loc = c.loc;
-            conds_.pop_back(); // its #end was just read
-            fail(loc, fmt::format("#for loop ran more than {} times; stopping", kMaxLoopIterations));
-        }
+        countIteration("#for");
         const Cell v = lookup(c.forName);
         if (!v || v->kind != Value::Kind::Float)
             fail(c.loc, "#for loop identifier '" + c.forName + "' is no longer a number");
@@ -526,7 +519,11 @@ void Evaluator::invokeMacro(const Token& t) {
     if (count != m->params.size())
         fail(t.loc, fmt::format("macro '{}' takes {} parameter{}, given {}", m->name, m->params.size(),
                                 m->params.size() == 1 ? "" : "s", count));
-    if (frames_.size() >= kMaxFrames) fail(t.loc, "macro calls nested too deep (runaway recursion?)");
+    if (int64_t(frames_.size()) >= diags_.limits().callDepth)
+        fail(t.loc, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
+                                  double(frames_.size() + 1)) +
+                        " (runaway recursion?)");
+    if (++macroCalls_ % kMemoryCheckInterval == 0) checkMemoryAt(t.loc);
     Frame f;
     f.tokens = m->tokens;
     f.pos = m->bodyStart;
@@ -537,6 +534,23 @@ void Evaluator::invokeMacro(const Token& t) {
     f.dialect = m->dialect;
     pushFrame(std::move(f));
     scopes_.push_back(std::move(scope));
+}
+
+void Evaluator::countIteration(const char* directive) {
+    Cond& c = conds_.back();
+    const Limits& limits = diags_.limits();
+    if (++c.iterations > limits.loopIterations) {
+        const SourceLoc loc = c.loc;
+        const long iterations = c.iterations;
+        conds_.pop_back(); // its #end was just read
+        fail(loc, limitExceeded(limits, &Limits::loopIterations, fmt::format("this {} loop's pass", directive),
+                                double(iterations)));
+    }
+    if (c.iterations % kMemoryCheckInterval == 0) checkMemoryAt(c.loc);
+}
+
+void Evaluator::checkMemoryAt(SourceLoc loc) {
+    if (std::string problem = checkMemory(diags_.limits()); !problem.empty()) fail(loc, problem);
 }
 
 } // namespace drt::lang

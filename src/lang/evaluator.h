@@ -13,6 +13,7 @@
 #include "lang/lexer.h"
 #include "lang/load.h"
 #include "lang/value.h"
+#include "scene/weight.h"
 
 #include <functional>
 #include <map>
@@ -20,8 +21,9 @@
 
 namespace drt::lang {
 
-// Includes plus macro calls nested at once: stops runaway recursion.
-inline constexpr size_t kMaxFrames = 400;
+// Loop passes and macro calls between two looks at the memory in use
+// (Limits::memoryMB).
+inline constexpr long kMemoryCheckInterval = 1024;
 
 // Thrown after an error has been reported: unwinds to the statement loop,
 // which skips to the next statement (or stops, as POV-Ray does).
@@ -118,6 +120,11 @@ public:
     double floatExpr(const char* what = "a number");
     Vec3 vectorExpr(const char* what = "a vector");
     int intExpr(const char* what); // a whole number
+    // A number that becomes a count or an index: it must be finite and in
+    // [lowest, highest] (a located error names `what` otherwise); truncated
+    // toward zero as POV-Ray does.
+    int countExpr(const char* what, double lowest, double highest);
+    int countValue(double value, SourceLoc loc, const char* what, double lowest, double highest);
     std::array<double, 5> colorExpr(); // colour keywords and expressions
     Color rgbExpr() { return toColorFT(colorExpr()).rgb; }
     std::string stringExpr();
@@ -210,6 +217,10 @@ public:
     void background();
     void defaultBlock();              // after '#default' or 'default'
     void addToScene(ObjectValue o);
+    // Limits (core/limits.h): objects and pattern nodes built or copied
+    // (Limits::objects), and the memory the scene takes.
+    void countBuilt(SourceLoc loc, int64_t weight);
+    void checkMemoryAt(SourceLoc loc);
     void finishScene(); // gamma rules, defaults
 
     Scene scene_;
@@ -278,6 +289,8 @@ private:
     void messageDirective(const Token& t);
     void fileDirective(const Token& t);
     void versionDirective(const Token& t);
+    // Counts a pass of the innermost loop against Limits::loopIterations.
+    void countIteration(const char* directive);
     // Skips raw tokens until a directive in `stops` at nesting depth 0; returns it.
     Token skipTo(const std::set<std::string>& stops, const Token& start);
     std::vector<SourceLoc> includeChain() const;
@@ -319,6 +332,9 @@ private:
     std::shared_ptr<const Origin> lastOrigin_; // of the last expression read by floatExpr/vectorExpr
     SourceLoc lastExpressionLoc_;
     int errorsSeen_ = 0;
+    long macroCalls_ = 0;
+    int64_t built_ = 0;      // Limits::objects: nodes built and copied so far
+    int abandonedFile_ = -1; // an included file that is no scene, read no further after its first error
 };
 
 // The world-space bounding box of an object (POV-Ray's min_extent / max_extent);

@@ -111,6 +111,16 @@ int Evaluator::intExpr(const char* what) {
     return static_cast<int>(d); // POV-Ray truncates
 }
 
+int Evaluator::countExpr(const char* what, double lowest, double highest) {
+    const SourceLoc loc = peek().loc;
+    return countValue(floatExpr(what), loc, what, lowest, highest);
+}
+
+int Evaluator::countValue(double value, SourceLoc loc, const char* what, double lowest, double highest) {
+    if (std::string problem = checkCount(what, value, lowest, highest); !problem.empty()) fail(loc, problem);
+    return static_cast<int>(std::trunc(value));
+}
+
 std::string Evaluator::stringExpr() {
     const SourceLoc loc = peek().loc;
     const Value v = expression();

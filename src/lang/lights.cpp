@@ -5,6 +5,7 @@
 // shadow over an edge-to-edge grid, and do not dim through media.
 #include "lang/evaluator.h"
 
+#include <cmath>
 #include <fmt/format.h>
 
 namespace drt::lang {
@@ -86,19 +87,33 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
             if (syntax().requireCommas) expectSymbol(",", "after the second area_light axis");
             else acceptSymbol(",");
             const SourceLoc n1Loc = peek().loc;
-            area.size1 = intExpr("the area_light size");
+            // A size below 1 is reported as such; one past the limit (or not
+            // finite) before it becomes an int.
+            const double most = double(diags_.limits().areaLightSamples);
+            const auto size = [&](SourceLoc loc) {
+                const double n = floatExpr("the area_light size");
+                if (std::isfinite(n) && n != std::floor(n) && syntax().strictValues)
+                    error(loc, "the area_light size must be a whole number");
+                if (n < 1 && n > -most) return int(n);
+                return countValue(n, loc, "area_light size", 1, most);
+            };
+            area.size1 = size(n1Loc);
             if (syntax().requireCommas) expectSymbol(",", "after the first area_light size");
             else acceptSymbol(",");
             const SourceLoc n2Loc = peek().loc;
-            area.size2 = intExpr("the area_light size");
+            area.size2 = size(n2Loc);
             if (area.size1 < 1) error(n1Loc, "area_light sizes must be at least 1" + got(area.size1));
             if (area.size2 < 1) error(n2Loc, "area_light sizes must be at least 1" + got(area.size2));
-            if (area.size1 * double(area.size2) > 1e6) error(n1Loc, "area_light grid is too large");
+            if (const double samples = double(area.size1) * double(area.size2); samples > most)
+                error(n1Loc, limitExceeded(diags_.limits(), &Limits::areaLightSamples,
+                                           fmt::format("the area_light's sample count {} x {} =", area.size1,
+                                                       area.size2),
+                                           samples));
             area.size1 = std::max(area.size1, 1);
             area.size2 = std::max(area.size2, 1);
         } else if (w == "jitter") area.jitter = optionalBool(true);
         else if (w == "adaptive") {
-            area.adaptive = intExpr("'adaptive'");
+            area.adaptive = countExpr("area_light adaptive", -1e9, 1e9);
             if (area.adaptive < 0) refuse(at, "'adaptive' must not be negative" + got(area.adaptive));
         } else if (w == "circular") area.circular = optionalBool(true);
         else if (w == "orient") area.orient = optionalBool(true);

@@ -2,6 +2,8 @@
 
 #include "lang/evaluator.h"
 
+#include "core/source_file.h"
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,27 +12,15 @@ namespace fs = std::filesystem;
 
 namespace drt {
 
-namespace {
-
-std::optional<std::string> readWholeFile(const std::string& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) return std::nullopt;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-} // namespace
-
 std::optional<Scene> loadSceneText(const std::string& text, const std::string& name, Diagnostics& diags,
                                    const LoadOptions& options, const std::string& baseDir) {
     LoadOptions effective = options;
     if (effective.includePaths.empty()) effective.includePaths = {baseDir, kPovStandardIncludeDir};
     const DialectKind dialect = options.dialect.value_or(dialectForPath(name));
     const int errorsBefore = diags.errorCount();
-    const int fileId = diags.files().add(name, text);
+    std::string withoutMark = text;
+    stripByteOrderMark(withoutMark);
+    const int fileId = diags.files().add(name, std::move(withoutMark));
     lang::Evaluator evaluator(diags, effective, dialect);
     std::optional<Scene> scene = evaluator.run(fileId, baseDir);
     if (diags.errorCount() > errorsBefore) return std::nullopt;
@@ -38,15 +28,15 @@ std::optional<Scene> loadSceneText(const std::string& text, const std::string& n
 }
 
 std::optional<Scene> loadScene(const std::string& path, Diagnostics& diags, const LoadOptions& options) {
-    const std::optional<std::string> text = readWholeFile(path);
-    if (!text) {
-        diags.error(SourceLoc{}, "cannot read scene file '" + path + "'");
+    std::string text;
+    if (std::string problem = readSourceFile(path, -1, text); !problem.empty()) {
+        diags.error(SourceLoc{}, "cannot read scene file: " + problem);
         return std::nullopt;
     }
     std::string dir = fs::path(path).parent_path().string();
     LoadOptions effective = options;
     if (!effective.dialect) effective.dialect = dialectForPath(path);
-    return loadSceneText(*text, path, diags, effective, dir.empty() ? "." : dir);
+    return loadSceneText(text, path, diags, effective, dir.empty() ? "." : dir);
 }
 
 std::optional<Scene> loadSceneFile(const std::string& path, Diagnostics& diags) { return loadScene(path, diags); }

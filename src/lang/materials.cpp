@@ -223,9 +223,19 @@ Media Evaluator::media(const Media& base) {
             unit.color = ColorFT{Color(1), 0, 0};
             m.densities.push_back(density(unit));
         } else if (w == "intervals" || w == "samples") {
-            const int n = intExpr(w == "intervals" ? "the number of intervals" : "the number of samples");
-            if (n < 1 || n > 4096) refuse(loc, "'" + w + "' must be between 1 and 4096" + got(double(n)));
-            (w == "intervals" ? m.intervals : m.samples) = std::clamp(n, 1, 4096);
+            // A count past the limit (or not finite) is refused before it becomes an int.
+            const int64_t most = diags_.limits().mediaIntervals;
+            const double n = floatExpr(w == "intervals" ? "the number of intervals" : "the number of samples");
+            int& target = w == "intervals" ? m.intervals : m.samples;
+            if (syntax().strictValues) {
+                if (!(n >= 1)) error(loc, "'" + w + "' must be at least 1" + got(n));
+                else if (n > double(most))
+                    error(loc, limitExceeded(diags_.limits(), &Limits::mediaIntervals, "'" + w + "'", n));
+                else if (n != std::floor(n)) error(loc, "'" + w + "' must be a whole number" + got(n));
+                target = n >= 1 && n <= double(most) ? int(n) : 1;
+            } else {
+                target = countValue(n, loc, ("media " + w).c_str(), 1, double(most));
+            }
             if (w == "samples" && acceptSymbol(",")) floatExpr(); // the maximum of methods 1 and 2
         } else if (w == "method") {
             const int method = intExpr("the media method");

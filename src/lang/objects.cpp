@@ -216,6 +216,28 @@ bool Evaluator::isObjectWord(const Token& t) const {
            (t.text == "object" || shapeReader(t.text) || isUnsupportedShape(t.text));
 }
 
+namespace {
+
+// An object's nodes: its own (scene/weight.h) and its CSG members', which stay
+// ObjectValues until the object is placed. Stops counting past `cap`.
+int64_t objectWeight(const ObjectValue& o, int64_t cap) {
+    int64_t total = weightOf(o.object, cap).total();
+    for (const ObjectValue& child : o.children)
+        if (total <= cap) total += objectWeight(child, cap - total);
+    return total;
+}
+
+} // namespace
+
+void Evaluator::countBuilt(SourceLoc loc, int64_t weight) {
+    const int64_t before = built_;
+    built_ += weight;
+    if (built_ > diags_.limits().objects)
+        fail(loc, limitExceeded(diags_.limits(), &Limits::objects, "the scene's objects and patterns number",
+                                double(built_)));
+    if (built_ / kMemoryCheckInterval != before / kMemoryCheckInterval) checkMemoryAt(loc);
+}
+
 ObjectValue Evaluator::object(const Token& keyword) {
     DepthGuard guard(*this, keyword.loc);
     const std::string& w = keyword.text;
@@ -241,6 +263,9 @@ ObjectValue Evaluator::object(const Token& keyword) {
         const Token t = next();
         const Cell c = t.kind == TokenKind::Word ? useIndexed(t) : nullptr;
         if (c && c->kind == Kind::Object) {
+            // A copy counts what it copies, so a doubling of declared objects
+            // stops at the limit before it fills the memory.
+            countBuilt(t.loc, objectWeight(*c->object, diags_.limits().objects - built_ + 1));
             po = *c->object;
             po.object.loc = keyword.loc;
         } else if (isObjectWord(t) || t.isWord("light_source")) {
@@ -253,6 +278,7 @@ ObjectValue Evaluator::object(const Token& keyword) {
             failExpected(t, "the name of a declared object");
         }
     } else {
+        countBuilt(keyword.loc, 1);
         shapeReader(w)(*this, keyword, po);
     }
     objectModifiers(po, keyword);

@@ -80,6 +80,7 @@ ColorFT pigmentAverage(const Pigment& p) {
 void Evaluator::noiseNote(const std::string& kind, SourceLoc loc) {
     // drt's noise is the .drt dialect's own; only POV-Ray scenes are approximated.
     if (isDrt()) return;
+    if (kind == "leopard" || kind == "waves" || kind == "ripples") return; // POV-Ray's formulas, no noise
     noteOnce("note-" + kind, loc, "'" + kind + "' is approximated: drt's noise has POV-Ray's shapes but not its exact values");
 }
 
@@ -362,7 +363,7 @@ bool Evaluator::turbulenceItem(const Token& t, Turbulence& turbulence) {
         if (turbulence.amount.x < 0 || turbulence.amount.y < 0 || turbulence.amount.z < 0)
             refuse(loc, "'turbulence' must not be negative" + got(turbulence.amount));
     } else if (w == "octaves") {
-        const int n = intExpr("the number of octaves");
+        const int n = countExpr("octaves", -1e9, 1e9);
         if (n < 1 || n > 10) refuse(loc, "'octaves' must be between 1 and 10" + got(n));
         turbulence.octaves = std::clamp(n, 1, 10);
     } else if (w == "omega") {

@@ -154,11 +154,9 @@ Value Evaluator::primary() {
 size_t Evaluator::arrayIndex(const lang::Array& a, const Token& name) {
     size_t index = 0;
     for (size_t d = 0; d < a.sizes.size(); ++d) {
-        const Token open = expectSymbol("[", "for an array index");
-        const double i = floatExpr();
+        expectSymbol("[", "for an index into '" + name.text + "'");
+        const int i = countExpr("array index", 0, a.sizes[d] - 1);
         expectSymbol("]", "after an array index");
-        if (!(i >= 0 && i < a.sizes[d]))
-            fail(open.loc, fmt::format("array index {} out of range 0..{} for '{}'", i, a.sizes[d] - 1, name.text));
         index = index * size_t(a.sizes[d]) + size_t(i);
     }
     return index;
@@ -186,12 +184,13 @@ Value Evaluator::arrayLiteral(SourceLoc loc) {
     while (peekOperator().is("[")) {
         next();
         const SourceLoc at = peek().loc;
-        const double n = floatExpr();
+        const Limits& limits = diags_.limits();
+        const int n = countExpr("array size", 1, double(limits.arrayElements));
         expectSymbol("]", "after the array size");
-        if (!(n >= 1) || n > 1e7) fail(at, fmt::format("array size {} out of range", n));
-        a->sizes.push_back(static_cast<int>(n));
+        a->sizes.push_back(n);
         total *= size_t(n);
-        if (total > 10000000) fail(at, "array too large");
+        if (total > size_t(limits.arrayElements))
+            fail(at, limitExceeded(limits, &Limits::arrayElements, "the array's element count", double(total)));
     }
     if (a->sizes.empty()) fail(loc, "array needs a size: array[n]");
     a->items.resize(total);

@@ -4,6 +4,8 @@
 // and macro call opens a new scope for #local.
 #include "lang/evaluator.h"
 
+#include "core/source_file.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
@@ -14,15 +16,10 @@ namespace fs = std::filesystem;
 
 namespace drt::lang {
 
-namespace {
-constexpr int kMaxNesting = 200;     // nested expressions and blocks
-constexpr size_t kMaxIncludeDepth = 64; // files included within one another
-} // namespace
-
 Evaluator::DepthGuard::DepthGuard(Evaluator& e, SourceLoc loc) : depth(e.expressionDepth_) {
-    if (++depth > kMaxNesting) {
+    if (++depth > e.diags_.limits().nestingDepth) {
         --depth;
-        e.fail(loc, "nesting is too deep (more than " + std::to_string(kMaxNesting) + " levels)");
+        e.fail(loc, limitExceeded(e.diags_.limits(), &Limits::nestingDepth, "nesting depth", double(depth + 1)));
     }
 }
 Evaluator::DepthGuard::~DepthGuard() { --depth; }
@@ -98,7 +95,9 @@ void Evaluator::declare(const std::string& name, const Value& value, bool local)
 
 void Evaluator::pushFile(int fileId, SourceLoc includedFrom, const std::string& dir,
                          const std::string& canonicalPath, DialectKind dialect) {
-    if (frames_.size() >= kMaxFrames) fail(includedFrom, "includes or macro calls nested too deep");
+    if (int64_t(frames_.size()) >= diags_.limits().callDepth)
+        fail(includedFrom, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
+                                         double(frames_.size() + 1)));
     const std::string& path = diags_.files().path(fileId);
     auto& tokens = lexedFiles_[path + "#" + std::to_string(fileId)];
     tokens = std::make_shared<const std::vector<Token>>(
@@ -139,13 +138,20 @@ std::string Evaluator::currentDir() const {
 }
 
 std::string Evaluator::findInclude(const std::string& name, const std::string& fromDir) const {
-    std::error_code ec;
-    if (fs::path(name).is_absolute()) return fs::is_regular_file(name, ec) ? name : "";
+    // POV-Ray's library-path search looks for a regular file; a .drt scene
+    // names the file it means, so whatever is there is read (and a device or
+    // a folder is refused with the reason).
+    const bool anyFile = syntax().kind == DialectKind::Drt;
+    const auto usable = [&](const fs::path& p) {
+        std::error_code ec;
+        return anyFile ? fs::exists(p, ec) : fs::is_regular_file(p, ec);
+    };
+    if (fs::path(name).is_absolute()) return usable(name) ? name : "";
     std::vector<std::string> dirs{fromDir};
     dirs.insert(dirs.end(), options_.includePaths.begin(), options_.includePaths.end());
     for (const std::string& dir : dirs) {
         const fs::path candidate = (fs::path(dir) / name).lexically_normal();
-        if (fs::is_regular_file(candidate, ec)) return candidate.string();
+        if (usable(candidate)) return candidate.string();
     }
     return "";
 }
@@ -179,7 +185,8 @@ void Evaluator::includeDirective(const Token& t) {
             const std::string candidate = (fs::path(dir) / name).lexically_normal().string();
             if (looked.find(candidate) == std::string::npos) looked += (looked.empty() ? "" : ", ") + candidate;
         }
-        fail(at.loc, "cannot find include file '" + name + "' (looked for " + looked + ")");
+        const char quote = syntax().kind == DialectKind::Drt ? '\'' : '"';
+        fail(at.loc, "cannot find include file " + (quote + name + quote) + " (looked for " + looked + ")");
     }
     const std::string id = canonical(path);
     // A file including itself is a cycle in .drt files; POV-Ray's include
@@ -193,14 +200,16 @@ void Evaluator::includeDirective(const Token& t) {
             fail(at.loc, "include cycle: " + chain + fs::path(id).filename().string());
         }
     }
-    size_t depth = 0;
+    // The files open now (the scene's and its includes'); with this one,
+    // `depth` includes are open at once.
+    int64_t depth = 0;
     for (const Frame& f : frames_) depth += f.isMacro ? 0 : 1;
-    if (depth > kMaxIncludeDepth) fail(at.loc, "includes nested too deeply");
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    if (!in && !in.eof()) fail(at.loc, "cannot read include file '" + path + "'");
-    const int fileId = diags_.files().add(path, buffer.str());
+    if (depth > diags_.limits().includeDepth)
+        fail(at.loc, limitExceeded(diags_.limits(), &Limits::includeDepth, "include depth", double(depth)));
+    std::string text;
+    if (std::string problem = readSourceFile(path, diags_.limits().includeBytes, text); !problem.empty())
+        fail(at.loc, "cannot include '" + name + "': " + problem);
+    const int fileId = diags_.files().add(path, std::move(text), hasSceneExtension(path));
     std::string dir = fs::path(path).parent_path().string();
     // An include file's syntax follows its extension; a .drt file's own includes
     // without a POV-Ray extension are .drt.
@@ -224,6 +233,11 @@ Token Evaluator::rawNext() {
     for (;;) {
         Frame& f = frames_.back();
         const Token& t = (*f.tokens)[f.pos];
+        if (frames_.size() > 1 && !f.isMacro && t.loc.file == abandonedFile_ && abandonedFile_ >= 0) {
+            dropFrameConds();
+            popFrame();
+            continue;
+        }
         if (t.kind == TokenKind::EndOfFile) {
             if (f.isMacro) fail(t.loc, "macro body has no #end");
             if (frames_.size() == 1) {

@@ -144,7 +144,7 @@ void Evaluator::fog(const Token& keyword) {
         } else if (w == "octaves" || w == "omega" || w == "lambda") {
             if (!f.turbulence) f.turbulence = Turbulence{};
             if (w == "octaves") {
-                const int n = intExpr("the octave count");
+                const int n = countExpr("octaves", -1e9, 1e9);
                 if (n < 1 || n > 10) refuse(at, "'octaves' must be between 1 and 10" + got(n));
                 f.turbulence->octaves = std::clamp(n, 1, 10);
             } else {
@@ -176,9 +176,24 @@ void Evaluator::globalSettings() {
             assumedGamma_ = g;
             scene_.global.assumedGamma = g;
         } else if (w == "max_trace_level") {
-            const int n = intExpr("'max_trace_level'");
-            if (n < 1 || n > 256) refuse(at, "'max_trace_level' must be between 1 and 256" + got(n));
-            scene_.global.maxTraceLevel = std::max(1, n);
+            const int64_t limit = diags_.limits().traceLevel;
+            if (syntax().strictValues) {
+                const int n = intExpr("'max_trace_level'");
+                if (n < 1) error(at, "'max_trace_level' must be at least 1" + got(n));
+                else if (n > limit)
+                    error(at, limitExceeded(diags_.limits(), &Limits::traceLevel, "'max_trace_level'", n));
+                scene_.global.maxTraceLevel = int(std::clamp<int64_t>(n, 1, limit));
+            } else {
+                // POV-Ray takes any finite level (and caps it too); above drt's
+                // limit the limit is used, with a warning.
+                const double value = floatExpr("'max_trace_level'");
+                if (!std::isfinite(value)) fail(at, "max_trace_level must be a finite number" + got(value));
+                const double level = std::max(1.0, std::trunc(value));
+                if (level > double(limit))
+                    warn(at, fmt::format("max_trace_level {:.0f} is above drt's {}; {} is used ({})", level, limit,
+                                         limit, limitHint(diags_.limits(), &Limits::traceLevel)));
+                scene_.global.maxTraceLevel = int(std::min(level, double(limit)));
+            }
         } else if (w == "ambient_light") {
             scene_.global.ambientLight = rgbExpr();
         } else if (w == "adc_bailout") {

@@ -89,9 +89,11 @@ void readPrism(Evaluator& e, const Token& keyword, ObjectValue& o) {
     const int minimum = minimumPrismPoints(source.spline);
     if (count != std::floor(count) && e.syntax().strictValues)
         e.fail(countLoc, "the number of points must be a whole number" + e.got(count));
-    if (!(count >= minimum) || count > 1e7)
+    if (!(count >= minimum))
         e.fail(countLoc, "this prism spline needs at least " + std::to_string(minimum) + " points");
-    for (int i = 0; i < int(count); ++i) {
+    const int points =
+        e.countValue(count, countLoc, "prism point count", 0, double(e.diags().limits().meshTriangles));
+    for (int i = 0; i < points; ++i) {
         if (e.syntax().requireCommas)
             e.expectSymbol(",", i == 0 ? "after the number of points" : "between prism points");
         else e.acceptSymbol(",");

@@ -101,19 +101,19 @@ void readMesh(Evaluator& e, const Token& keyword, Mesh& m) {
 
 void readMesh2(Evaluator& e, const Token& keyword, Mesh& m) {
     // `{ n, item, ... }`: the count, then the items; `14 <-1, ...` is a count and a vector.
-    auto count = [&]() {
+    auto count = [&](const char* what) {
         e.expectSymbol("{", "to open the list");
         const SourceLoc at = e.peek().loc;
         const double n = [&] {
             FlagFor flag(e.countBeforeVector_);
             return e.floatExpr("the number of items");
         }();
-        if (!(n >= 0 && n <= 1e8 && n == std::floor(n)))
-            e.fail(at, "the number of items must be a whole number from 0 to 100000000" + e.got(n));
-        return int(n);
+        if (std::isfinite(n) && n != std::floor(n) && e.syntax().strictValues)
+            e.fail(at, "the number of items must be a whole number" + e.got(n));
+        return e.countValue(n, at, what, 0, double(e.diags().limits().meshTriangles));
     };
     auto vectorList = [&](std::vector<Vec3>& out) {
-        const int n = count();
+        const int n = count("mesh2 vector count");
         for (int i = 0; i < n; ++i) {
             e.acceptSymbol(",");
             out.push_back(e.vectorExpr());
@@ -122,15 +122,15 @@ void readMesh2(Evaluator& e, const Token& keyword, Mesh& m) {
         e.expectSymbol("}", "after the listed count of items");
     };
     auto indexList = [&](std::vector<std::array<int, 3>>& out, int maxIndex, const char* what) {
-        const int n = count();
+        const int n = count("mesh2 index count");
+        const std::string indexName = std::string(what) + " index";
         for (int i = 0; i < n; ++i) {
             e.acceptSymbol(",");
             const SourceLoc at = e.peek().loc;
             const Vec3 v = e.vectorExpr();
-            const std::array<int, 3> tri{int(v.x), int(v.y), int(v.z)};
-            for (int k : tri)
-                if (k < 0 || k >= maxIndex)
-                    e.fail(at, fmt::format("{} index {} out of range 0..{}", what, k, maxIndex - 1));
+            std::array<int, 3> tri{};
+            for (int k = 0; k < 3; ++k)
+                tri[size_t(k)] = e.countValue(v[k], at, indexName.c_str(), 0, double(maxIndex) - 1);
             out.push_back(tri);
             // Optional texture indices after a face.
             while (e.peekOperator().is(",")) {
@@ -178,9 +178,9 @@ void readPolygon(Evaluator& e, const Token& keyword, Mesh& m) {
         FlagFor flag(e.countBeforeVector_);
         return e.floatExpr("the number of points");
     }();
-    if (!(count >= 0 && count <= 1e7)) e.fail(at, "the number of polygon points is out of range" + e.got(count));
+    const int points = e.countValue(count, at, "polygon point count", 0, double(e.diags().limits().meshTriangles));
     std::vector<Vec3> pts;
-    for (int i = 0; i < int(count); ++i) {
+    for (int i = 0; i < points; ++i) {
         e.comma(i == 0 ? "number of points" : "point");
         pts.push_back(e.vectorExpr());
     }

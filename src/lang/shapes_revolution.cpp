@@ -57,10 +57,10 @@ void ShapeSyntax<Revolution>::read(Evaluator& e, const Token& keyword, ObjectVal
     if (count != std::floor(count) && e.syntax().strictValues)
         e.fail(countLoc, "the number of points must be a whole number" + e.got(count));
     const int minimum = minimumRevolutionPoints(rev.kind, rev.spline);
-    if (!(count >= minimum) || count > 1e7)
+    if (!(count >= minimum))
         e.fail(countLoc, std::string(rev.kind == Revolution::Kind::Sor ? "a sor" : "this lathe spline") +
                              " needs at least " + std::to_string(minimum) + " points");
-    const int n = int(count);
+    const int n = e.countValue(count, countLoc, "point count", 0, double(e.diags().limits().meshTriangles));
     if (rev.spline == Revolution::Spline::Bezier && n % 4 != 0)
         e.fail(countLoc, "a bezier_spline lathe needs 4 points per segment (a multiple of 4)");
     for (int i = 0; i < n; ++i) {

@@ -323,6 +323,19 @@ Material Evaluator::material(const Material& base) {
 }
 
 // normal { [pattern [amount]] { modifier | transform } }: the bump pattern.
+namespace {
+
+// Patterns that perturb a POV-Ray normal by their slope (render/normal_pattern.cpp).
+std::optional<PatternKind> normalOnlyPattern(const std::string& word) {
+    if (word == "gradient") return PatternKind::Gradient;
+    if (word == "radial") return PatternKind::Radial;
+    if (word == "onion") return PatternKind::Onion;
+    if (word == "spherical") return PatternKind::Spherical;
+    return std::nullopt;
+}
+
+} // namespace
+
 std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optional<Normal>& base) {
     DepthGuard guard(*this, keyword);
     expectSymbol("{", "after 'normal'");
@@ -350,11 +363,17 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 first = false;
                 continue;
             }
-            if (const std::optional<PatternKind> kind = noisePatternNamed(t.text)) {
+            std::optional<PatternKind> kind = noisePatternNamed(t.text);
+            if (kind) noiseNote(t.text, t.loc);
+            else if (!isDrt()) kind = normalOnlyPattern(t.text); // POV-Ray's normals by a pattern's slope
+            if (kind) { // a pattern, then its own parameters, then the amount
                 next();
                 n.pattern = *kind;
                 known = true;
-                noiseNote(t.text, t.loc);
+                if (*kind == PatternKind::Gradient) {
+                    n.gradientAxis = vectorExpr("the gradient direction");
+                    acceptSymbol(",");
+                }
                 const Token a = peek();
                 if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
                 first = false;
@@ -364,9 +383,9 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 first = false;
                 continue;
             }
-            if (t.text == "accuracy") { // the finite-difference step: drt chooses its own
+            if (t.text == "accuracy") { // the slope's sample spacing
                 next();
-                floatExpr();
+                n.accuracy = floatExpr("the normal's accuracy");
                 continue;
             }
             if (t.text == "bump_size") {
