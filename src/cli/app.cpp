@@ -56,6 +56,9 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("--spp-image", a.command.sppImageOutput,
                        "Also write the samples taken per pixel to this image (.exr: counts; else scaled to the most)");
     render->add_flag("-q,--quiet", a.command.quiet, "No progress line and no summary");
+    render->add_flag("--reproducible", a.command.reproducible,
+                     "Leave the run's details (command line, threads, time) out of the file's metadata, so the same "
+                     "scene and seed give a byte-identical file");
     render->add_option("-L,--include-path", a.command.pov.includePaths,
                        "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");
     render->add_flag("--strict", a.command.pov.strict, "POV-Ray scenes: unsupported features are errors");
@@ -170,6 +173,7 @@ int runCommandLine(int argc, char** argv) {
 
     if (render->parsed()) {
         fillOverrides(*render, renderArguments);
+        renderArguments.command.commandLine = shellCommandLine(argc, argv);
         return runRender(renderArguments.command, std::cout, std::cerr);
     }
     if (check->parsed())

@@ -11,6 +11,7 @@
 
 #include "bench/bench.h"
 #include "compare/compare.h"
+#include "render/provenance.h"
 #include "render/render.h"
 
 #include <iosfwd>
@@ -42,6 +43,8 @@ struct RenderCommand {
     bool quiet = false;
     bool progress = false; // draw a progress line (the caller checks that stderr is a terminal)
     PovCliOptions pov;
+    std::string commandLine; // recorded in the output's metadata ("" : not recorded)
+    bool reproducible = false; // --reproducible: metadata without run details (byte-identical files)
 };
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err);
 
@@ -112,8 +115,9 @@ struct ConversionCheck {
 };
 ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions& pov, int width, int height);
 
-// The metadata drt stores in rendered images (keys "drt:...").
-Metadata renderMetadata(const std::string& scenePath, const RenderOptions& options, const RenderStats& stats,
-                        uint64_t nonFinitePixels);
+// The provenance drt stores in rendered images (keys "drt:...", render/provenance.h).
+Provenance renderProvenance(const RenderCommand& command, const std::string& sceneSha1, const Scene& scene,
+                            const RenderOptions& options, const RenderStats& stats, uint64_t nonFinitePixels,
+                            std::time_t started);
 
 } // namespace drt::cli

@@ -5,7 +5,8 @@
 #include "cli/progress.h"
 #include "lang/load.h"
 #include "pov/load.h"
-#include "sampling/sampler.h"
+#include "render/provenance.h"
+#include "sampling/filter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -38,9 +39,11 @@ bool looksBinary(const std::string& path) {
 }
 
 // Loads a scene, printing every diagnostic to `err`. Returns kSuccess and sets
-// `scene`, or the exit status to stop with.
+// `scene` (and `sceneSha1`, the hash of the text read: render/provenance.h),
+// or the exit status to stop with.
 int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene,
-              const PovCliOptions& pov = {}, const RenderSettings& overrides = {}) {
+              const PovCliOptions& pov = {}, const RenderSettings& overrides = {},
+              std::string* sceneSha1 = nullptr) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !std::ifstream(path)) {
         err << fmt::format("drt: cannot read scene '{}': {}\n", path,
@@ -69,6 +72,8 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         scene = loadSceneFile(path, diagnostics);
     }
     if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+    if (sceneSha1)
+        *sceneSha1 = sceneTextSha1(diagnostics.files());
     err << diagnostics.formatAll();
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),
@@ -111,25 +116,19 @@ std::string millions(uint64_t n) {
 
 } // namespace
 
-Metadata renderMetadata(const std::string& scenePath, const RenderOptions& options, const RenderStats& stats,
-                        uint64_t nonFinitePixels) {
-    return {
-        {"Software", fmt::format("drt {}", DRT_VERSION)},
-        {"drt:version", DRT_VERSION},
-        {"drt:scene", fs::path(scenePath).filename().string()},
-        {"drt:seed", std::to_string(options.seed)},
-        {"drt:spp", options.adaptive ? fmt::format("{}-{} adaptive", stats.minPixelSamples, stats.maxPixelSamples)
-                                     : std::to_string(options.samplesPerPixel)},
-        {"drt:sampler", options.sampler.empty() ? defaultSamplerName() : options.sampler},
-        {"drt:render_seconds", fmt::format("{:.3f}", stats.renderSeconds)},
-        {"drt:nonfinite_samples", std::to_string(stats.nonFiniteSamples)},
-        {"drt:nonfinite_pixels", std::to_string(nonFinitePixels)},
-        {"drt:effects", describeEffects(stats.effects)},
-        {"drt:samples_taken", std::to_string(stats.pixelSamples)},
-        {"drt:adaptive", options.adaptive ? fmt::format("error {} min {} max {}", options.adaptiveError,
-                                                         options.minSamplesPerPixel, options.maxSamplesPerPixel)
-                                          : "off"},
-    };
+Provenance renderProvenance(const RenderCommand& command, const std::string& sceneSha1, const Scene& scene,
+                            const RenderOptions& options, const RenderStats& stats, uint64_t nonFinitePixels,
+                            std::time_t started) {
+    Provenance p =
+        renderProvenance(command.scene, sceneSha1, options, scene.render.filter.value_or(defaultFilterName()));
+    p.identify("drt:effects", describeEffects(stats.effects));
+    p.identify("drt:samples_taken", std::to_string(stats.pixelSamples));
+    if (options.adaptive)
+        p.identify("drt:spp_range", fmt::format("{}-{}", stats.minPixelSamples, stats.maxPixelSamples));
+    p.identify("drt:nonfinite_samples", std::to_string(stats.nonFiniteSamples));
+    p.identify("drt:nonfinite_pixels", std::to_string(nonFinitePixels));
+    recordRun(p, options, stats, command.commandLine, started);
+    return p;
 }
 
 int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err) {
@@ -148,7 +147,9 @@ int runCheck(const std::string& scenePath, const PovCliOptions& pov, std::ostrea
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
     (void)out;
     std::optional<Scene> scene;
-    if (int status = loadScene(command.scene, err, scene, command.pov, command.overrides); status != kSuccess)
+    std::string sceneSha1;
+    if (int status = loadScene(command.scene, err, scene, command.pov, command.overrides, &sceneSha1);
+        status != kSuccess)
         return status;
 
     RenderOptions options = resolveRenderOptions(overlaySettings(scene->render, command.overrides));
@@ -184,6 +185,7 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
         options.progress = [&progress](double fraction) { progress->update(fraction); };
     }
     const auto start = std::chrono::steady_clock::now();
+    const std::time_t started = std::time(nullptr);
     RenderResult result;
     try {
         result = render(*scene, options);
@@ -198,7 +200,9 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     const uint64_t nonFinitePixels = clearNonFinite(result.color);
-    const Metadata metadata = renderMetadata(command.scene, options, result.stats, nonFinitePixels);
+    const Metadata metadata =
+        renderProvenance(command, sceneSha1, *scene, options, result.stats, nonFinitePixels, started)
+            .metadata(command.reproducible);
     if (std::string problem = writeImage(command.output, result.color, metadata); !problem.empty()) {
         err << "drt: " << problem << "\n";
         return kIoError;

@@ -6,7 +6,9 @@
 
 #include "assets/assets.h"
 #include "lang/load.h"
+#include "render/provenance.h"
 #include "render/render.h"
+#include "sampling/filter.h"
 #include "sampling/sampler.h"
 
 #include <tbb/parallel_for.h>
@@ -110,6 +112,7 @@ struct Prepared {
     GoldenSettings settings;
     Scene scene;
     RenderOptions options;
+    std::string scenePath, sceneSha1;
 };
 
 bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) {
@@ -137,6 +140,8 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
     Diagnostics diagnostics;
     std::optional<Scene> scene = loadSceneFile(scenePath, diagnostics);
     if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+    p.scenePath = scenePath;
+    p.sceneSha1 = sceneTextSha1(diagnostics.files());
     if (diagnostics.hasErrors() || !scene) {
         result.message = fmt::format("{}: the scene has {} error{}", scenePath, diagnostics.errorCount(),
                                      diagnostics.errorCount() == 1 ? "" : "s");
@@ -155,16 +160,14 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
     return true;
 }
 
-Metadata goldenMetadata(const GoldenCase& c, const GoldenSettings& s, const RenderOptions& o) {
-    // No timings, and an empty DateTime (else OpenEXR stamps the time of
-    // writing): rewriting an unchanged golden leaves its file byte for byte the same.
-    return {{"Software", fmt::format("drt {}", DRT_VERSION)},
-            {"DateTime", ""},
-            {"drt:golden", c.name},
-            {"drt:policy", policyName(s.policy)},
-            {"drt:seed", std::to_string(o.seed)},
-            {"drt:spp", std::to_string(o.samplesPerPixel)},
-            {"drt:sampler", o.sampler.empty() ? defaultSamplerName() : o.sampler}};
+// Reproducible metadata (no run details), so rewriting an unchanged golden
+// leaves its file byte for byte the same.
+Metadata goldenMetadata(const GoldenCase& c, const Prepared& p, const RenderOptions& o) {
+    Provenance provenance =
+        renderProvenance(p.scenePath, p.sceneSha1, o, p.scene.render.filter.value_or(defaultFilterName()));
+    provenance.identify("drt:golden", c.name);
+    provenance.identify("drt:policy", policyName(p.settings.policy));
+    return provenance.metadata(true);
 }
 
 // --update: render the golden (at reference_spp for a statistical one) and
@@ -189,7 +192,7 @@ void updateCase(const GoldenCase& c, Prepared& p, CaseResult& result) {
         result.message = "the render has NaN or Inf pixels: not writing a golden";
         return;
     }
-    const Metadata metadata = goldenMetadata(c, s, options);
+    const Metadata metadata = goldenMetadata(c, p, options);
     std::vector<std::string> written;
     const bool png = s.format != "exr";
     const bool exr = s.format != "png";

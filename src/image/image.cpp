@@ -58,14 +58,16 @@ fs::path folderOf(const std::string& path) {
     return folder.empty() ? fs::path(".") : folder;
 }
 
-// TIFF and JPEG keep only the description writeImage composes,
-// "drt key=value key=value ...": recover the keys the file did not keep.
+// TIFF and JPEG keep only the description writeImage composes, "drt" then one
+// "key=value" per line (files written before values could hold spaces separate
+// the items by spaces): recover the keys the file did not keep.
 void recoverFromDescription(const std::string& description, Metadata& metadata) {
-    if (description.rfind("drt ", 0) != 0)
+    if (description.rfind("drt\n", 0) != 0 && description.rfind("drt ", 0) != 0)
         return;
+    const char separator = description[3];
     size_t start = 4;
     while (start < description.size()) {
-        size_t end = description.find(' ', start);
+        size_t end = description.find(separator, start);
         if (end == std::string::npos)
             end = description.size();
         const std::string item = description.substr(start, end - start);
@@ -137,7 +139,7 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
     for (const auto& [key, value] : metadata) {
         spec.attribute(key, value);
         if (key.rfind("drt:", 0) == 0)
-            description += " " + key + "=" + value;
+            description += "\n" + key + "=" + value;
     }
     // Formats that drop unknown attributes (TIFF, JPEG) still keep a description.
     if (!metadata.empty())
