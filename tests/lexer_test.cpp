@@ -1,5 +1,6 @@
 // The .drt lexer: token kinds, slices, locations, comments and every lexical error.
 #include "lang/lexer.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -121,7 +122,11 @@ INSTANTIATE_TEST_SUITE_P(
                     LexError{"a /* b /* c */", "unterminated comment", 1, 3},
                     LexError{"# 5", "expected a directive name after '#'", 1, 1},
                     LexError{"a @ b", "unexpected character '@'", 1, 3},
-                    LexError{"a \x01", "unexpected byte 1", 1, 3}));
+                    LexError{"a \x01", "unexpected byte 1", 1, 3}),
+    [](const testing::TestParamInfo<LexError>& info) {
+        return test::testNameOf(std::string(info.param.message) + " at " + std::to_string(info.param.line) + " " +
+                                std::to_string(info.param.column));
+    });
 
 TEST(Lexer, ArbitraryBytesAlwaysReachTheEnd) {
     std::string text;

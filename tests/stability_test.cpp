@@ -1,4 +1,4 @@
-// Stability where methods fail (issue 6): each test drives the renderer into a
+// Stability where methods fail: each test drives the renderer into a
 // regime where a naive method breaks (tiny or huge scenes, far from the origin,
 // total internal reflection, grazing rays, degenerate lights, lenses, shutters
 // and triangles, deep recursion, coincident surfaces) and asserts no NaN/Inf,
@@ -212,7 +212,7 @@ TEST(Stability, SpawnedRaysNeverRehitTheirOwnSurfaceAtAnyScale) {
 // ---------------------------------------------------------------- glass
 
 // A lossless dielectric in a uniform environment renders exactly the
-// environment (the white furnace, ACCURACY-NOTES.md): whatever the Fresnel
+// environment (the white furnace test): whatever the Fresnel
 // split, total internal reflection included, no energy appears or vanishes
 // beyond what the depth limit and the per-sample ray budget cut off.
 Scene furnace(Shape shape, Texture texture) {

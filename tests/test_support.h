@@ -25,6 +25,22 @@ struct CommandResult {
     std::string out; // stdout
     std::string err; // stderr
 };
+// A GoogleTest parameter name (letters, digits, '_') made from a description,
+// so that parameterised tests read as Suite.Test/what_it_checks in ctest.
+inline std::string testNameOf(const std::string& description) {
+    std::string name;
+    for (char c : description) {
+        const bool word = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+        if (word)
+            name += c;
+        else if (!name.empty() && name.back() != '_')
+            name += '_';
+    }
+    while (!name.empty() && name.back() == '_')
+        name.pop_back();
+    return name.empty() ? "case" : name;
+}
+
 // Runs the drt executable with the given argument string (shell-quoted by the caller).
 CommandResult runDrt(const std::string& arguments);
 

@@ -5,7 +5,7 @@
 
 #include "bench/report.h"
 #include "compare/compare.h"
-#include "lang/load.h"
+#include "pov/load.h"
 #include "sampling/filter.h"
 #include "sampling/sampler.h"
 
@@ -72,7 +72,7 @@ std::string referenceKey(const Scene& scene, const Scene& tweaked) {
 }
 
 // Mean over pixels and channels of Var(r) / (r^2 + 0.01): the reference's
-// share of E[relMSE] (ACCURACY-NOTES.md: a noisy reference inflates every error).
+// share of E[relMSE] (a noisy reference inflates every error by this much).
 double referenceNoise(const Reference& reference) {
     if (!reference.hasVariance) return 0;
     double sum = 0;
@@ -260,7 +260,7 @@ BenchReport runBench(const BenchOptions& given, std::ostream& log) {
         throw BenchError(fmt::format("cannot read scene '{}': no such file", o.scenePath), true);
     Diagnostics diagnostics;
     const auto parseStart = std::chrono::steady_clock::now();
-    std::optional<Scene> loaded = loadSceneFile(o.scenePath, diagnostics);
+    std::optional<Scene> loaded = loadAnySceneFile(o.scenePath, diagnostics); // .drt or .pov
     if (loaded && !diagnostics.hasErrors()) resolveAssets(*loaded, diagnostics);
     const double parseSeconds = secondsSince(parseStart);
     if (diagnostics.hasErrors() || !loaded)

@@ -6,6 +6,7 @@
 #include "sampling/sampler.h"
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
 #include <unistd.h>
@@ -132,11 +133,23 @@ CLI::App* addCompare(CLI::App& app, CompareCommand& c) {
     return compare;
 }
 
+// Where `cmake --install` put the documentation and examples: share/doc/drt
+// beside the bin folder holding this executable ("" when run from a build tree).
+std::string installedDocs() {
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::filesystem::path docs = exe.parent_path().parent_path() / "share" / "doc" / "drt";
+    return !ec && std::filesystem::is_regular_file(docs / "README.md", ec) ? docs.string() : "";
+}
+
 } // namespace
 
 int runCommandLine(int argc, char** argv) {
     CLI::App app{"drt: a distribution ray tracer with a POV-Ray-like scene language", "drt"};
     app.set_version_flag("--version", fmt::format("drt {}", DRT_VERSION));
+    const std::string docs = installedDocs();
+    app.footer(docs.empty() ? "Documentation: README.md and docs/ in drt's source tree."
+                            : fmt::format("Documentation: {0}/README.md, {0}/docs; example scenes: {0}/examples.", docs));
     app.require_subcommand(1);
 
     RenderArguments renderArguments;
@@ -163,6 +176,9 @@ int runCommandLine(int argc, char** argv) {
     test->add_flag("--update", testCommand.update, "Rewrite the goldens (and variance images) from fresh renders");
     test->add_option("--report", testCommand.reportDir, "Write an HTML page of the failures to this folder");
     test->add_option("--only", testCommand.only, "Run only the test of this name (repeatable)");
+    test->add_option("--junit", testCommand.junitFile,
+                     "Write JUnit XML (one testcase per scene) to this file, for CI test reports");
+    test->add_option("--json", testCommand.jsonFile, "Write every test's outcome and figures as JSON to this file");
 
     try {
         app.parse(argc, argv);

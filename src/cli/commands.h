@@ -75,6 +75,8 @@ struct TestCommand {
     bool update = false;            // --update: rewrite the goldens
     std::string reportDir;          // --report: HTML page of the failures
     std::vector<std::string> only;  // --only NAME (repeatable): run these tests
+    std::string junitFile;          // --junit: JUnit XML of every test
+    std::string jsonFile;           // --json: the same as JSON
 };
 int runTest(const TestCommand& command, std::ostream& out, std::ostream& err);
 

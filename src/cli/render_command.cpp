@@ -6,6 +6,7 @@
 #include "lang/load.h"
 #include "pov/load.h"
 #include "render/provenance.h"
+#include "render/scene_warnings.h"
 #include "sampling/filter.h"
 
 #include <algorithm>
@@ -75,6 +76,12 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
     if (sceneSha1)
         *sceneSha1 = sceneTextSha1(diagnostics.files());
     err << diagnostics.formatAll();
+    if (scene && !diagnostics.hasErrors()) {
+        // Apart from the front end's diagnostics, so that --strict does not make them errors.
+        Diagnostics sceneWarnings(diagnostics.sharedFiles());
+        warnAboutScene(*scene, path, sceneWarnings);
+        err << sceneWarnings.formatAll();
+    }
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),
                            diagnostics.errorCount() == 1 ? "" : "s");

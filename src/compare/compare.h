@@ -1,6 +1,6 @@
 // Image comparison for golden-image tests: error metrics, idiff-style
 // thresholds, and a statistical test against per-pixel variance images.
-// See ../shared/ACCURACY-NOTES.md for why each figure is here.
+// docs/golden-tests.md ("Reading a failure") says what each figure tells.
 //
 // Conventions: `candidate` is the image under test, `reference` the golden
 // one; errors are candidate - reference, on linear values, per channel, over
@@ -104,6 +104,9 @@ double twoSidedNormalQuantile(double alpha);
 // Per-test alpha that gives a family-wise rate `alpha` over `tests`
 // independent tests (Sidak): 1 - (1 - alpha)^(1/tests).
 double sidakAlpha(double alpha, int64_t tests);
+
+// "R", "G", "B", "A" for channels 0-3 of an RGB(A) image, else "channel N".
+std::string channelName(int channel);
 
 // Plain-text report (idiff-like) and a JSON object with the same figures.
 std::string formatCompareText(const CompareResult& result);

@@ -1,5 +1,5 @@
-// Statistical comparison against per-pixel variance images (ACCURACY-NOTES.md,
-// tier 2). For independent pixel errors e_i with variances v_i, the mean error
+// Statistical comparison against per-pixel variance images (the tests for
+// renders with noise). For independent pixel errors e_i with variances v_i, the mean error
 // of a region has variance sum(v_i) / n^2, so under "no bias"
 //   z = sum(e_i) / sqrt(sum(v_i))
 // is close to standard normal. A global z per channel catches a small bias

@@ -1,7 +1,9 @@
 #include "pov/load.h"
 
+#include "lang/load.h"
 #include "pov/parser.h"
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -33,6 +35,17 @@ std::optional<Scene> loadPovSceneFile(const std::string& path, Diagnostics& diag
     buffer << in.rdbuf();
     std::string dir = fs::path(path).parent_path().string();
     return loadPovSceneText(buffer.str(), path, diags, options, dir.empty() ? "." : dir);
+}
+
+bool isPovSceneFile(const std::string& path) {
+    std::string extension = fs::path(path).extension().string();
+    for (char& c : extension)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    return extension == ".pov" || extension == ".inc";
+}
+
+std::optional<Scene> loadAnySceneFile(const std::string& path, Diagnostics& diags, const PovOptions& options) {
+    return isPovSceneFile(path) ? loadPovSceneFile(path, diags, options) : loadSceneFile(path, diags);
 }
 
 } // namespace drt

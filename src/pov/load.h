@@ -36,6 +36,12 @@ inline constexpr const char* kPovStandardIncludeDir = "/usr/share/povray-3.7/inc
 // no errors.
 std::optional<Scene> loadPovSceneFile(const std::string& path, Diagnostics& diags, const PovOptions& options = {});
 
+// Whether the file is a POV-Ray scene or include file (.pov, .inc, any case).
+bool isPovSceneFile(const std::string& path);
+// A scene file through the front end its extension names: POV-Ray's for
+// .pov/.inc (with `options`), else the .drt language's.
+std::optional<Scene> loadAnySceneFile(const std::string& path, Diagnostics& diags, const PovOptions& options = {});
+
 // The same for text in memory; `name` is the file name used in diagnostics and
 // `baseDir` the folder searched first by #include.
 std::optional<Scene> loadPovSceneText(const std::string& text, const std::string& name, Diagnostics& diags,

@@ -13,7 +13,7 @@
 //     sqrt(var_c / n) <= E * sqrt(mean_c^2 + f^2),
 // var_c the unbiased sample variance, E the adaptive error and f the dark
 // floor: E^2 bounds the pixel's expected contribution var/(r^2 + f^2) to
-// relMSE (ACCURACY-NOTES.md; f = 0.1 matches its 0.01). It stops once it and
+// relMSE (docs/accuracy.md; f = 0.1 matches its 0.01). It stops once it and
 // its 8 neighbours pass (a stopped pixel takes no more samples).
 // Why the neighbours: a pixel whose first min_spp samples all miss a sliver of
 // an edge sees zero variance and would stop with the sliver lost; that bias
@@ -224,7 +224,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const auto buildStart = std::chrono::steady_clock::now();
     // A zero-length shutter gives every ray the same time: the accelerator
     // then places moving objects at that time in double precision, so the
-    // image is the static scene's at that time bit for bit (issue 3).
+    // image is the static scene's at that time bit for bit.
     const auto accelerator = camera.hasShutter() ? std::make_unique<Accelerator>(scene)
                                                  : std::make_unique<Accelerator>(scene, camera.shutterOpen);
     const Accelerator& accel = *accelerator;

@@ -1,6 +1,6 @@
 // The scene model: what every front end (.drt, .pov) builds and what the
 // renderer consumes. It knows nothing of text or of Embree. Defaults follow
-// POV-Ray 3.7 (../shared/POVRAY-NOTES.md) unless stated.
+// POV-Ray 3.7 (docs/pov.md) unless stated.
 #pragma once
 
 #include "core/color.h"
@@ -115,7 +115,7 @@ struct Finish {
     // `reflection { ... metallic m }`: tints reflected light by the pigment, by m.
     double reflectionMetallic = 0;
     bool conserveEnergy = false;
-    // Distribution ray tracing (drt extension, issue 3). 0 is a perfect mirror /
+    // Distribution ray tracing (drt extension, docs/effects.md). 0 is a perfect mirror /
     // perfect refraction; larger values widen the lobe around the ideal direction.
     double reflectionBlur = 0;
     double refractionBlur = 0;
@@ -300,7 +300,7 @@ struct Csg {
 using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid,
                            Extrusion, Revolution, Blob>;
 
-// Motion over the shutter (issue 3): the extra transform reached at time 1,
+// Motion over the shutter (docs/effects.md): the extra transform reached at time 1,
 // applied after Object::transform. At time t the object is scaled by
 // lerp(1, scale, t), rotated by slerp(identity, rotate, t) and moved by
 // t * translate.
@@ -331,7 +331,7 @@ struct Object {
 
 // ---------------------------------------------------------------- lights
 
-// Where an area light's n1 x n2 sample points go (issue 3; the estimators are
+// Where an area light's n1 x n2 sample points go (docs/effects.md; the estimators are
 // in render/lighting.h).
 enum class AreaSampling {
     PovGrid,    // POV-Ray: edge-to-edge n1 x n2 grid, jittered only with `jitter`
@@ -410,7 +410,7 @@ struct CameraSpec {
     // verticalAngle angle / 2. No lens (aperture 0).
     CameraMapping mapping = CameraMapping::Planar;
     std::optional<double> verticalAngle; // spherical only
-    // Thin lens (issue 3). aperture is the lens *diameter* in scene units; 0 is a pinhole.
+    // Thin lens (docs/effects.md). aperture is the lens *diameter* in scene units; 0 is a pinhole.
     double aperture = 0;
     std::optional<Vec3> focalPoint;
     std::optional<double> focalDistance;
