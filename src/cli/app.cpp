@@ -56,6 +56,15 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("--max-spp", a.maxSpp, "Adaptive: samples no pixel exceeds")->check(CLI::Range(1, 1 << 24));
     render->add_option("--spp-image", a.command.sppImageOutput,
                        "Also write the samples taken per pixel to this image (.exr: counts; else scaled to the most)");
+    render->add_option("--crop", a.command.crop,
+                       "Render only pixels x0..x1-1, y0..y1-1: 'x0,x1,y0,y1' (or fractions: '0.0,0.5,0.0,1.0'); "
+                       "the pixels equal a full render's, drt merge assembles crops");
+    render->add_flag("--resume", a.command.resume,
+                     "Continue an interrupted render from OUTPUT.drt-checkpoint (same scene and settings)");
+    render
+        ->add_option("--checkpoint-every", a.command.checkpointSeconds,
+                     "Save a checkpoint and the image so far every this many seconds (an interruption always saves)")
+        ->check(CLI::PositiveNumber);
     render->add_flag("-q,--quiet", a.command.quiet, "No progress line and no summary");
     render->add_flag("--reproducible", a.command.reproducible,
                      "Leave the run's details (command line, threads, time) out of the file's metadata, so the same "
@@ -167,6 +176,8 @@ int runCommandLine(int argc, char** argv) {
     CLI::App* convert = addConvertSubcommand(app, convertCommand);
     CompareCommand compareCommand;
     CLI::App* compare = addCompare(app, compareCommand);
+    MergeCommand mergeCommand;
+    CLI::App* merge = addMergeSubcommand(app, mergeCommand);
     TestCommand testCommand;
     CLI::App* test = app.add_subcommand(
         "test", "Run the golden-image tests in a folder (exit 0 all pass, 1 a test failed or is missing, 3 I/O "
@@ -207,6 +218,10 @@ int runCommandLine(int argc, char** argv) {
     }
     if (bench->parsed())
         return runBenchCommand(benchCommand, std::cout, std::cerr);
+    if (merge->parsed()) {
+        mergeCommand.commandLine = shellCommandLine(argc, argv);
+        return runMerge(mergeCommand, std::cout, std::cerr);
+    }
     if (convert->parsed())
         return runConvert(convertCommand, std::cout, std::cerr);
     if (test->parsed())

@@ -2,9 +2,11 @@
 // a process. Each returns the exit status and writes to the given streams.
 //
 // Exit statuses of render and check: 0 success, 1 scene error (parse or
-// validation error, unsupported scene type, render failure), 2 usage error,
-// 3 I/O error (scene file missing or unreadable, output not writable, write
-// failed). A missing scene file is an I/O error (3); a missing #include inside
+// validation error, unsupported scene type, render failure), 2 usage error
+// (including a checkpoint that does not belong to the render), 3 I/O error
+// (scene file missing or unreadable, output not writable, write failed),
+// 128 + signal (130 SIGINT, 143 SIGTERM) when render was interrupted and saved
+// its finished tiles and a checkpoint. A missing scene file is an I/O error (3); a missing #include inside
 // a scene is a scene error (1), reported with its location.
 // compare uses idiff's statuses instead (compare/compare.h: CompareStatus).
 #pragma once
@@ -40,6 +42,9 @@ struct RenderCommand {
     std::string sppImageOutput; // "" : none; samples taken per pixel (--spp-image)
     RenderSettings overrides; // what the command line sets over the scene's settings
     std::optional<int> tileSize;
+    std::string crop;              // --crop "x0,x1,y0,y1" (pixels) or fractions; "" the whole image
+    bool resume = false;           // --resume: continue from OUTPUT.drt-checkpoint
+    double checkpointSeconds = 0;  // --checkpoint-every: save a checkpoint this often (0: only when interrupted)
     bool quiet = false;
     bool progress = false; // draw a progress line (the caller checks that stderr is a terminal)
     PovCliOptions pov;
@@ -47,6 +52,21 @@ struct RenderCommand {
     bool reproducible = false; // --reproducible: metadata without run details (byte-identical files)
 };
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err);
+
+// `drt merge PARTS... -o OUT`: crops (drt render --crop) -> one image
+// (distributed/crop_merge.h). Exit statuses: 0 merged, 1 the parts do not
+// form one image of one render (refused, nothing written), 2 usage error,
+// 3 I/O error.
+struct MergeCommand {
+    std::vector<std::string> parts;
+    std::string output;
+    std::string varianceOutput; // where the variance parts go
+    std::string sppImageOutput; // where the samples-per-pixel parts go
+    std::string commandLine;    // recorded in the outputs' metadata instead of the first part's
+};
+int runMerge(const MergeCommand& command, std::ostream& out, std::ostream& err);
+// Declares the `merge` subcommand and its options (bound to `command`) on `app`.
+CLI::App* addMergeSubcommand(CLI::App& app, MergeCommand& command);
 
 int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err);
 // The same with the POV-Ray front end's options (used for .pov scenes).
@@ -117,9 +137,5 @@ struct ConversionCheck {
 };
 ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions& pov, int width, int height);
 
-// The provenance drt stores in rendered images (keys "drt:...", render/provenance.h).
-Provenance renderProvenance(const RenderCommand& command, const std::string& sceneSha1, const Scene& scene,
-                            const RenderOptions& options, const RenderStats& stats, uint64_t nonFinitePixels,
-                            std::time_t started);
 
 } // namespace drt::cli

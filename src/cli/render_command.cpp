@@ -1,11 +1,14 @@
-// `drt render` and `drt check`: scene file -> diagnostics -> (render -> image file).
+// `drt render` and `drt check`: scene file -> diagnostics -> (render -> image
+// files). The render itself (processes, interruption, checkpoints) is in
+// cli/render_run.cpp.
 #include "cli/commands.h"
 #include "assets/assets.h"
 
 #include "cli/progress.h"
+#include "cli/render_parts.h"
+#include "distributed/checkpoint.h"
 #include "lang/load.h"
 #include "pov/load.h"
-#include "render/provenance.h"
 #include "render/scene_warnings.h"
 #include "sampling/filter.h"
 
@@ -23,13 +26,6 @@ namespace drt::cli {
 
 namespace {
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    for (char& c : ext)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 // A NUL byte in the first 4 KiB: an image or other binary file given by
 // mistake, which would otherwise produce thousands of lexer errors.
 bool looksBinary(const std::string& path) {
@@ -39,12 +35,10 @@ bool looksBinary(const std::string& path) {
     return std::find(buffer, buffer + in.gcount(), '\0') != buffer + in.gcount();
 }
 
-// Loads a scene, printing every diagnostic to `err`. Returns kSuccess and sets
-// `scene` (and `sceneSha1`, the hash of the text read: render/provenance.h),
-// or the exit status to stop with.
-int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene,
-              const PovCliOptions& pov = {}, const RenderSettings& overrides = {},
-              std::string* sceneSha1 = nullptr) {
+} // namespace
+
+int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov,
+              const RenderSettings& overrides, std::string* sceneSha1) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !std::ifstream(path)) {
         err << fmt::format("drt: cannot read scene '{}': {}\n", path,
@@ -90,6 +84,15 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
     return kSuccess;
 }
 
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+namespace {
+
 // No NaN or Inf may reach a file: replace them by 0 and count the pixels.
 uint64_t clearNonFinite(Image& image) {
     uint64_t pixels = 0;
@@ -123,19 +126,22 @@ std::string millions(uint64_t n) {
 
 } // namespace
 
-Provenance renderProvenance(const RenderCommand& command, const std::string& sceneSha1, const Scene& scene,
-                            const RenderOptions& options, const RenderStats& stats, uint64_t nonFinitePixels,
-                            std::time_t started) {
-    Provenance p =
-        renderProvenance(command.scene, sceneSha1, options, scene.render.filter.value_or(defaultFilterName()));
+Metadata renderMetadata(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
+                        const RunRecord& record, const RenderStats& stats, uint64_t nonFinitePixels) {
+    Provenance p = renderProvenance(command.scene, record.sceneSha1, options, record.filter);
     p.identify("drt:effects", describeEffects(stats.effects));
     p.identify("drt:samples_taken", std::to_string(stats.pixelSamples));
     if (options.adaptive)
         p.identify("drt:spp_range", fmt::format("{}-{}", stats.minPixelSamples, stats.maxPixelSamples));
     p.identify("drt:nonfinite_samples", std::to_string(stats.nonFiniteSamples));
     p.identify("drt:nonfinite_pixels", std::to_string(nonFinitePixels));
-    recordRun(p, options, stats, command.commandLine, started);
-    return p;
+    // What crops are merged and checkpoints resumed by: the same for every run.
+    Metadata identityEntries;
+    addIdentity(identityEntries, identity, options.crop, options.width, options.height);
+    for (const auto& [key, value] : identityEntries)
+        p.identify(key, value);
+    recordRun(p, options, stats, command.commandLine, record.started);
+    return p.metadata(command.reproducible);
 }
 
 int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err) {
@@ -151,19 +157,7 @@ int runCheck(const std::string& scenePath, const PovCliOptions& pov, std::ostrea
     return kSuccess;
 }
 
-int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
-    (void)out;
-    std::optional<Scene> scene;
-    std::string sceneSha1;
-    if (int status = loadScene(command.scene, err, scene, command.pov, command.overrides, &sceneSha1);
-        status != kSuccess)
-        return status;
-
-    RenderOptions options = resolveRenderOptions(overlaySettings(scene->render, command.overrides));
-    if (command.tileSize)
-        options.tileSize = *command.tileSize;
-
-    // Every output is checked before the (possibly long) render starts.
+int checkOutputs(const RenderCommand& command, std::ostream& err) {
     if (std::string problem = checkWritable(command.output); !problem.empty()) {
         err << "drt: " << problem << "\n";
         return kIoError;
@@ -185,31 +179,13 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
             return kIoError;
         }
     }
+    return kSuccess;
+}
 
-    std::optional<ProgressLine> progress;
-    if (command.progress && !command.quiet) {
-        progress.emplace(err);
-        options.progress = [&progress](double fraction) { progress->update(fraction); };
-    }
-    const auto start = std::chrono::steady_clock::now();
-    const std::time_t started = std::time(nullptr);
-    RenderResult result;
-    try {
-        result = render(*scene, options);
-    } catch (const RenderError& e) {
-        if (progress)
-            progress->finish();
-        err << fmt::format("drt: {}: render failed: {}\n", command.scene, e.what());
-        return kSceneError;
-    }
-    if (progress)
-        progress->finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    const uint64_t nonFinitePixels = clearNonFinite(result.color);
-    const Metadata metadata =
-        renderProvenance(command, sceneSha1, *scene, options, result.stats, nonFinitePixels, started)
-            .metadata(command.reproducible);
+int writeOutputs(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
+                 const RunRecord& record, RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err) {
+    nonFinitePixels = clearNonFinite(result.color);
+    const Metadata metadata = renderMetadata(command, options, identity, record, result.stats, nonFinitePixels);
     if (std::string problem = writeImage(command.output, result.color, metadata); !problem.empty()) {
         err << "drt: " << problem << "\n";
         return kIoError;
@@ -224,7 +200,6 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
             return kIoError;
         }
     }
-
     if (!command.sppImageOutput.empty()) {
         Metadata sppMetadata = metadata;
         Image counts = sampleCountImage(result.sampleCount, lowerExtension(command.sppImageOutput) == ".exr");
@@ -234,25 +209,31 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
             return kIoError;
         }
     }
-
-    if (!command.quiet) {
-        const RenderStats& s = result.stats;
-        const double traceSeconds = s.renderSeconds > 0 ? s.renderSeconds : seconds;
-        const double pixels = double(result.color.width) * result.color.height;
-        const std::string spp =
-            options.adaptive ? fmt::format("{}-{} spp (mean {:.1f}, adaptive)", s.minPixelSamples, s.maxPixelSamples,
-                                           double(s.pixelSamples) / pixels)
-                             : fmt::format("{} spp", options.samplesPerPixel);
-        err << fmt::format(
-            "drt: {} {}x{} at {} in {} (build {}, trace {}): {} samples, {:.2f} Mrays/s "
-            "(camera {}, shadow {}, secondary {}), {} NaN/Inf samples; effects: {}\n",
-            command.output, result.color.width, result.color.height, spp, formatDuration(seconds),
-            formatDuration(s.buildSeconds), formatDuration(traceSeconds), millions(s.pixelSamples),
-            traceSeconds > 0 ? double(s.totalRays()) / traceSeconds / 1e6 : 0.0, millions(s.cameraRays),
-            millions(s.shadowRays), millions(s.secondaryRays), s.nonFiniteSamples + nonFinitePixels,
-            describeEffects(s.effects));
-    }
+    // The render is complete: a checkpoint left by an earlier, interrupted run is stale.
+    std::error_code ec;
+    fs::remove(checkpointPathFor(command.output), ec);
     return kSuccess;
+}
+
+void printSummary(const RenderCommand& command, const RenderOptions& options, const RenderResult& result,
+                  uint64_t nonFinitePixels, double seconds, std::ostream& err) {
+    const RenderStats& s = result.stats;
+    const double traceSeconds = s.renderSeconds > 0 ? s.renderSeconds : seconds;
+    const double pixels = double(result.color.width) * result.color.height;
+    const std::string spp =
+        options.adaptive ? fmt::format("{}-{} spp (mean {:.1f}, adaptive)", s.minPixelSamples, s.maxPixelSamples,
+                                       double(s.pixelSamples) / pixels)
+                         : fmt::format("{} spp", options.samplesPerPixel);
+    err << fmt::format("drt: {} {}x{}{} at {} in {} (build {}, trace {}): {} samples, {:.2f} Mrays/s "
+                       "(camera {}, shadow {}, secondary {}), {} NaN/Inf samples; effects: {}\n",
+                       command.output, result.color.width, result.color.height,
+                       options.crop ? fmt::format(" (crop {} of {}x{})", formatWindow(*options.crop), options.width,
+                                                  options.height)
+                                    : "",
+                       spp, formatDuration(seconds), formatDuration(s.buildSeconds), formatDuration(traceSeconds),
+                       millions(s.pixelSamples), traceSeconds > 0 ? double(s.totalRays()) / traceSeconds / 1e6 : 0.0,
+                       millions(s.cameraRays), millions(s.shadowRays), millions(s.secondaryRays),
+                       s.nonFiniteSamples + nonFinitePixels, describeEffects(s.effects));
 }
 
 } // namespace drt::cli

@@ -3,6 +3,7 @@
 #include "image/image.h"
 
 #include "image/srgb.h"
+#include "core/temporary_files.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
@@ -153,6 +154,7 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
             v = static_cast<float>(srgbEncode(v));
 
     const fs::path temporary = temporaryPath(fs::path(path));
+    const TemporaryFile removedOnSignal(temporary.string());
     std::error_code ec;
     auto fail = [&](const std::string& reason) {
         output.reset(); // closes the file before it is removed

@@ -43,7 +43,7 @@ class Provenance {
 };
 
 // The identity entries every render has: drt:version, drt:scene (file name),
-// drt:scene_sha1, drt:seed, drt:spp (or the adaptive target), drt:sampler,
+// drt:scene_sha1 (sceneTextSha1), drt:seed, drt:spp (or the adaptive target), drt:sampler,
 // drt:filter, drt:size.
 Provenance renderProvenance(const std::string& scenePath, const std::string& sceneSha1,
                             const RenderOptions& options, const std::string& filter);

@@ -1,8 +1,9 @@
-// resolveRenderOptions and render: the tile scheduler. Tiles are independent
-// tasks of a tbb::parallel_for inside a task_arena of the requested size; each
-// pixel's samples are taken in sample-index order by one task, with every
-// random number a function of (seed, pixel, sample index, dimension), so the
-// image is bit-identical for any thread count and tile size.
+// renderTiles, finishRender and render: the tile renderer. Worker threads of
+// a task_arena of the requested size take tile tasks from a scheduler
+// (render/tile_state.h); each pixel's samples are taken in sample-index order
+// by one task, with every random number a function of (seed, pixel, sample
+// index, dimension), so the image is bit-identical for any thread count, tile
+// size, tile order and process that renders a tile.
 //
 // Adaptive sampling (RenderOptions::adaptive). A pixel takes samples in rounds
 // with indices 0..n-1 in order; the first round ends at n = min_spp, each later
@@ -19,7 +20,8 @@
 // an edge sees zero variance and would stop with the sliver lost; that bias
 // dominated the error (examples/minimal.drt, min_spp 16: a relMSE floor of
 // 2.9e-6, all from such pixels), and an edge almost always shows in a
-// neighbour. Rounds are image-wide passes with a barrier between them, and each
+// neighbour. Rounds are image-wide passes with a barrier between them (RenderState
+// in render/tile_state.cpp applies the neighbour rule), and each
 // decision reads only samples taken by the end of the round, so the image is
 // still bit-identical for any thread count and tile size.
 // Remaining bias: features smaller than about 1/min_spp of a pixel, isolated
@@ -35,6 +37,7 @@
 #include "render/camera.h"
 #include "render/film.h"
 #include "render/integrator.h"
+#include "render/tile_state.h"
 #include "render/texture_shading.h"
 
 #if defined(__SSE__) || defined(__x86_64__)
@@ -72,28 +75,6 @@ RenderOptions resolveRenderOptions(const RenderSettings& settings) {
 
 namespace {
 
-constexpr int kMaxImageSide = 1 << 16;
-constexpr int kMaxAdaptiveSamples = 1 << 24;
-
-void validate(const RenderOptions& options) {
-    if (options.width < 1 || options.height < 1 || options.width > kMaxImageSide || options.height > kMaxImageSide)
-        throw RenderError("image size must be between 1 and " + std::to_string(kMaxImageSide) + " pixels a side");
-    if (options.samplesPerPixel < 1) throw RenderError("samples per pixel must be at least 1");
-    if (options.threads < 0) throw RenderError("threads must be 0 (all cores) or more");
-    if (options.tileSize < 1) throw RenderError("tile size must be at least 1");
-    if (!options.adaptive) return;
-    if (options.minSamplesPerPixel < 1) throw RenderError("adaptive minimum samples per pixel must be at least 1");
-    if (options.maxSamplesPerPixel > kMaxAdaptiveSamples)
-        throw RenderError("adaptive maximum samples per pixel must be at most " + std::to_string(kMaxAdaptiveSamples));
-    if (options.maxSamplesPerPixel < options.minSamplesPerPixel)
-        throw RenderError("adaptive maximum samples per pixel (" + std::to_string(options.maxSamplesPerPixel) +
-                          ") is below the minimum (" + std::to_string(options.minSamplesPerPixel) + ")");
-    if (!(options.adaptiveError > 0) || !std::isfinite(options.adaptiveError))
-        throw RenderError("adaptive error must be a positive number");
-    if (!(options.adaptiveDarkFloor >= 0) || !std::isfinite(options.adaptiveDarkFloor))
-        throw RenderError("adaptive dark floor must be 0 or more");
-}
-
 int samplerSampleCount(const RenderOptions& options) {
     return options.adaptive ? options.maxSamplesPerPixel : options.samplesPerPixel;
 }
@@ -118,18 +99,6 @@ Filter sceneFilter(const Scene& scene) {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-struct Tile {
-    int x0, y0, x1, y1;
-};
-
-// Where the round that has taken n samples ends: see "Adaptive sampling" above.
-int nextRoundEnd(int n, const RenderOptions& options) {
-    if (n == 0) return options.minSamplesPerPixel;
-    int end = 1;
-    while (end <= n && end < options.maxSamplesPerPixel) end *= 2;
-    return std::min(end, options.maxSamplesPerPixel);
 }
 
 bool converged(const PixelAccumulator& pixel, const RenderOptions& options) {
@@ -212,15 +181,15 @@ private:
 
 } // namespace
 
-RenderResult render(const Scene& scene, const RenderOptions& options) {
-    validate(options);
+TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, RenderState& state,
+                           TileScheduler& scheduler) {
     if (!assetsResolved(scene))
         throw RenderError("the scene names image or mesh files that were not read (call resolveAssets after parsing)");
     const ResolvedCamera camera = resolveCamera(scene.camera, options.width, options.height);
     const std::unique_ptr<Sampler> prototype = createSampler(options);
     const Filter filter = sceneFilter(scene);
 
-    RenderResult result;
+    TileRenderInfo info;
     const auto buildStart = std::chrono::steady_clock::now();
     // A zero-length shutter gives every ray the same time: the accelerator
     // then places moving objects at that time in double precision, so the
@@ -228,30 +197,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const auto accelerator = camera.hasShutter() ? std::make_unique<Accelerator>(scene)
                                                  : std::make_unique<Accelerator>(scene, camera.shutterOpen);
     const Accelerator& accel = *accelerator;
-    result.stats.buildSeconds = secondsSince(buildStart);
+    info.buildSeconds = secondsSince(buildStart);
+    info.motionBlur = accel.hasMotion() && camera.hasShutter();
+    info.depthOfField = camera.hasLens();
 
     const Integrator integrator(scene, accel);
-    result.color = Image(options.width, options.height, 3);
-    result.variance = Image(options.width, options.height, 3);
-    result.sampleCount = Image(options.width, options.height, 1);
-
-    const int tilesX = (options.width + options.tileSize - 1) / options.tileSize;
-    const int tilesY = (options.height + options.tileSize - 1) / options.tileSize;
-    const int tileCount = tilesX * tilesY;
-    const auto tileAt = [&](int index) {
-        const int tx = index % tilesX, ty = index / tilesX;
-        return Tile{tx * options.tileSize, ty * options.tileSize, std::min(options.width, (tx + 1) * options.tileSize),
-                    std::min(options.height, (ty + 1) * options.tileSize)};
-    };
-
-    std::atomic<uint64_t> cameraRays{0}, shadowRays{0}, secondaryRays{0}, nonFinite{0}, samplesTaken{0};
-    std::atomic<int> fewestSamples{std::numeric_limits<int>::max()}, mostSamples{0};
-    std::atomic<int> tilesDone{0};
-    std::mutex progressMutex;
-    int progressRounds = 1; // adaptive: the most rounds a pixel can take
-    if (options.adaptive)
-        for (int n = nextRoundEnd(0, options); n < options.maxSamplesPerPixel; n = nextRoundEnd(n, options))
-            ++progressRounds;
 
     // Samples first..last-1 of pixel (x, y), in index order.
     const auto takeSamples = [&](Sampler& sampler, PixelAccumulator& pixel, int x, int y, int first, int last,
@@ -271,128 +221,111 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         }
     };
 
-    // Adaptive sampling keeps every pixel's running sums between rounds; a
-    // fixed sample count needs none (one round, the pixel finished in place).
-    struct PixelState {
-        PixelAccumulator samples;
-        int taken = 0;
-        bool active = true;      // samples in the coming round
-        bool unconverged = true; // failed the stopping rule at the last round end
-    };
-    std::vector<PixelState> states(options.adaptive ? size_t(options.width) * size_t(options.height) : 0);
-    const auto finishPixel = [&](const PixelAccumulator& pixel, int x, int y, int n, uint64_t& dropped,
-                                 uint64_t& taken, int& fewest, int& most) {
-        dropped += pixel.nonFinite();
-        taken += uint64_t(n);
-        fewest = std::min(fewest, n);
-        most = std::max(most, n);
-        storePixel(pixel, x, y, result.color, result.variance);
-        result.sampleCount.at(x, y, 0) = static_cast<float>(n);
-    };
-
-    // One round over one tile: fixed sampling takes all its samples; adaptive
-    // sampling takes the active pixels' samples up to `roundEnd` (0: finish
-    // every pixel, storing it).
-    const auto renderTile = [&](int index, int roundEnd) {
-        const Tile tile = tileAt(index);
+    // One task: fixed sampling takes all of a tile's samples; adaptive sampling
+    // takes the round's samples of its active pixels, from their states in
+    // `state` (render/tile_state.h keeps them between rounds).
+    const auto renderTile = [&](const TileTask& task) {
+        const PixelWindow tile = state.tile(task.tile);
+        const int roundEnd = state.roundEnd(task.round);
         const std::unique_ptr<Sampler> sampler = prototype->clone();
+        TileResult result;
+        result.task = task;
+        if (options.adaptive) result.adaptive.reserve(size_t(tile.width()) * size_t(tile.height()));
+        else result.color = Image(tile.width(), tile.height(), 3), result.variance = result.color;
         RayCounts counts;
-        uint64_t dropped = 0, taken = 0;
-        int fewest = std::numeric_limits<int>::max(), most = 0;
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) {
                 if (!options.adaptive) {
                     PixelAccumulator pixel;
                     takeSamples(*sampler, pixel, x, y, 0, options.samplesPerPixel, counts);
-                    finishPixel(pixel, x, y, options.samplesPerPixel, dropped, taken, fewest, most);
+                    result.counts.nonFiniteSamples += pixel.nonFinite();
+                    storePixel(pixel, x - tile.x0, y - tile.y0, result.color, result.variance);
                     continue;
                 }
-                PixelState& state = states[size_t(y) * size_t(options.width) + size_t(x)];
-                if (roundEnd == 0) {
-                    finishPixel(state.samples, x, y, state.taken, dropped, taken, fewest, most);
-                } else if (state.active) {
-                    takeSamples(*sampler, state.samples, x, y, state.taken, roundEnd, counts);
-                    state.taken = roundEnd;
-                    state.unconverged = !converged(state.samples, options);
+                AdaptivePixel pixel = state.adaptivePixel(x, y);
+                if (pixel.active) {
+                    takeSamples(*sampler, pixel.samples, x, y, pixel.taken, roundEnd, counts);
+                    pixel.taken = roundEnd;
+                    pixel.unconverged = !converged(pixel.samples, options);
                 }
+                result.adaptive.push_back(pixel);
             }
         }
-        cameraRays += counts.camera;
-        shadowRays += counts.shadow;
-        secondaryRays += counts.secondary;
-        nonFinite += dropped;
-        samplesTaken += taken;
-        for (int seen = fewestSamples.load(); fewest < seen && !fewestSamples.compare_exchange_weak(seen, fewest);) {}
-        for (int seen = mostSamples.load(); most > seen && !mostSamples.compare_exchange_weak(seen, most);) {}
-        if (roundEnd != 0 || !options.adaptive) {
-            const int done = ++tilesDone;
-            if (options.progress) {
-                std::lock_guard<std::mutex> lock(progressMutex);
-                // Adaptive rounds: the fraction of the round, then of the rounds at most to come.
-                options.progress(std::min(1.0, static_cast<double>(done) / tileCount / progressRounds));
-            }
-        }
-    };
-
-    // Which pixels sample in the next round (see "Adaptive sampling" above):
-    // those still active that failed the rule or have such a neighbour.
-    const auto nextActive = [&](int roundEnd) {
-        bool any = false;
-        std::vector<uint8_t> next(states.size(), 0);
-        for (int y = 0; y < options.height; ++y)
-            for (int x = 0; x < options.width; ++x) {
-                const PixelState& state = states[size_t(y) * size_t(options.width) + size_t(x)];
-                if (!state.active || roundEnd >= options.maxSamplesPerPixel) continue;
-                bool again = false;
-                for (int dy = -1; dy <= 1 && !again; ++dy)
-                    for (int dx = -1; dx <= 1 && !again; ++dx) {
-                        const int nx = x + dx, ny = y + dy;
-                        if (nx < 0 || ny < 0 || nx >= options.width || ny >= options.height) continue;
-                        const PixelState& neighbour = states[size_t(ny) * size_t(options.width) + size_t(nx)];
-                        again = neighbour.active && neighbour.unconverged;
-                    }
-                next[size_t(y) * size_t(options.width) + size_t(x)] = again;
-                any = any || again;
-            }
-        for (size_t i = 0; i < states.size(); ++i) states[i].active = next[i] != 0;
-        return any;
+        result.counts.cameraRays = counts.camera;
+        result.counts.shadowRays = counts.shadow;
+        result.counts.secondaryRays = counts.secondary;
+        return result;
     };
 
     const auto renderStart = std::chrono::steady_clock::now();
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    const auto runRound = [&](int roundEnd) {
-        arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
-                const IeeeDenormals ieee;
-                for (int index = range.begin(); index != range.end(); ++index) renderTile(index, roundEnd);
-            });
+    arena.execute([&] {
+        // Each worker takes tasks until the scheduler has none: it may hand
+        // them out over rounds (with waits between them) and other processes.
+        tbb::parallel_for(0, arena.max_concurrency(), [&](int) {
+            const IeeeDenormals ieee;
+            while (const std::optional<TileTask> task = scheduler.next())
+                scheduler.done(renderTile(*task));
         });
-    };
-    if (!options.adaptive) {
-        runRound(options.samplesPerPixel);
-    } else {
-        int taken = 0;
-        while (true) {
-            const int end = nextRoundEnd(taken, options);
-            runRound(end);
-            taken = end;
-            if (!nextActive(end)) break;
+    });
+    info.renderSeconds = secondsSince(renderStart);
+    return info;
+}
+
+RenderResult finishRender(const Scene& scene, const RenderState& state, const TileRenderInfo& info) {
+    if (!state.finished()) throw RenderError("the render is not finished");
+    const RenderOptions& options = state.options();
+    const PixelWindow out = state.output(), window = state.window();
+    RenderResult result;
+    result.window = out;
+    result.color = Image(out.width(), out.height(), 3);
+    result.variance = Image(out.width(), out.height(), 3);
+    result.sampleCount = Image(out.width(), out.height(), 1);
+    uint64_t nonFinite = state.counts().nonFiniteSamples, taken = 0;
+    int fewest = std::numeric_limits<int>::max(), most = 0;
+    for (int y = out.y0; y < out.y1; ++y)
+        for (int x = out.x0; x < out.x1; ++x) {
+            const int ox = x - out.x0, oy = y - out.y0;
+            int n = options.samplesPerPixel;
+            if (options.adaptive) {
+                const AdaptivePixel& pixel = state.adaptivePixel(x, y);
+                n = pixel.taken;
+                nonFinite += pixel.samples.nonFinite();
+                storePixel(pixel.samples, ox, oy, result.color, result.variance);
+            } else {
+                for (int c = 0; c < 3; ++c) {
+                    result.color.at(ox, oy, c) = state.color().at(x - window.x0, y - window.y0, c);
+                    result.variance.at(ox, oy, c) = state.variance().at(x - window.x0, y - window.y0, c);
+                }
+            }
+            result.sampleCount.at(ox, oy, 0) = static_cast<float>(n);
+            taken += uint64_t(n);
+            fewest = std::min(fewest, n);
+            most = std::max(most, n);
         }
-        runRound(0);
-    }
     decodeWorkingGamma(result.color, result.variance, scene.global.assumedGamma);
-    result.stats.renderSeconds = secondsSince(renderStart);
-    result.stats.cameraRays = cameraRays;
-    result.stats.shadowRays = shadowRays;
-    result.stats.secondaryRays = secondaryRays;
-    result.stats.nonFiniteSamples = nonFinite;
-    result.stats.pixelSamples = samplesTaken;
-    result.stats.minPixelSamples = fewestSamples;
-    result.stats.maxPixelSamples = mostSamples;
-    result.stats.effects = sceneEffects(scene, options);
-    result.stats.effects.motionBlur = result.stats.effects.motionBlur && accel.hasMotion() && camera.hasShutter();
-    result.stats.effects.depthOfField = camera.hasLens();
+    RenderStats& stats = result.stats;
+    stats.buildSeconds = info.buildSeconds;
+    stats.renderSeconds = info.renderSeconds;
+    stats.cameraRays = state.counts().cameraRays;
+    stats.shadowRays = state.counts().shadowRays;
+    stats.secondaryRays = state.counts().secondaryRays;
+    stats.nonFiniteSamples = nonFinite;
+    stats.pixelSamples = taken;
+    stats.minPixelSamples = fewest;
+    stats.maxPixelSamples = most;
+    stats.effects = sceneEffects(scene, options);
+    stats.effects.motionBlur = stats.effects.motionBlur && info.motionBlur;
+    stats.effects.depthOfField = info.depthOfField;
     return result;
+}
+
+RenderResult render(const Scene& scene, const RenderOptions& options) {
+    RenderState state(options);
+    LocalTileScheduler scheduler(state, options.cancel, options.progress);
+    const TileRenderInfo info = renderTiles(scene, options, state, scheduler);
+    if (!state.finished()) throw RenderInterrupted();
+    return finishRender(scene, state, info);
 }
 
 } // namespace drt

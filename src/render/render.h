@@ -5,6 +5,7 @@
 #include "image/image.h"
 #include "scene/scene.h"
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -12,6 +13,16 @@
 #include <string>
 
 namespace drt {
+
+// The pixels [x0, x1) x [y0, y1) of an image.
+struct PixelWindow {
+    int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+    bool operator==(const PixelWindow&) const = default;
+};
 
 struct RenderOptions {
     int width = 320;
@@ -31,8 +42,16 @@ struct RenderOptions {
     double adaptiveDarkFloor = 0.1; // the 0.01 = 0.1^2 of relMSE's denominator
     int minSamplesPerPixel = 16;
     int maxSamplesPerPixel = 1024;
+    // Only these pixels of the width x height image (a crop window for farm
+    // renders): each is bit-identical to the same pixel of a full render, and
+    // the result's images are the window's size. None: the whole image.
+    std::optional<PixelWindow> crop;
     // Called now and then from render threads with the fraction done.
     std::function<void(double)> progress;
+    // Set (e.g. by a signal handler) to stop: no new tile starts, the tiles in
+    // progress finish. render() then throws RenderInterrupted; the tile API
+    // (render/tile_state.h) leaves the finished tiles in its RenderState.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 // The settings given, else the defaults (320x240, 1 spp, seed 0, all cores).
@@ -73,13 +92,21 @@ struct RenderStats {
 };
 
 struct RenderResult {
+    PixelWindow window; // the pixels the images hold (the crop, or the whole image)
     Image color;    // linear RGB, the per-pixel mean
     Image variance; // per-pixel variance of the mean, RGB
     Image sampleCount; // samples taken per pixel, one channel
     RenderStats stats;
 };
 
-// Throws RenderError on failure.
+// What render() throws when RenderOptions::cancel stopped it.
+class RenderInterrupted : public RenderError {
+public:
+    RenderInterrupted() : RenderError("the render was interrupted") {}
+};
+
+// Throws RenderError on failure. render/tile_state.h splits it into steps for
+// other schedulers (other processes, resumed renders).
 RenderResult render(const Scene& scene, const RenderOptions& options);
 
 } // namespace drt

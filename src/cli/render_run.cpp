@@ -1,0 +1,312 @@
+// `drt render`'s render: in this process, or over the ranks of an MPI job
+// (distributed/mpi_render.h); from the start or from a checkpoint (--resume);
+// with periodic checkpoints (--checkpoint-every) and, on SIGINT or SIGTERM,
+// the finished tiles and a checkpoint saved before exiting 128 + signal.
+//
+// Under MPI every rank parses the scene itself (from the same files, which a
+// cluster shares): a scene model holds meshes, images and closures that have no
+// wire format, and parsing is deterministic. The ranks then check that they
+// parsed the same scene (its hash) and agree on the outcome, so an error on one
+// rank stops all of them with its message instead of leaving the others waiting.
+#include "cli/commands.h"
+
+#include "cli/interrupt.h"
+#include "cli/progress.h"
+#include "cli/render_parts.h"
+#include "distributed/checkpoint.h"
+#include "distributed/crop_merge.h"
+#include "distributed/mpi_render.h"
+#include "sampling/filter.h"
+
+#include <chrono>
+#include <condition_variable>
+#include <fmt/format.h>
+#include <functional>
+#include <mutex>
+#include <ostream>
+#include <sstream>
+#include <thread>
+
+namespace drt::cli {
+
+namespace {
+
+// Everything a rank knows before it renders.
+struct Prepared {
+    std::optional<Scene> scene;
+    RenderOptions options;
+    RenderIdentity identity;
+    RunRecord record; // for the files' metadata
+    std::optional<Checkpoint> checkpoint; // --resume, rank 0
+};
+
+int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepared& p) {
+    p.record.started = std::time(nullptr);
+    if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides, &p.record.sceneSha1);
+        status != kSuccess)
+        return status;
+    p.record.filter = p.scene->render.filter.value_or(defaultFilterName());
+    p.options = resolveRenderOptions(overlaySettings(p.scene->render, command.overrides));
+    if (command.tileSize) p.options.tileSize = *command.tileSize;
+    if (!command.crop.empty()) {
+        PixelWindow window;
+        if (std::string problem = parseCropWindow(command.crop, p.options.width, p.options.height, window);
+            !problem.empty()) {
+            err << "drt: " << problem << "\n";
+            return kUsageError;
+        }
+        p.options.crop = window;
+    }
+    p.identity = renderIdentity(p.options, p.record.sceneSha1);
+    if (!writes) return kSuccess;
+    // Every output is checked before the (possibly long) render starts.
+    if (int status = checkOutputs(command, err); status != kSuccess) return status;
+    if (!command.resume) return kSuccess;
+    const std::string path = checkpointPathFor(command.output);
+    Checkpoint checkpoint;
+    if (std::string problem = readCheckpoint(path, checkpoint); !problem.empty()) {
+        err << "drt: cannot resume: " << problem << "\n";
+        return kIoError;
+    }
+    if (std::string problem = checkpointMismatch(checkpoint, path, p.identity, p.options); !problem.empty()) {
+        err << "drt: cannot resume: " << problem << "\n";
+        return kUsageError;
+    }
+    if (command.tileSize && *command.tileSize != checkpoint.tileSize)
+        err << fmt::format("drt: resuming with the checkpoint's tile size {} (the image does not depend on it)\n",
+                           checkpoint.tileSize);
+    p.options.tileSize = checkpoint.tileSize;
+    p.checkpoint = std::move(checkpoint);
+    return kSuccess;
+}
+
+// Saves the checkpoint and the image so far every `seconds` (0: never), and at
+// once when the render is interrupted: an MPI launcher that passes on a Ctrl-C
+// kills its processes a moment after (Open MPI: one second), before the tiles
+// in progress could finish. The render then saves again when they have.
+class ProgressSaver {
+public:
+    ProgressSaver(double seconds, const std::atomic<bool>* interrupted, std::function<void()> save)
+        : seconds_(seconds), interrupted_(interrupted), save_(std::move(save)),
+          thread_([this] { run(); }) {}
+    ~ProgressSaver() { stop(); }
+    void stop() {
+        {
+            std::lock_guard lock(mutex_);
+            stopping_ = true;
+        }
+        wake_.notify_all();
+        if (thread_.joinable()) thread_.join();
+    }
+
+private:
+    void run() {
+        using Clock = std::chrono::steady_clock;
+        const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds_));
+        auto due = Clock::now() + period;
+        bool savedInterrupted = false;
+        std::unique_lock lock(mutex_);
+        while (!wake_.wait_for(lock, std::chrono::milliseconds(20), [&] { return stopping_; })) {
+            const bool interrupted = interrupted_->load() && !savedInterrupted;
+            const bool periodic = seconds_ > 0 && Clock::now() >= due;
+            if (!interrupted && !periodic) continue;
+            savedInterrupted = savedInterrupted || interrupted;
+            due = Clock::now() + period;
+            lock.unlock();
+            save_();
+            lock.lock();
+        }
+    }
+    double seconds_;
+    const std::atomic<bool>* interrupted_;
+    std::function<void()> save_;
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    bool stopping_ = false;
+    std::thread thread_; // last: starts when the rest is ready
+};
+
+// Formats that hold an alpha channel get one (0: not rendered yet); the others
+// show unfinished pixels black.
+bool keepsAlpha(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    return ext != ".jpg" && ext != ".jpeg" && ext != ".hdr" && ext != ".ppm" && ext != ".pnm";
+}
+
+std::string progressText(const RenderState& state) {
+    if (state.adaptive())
+        return fmt::format("adaptive round {} of at most {}: {} of {} tiles done", state.round() + 1,
+                           state.roundCount(), state.tilesDoneThisRound(), state.tileCount());
+    return fmt::format("{} of {} tiles done", state.tilesDoneThisRound(), state.tileCount());
+}
+
+// The checkpoint, then the image so far: both complete files, or the old ones.
+std::string saveProgress(const RenderCommand& command, const Prepared& p, const Checkpoint& checkpoint,
+                         Image partial, const std::string& progress) {
+    const std::string checkpointPath = checkpointPathFor(command.output);
+    if (std::string problem = writeCheckpoint(checkpointPath, checkpoint); !problem.empty()) return problem;
+    if (!keepsAlpha(command.output)) {
+        Image rgb(partial.width, partial.height, 3);
+        for (int y = 0; y < partial.height; ++y)
+            for (int x = 0; x < partial.width; ++x)
+                for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = partial.at(x, y, c);
+        partial = std::move(rgb);
+    }
+    Metadata metadata = renderMetadata(command, p.options, p.identity, p.record, RenderStats{}, 0);
+    metadata.emplace_back("drt:partial", progress);
+    metadata.emplace_back("drt:checkpoint", checkpointPath);
+    return writeImage(command.output, partial, metadata);
+}
+
+std::string rankFigures(const DistributedReport& report) {
+    std::string tiles;
+    for (size_t rank = 0; rank < report.tilesPerRank.size(); ++rank)
+        tiles += fmt::format("{}{} ({:.2f} s)", rank ? ", " : "", report.tilesPerRank[rank],
+                             report.renderSecondsPerRank[rank]);
+    return fmt::format("drt: MPI: {} ranks; tasks per rank {}; {} messages, {:.3f} MB\n", report.ranks, tiles,
+                       report.messages, double(report.bytes) / 1e6);
+}
+
+int renderProcess(const RenderCommand& command, std::ostream& err, const InterruptHandler& interrupt,
+                  MpiJob* mpi) {
+    const bool rank0 = !mpi || mpi->rank() == 0;
+    // Ranks other than 0 keep their messages unless they alone failed (the
+    // same scene error from every rank would print once per rank).
+    std::ostringstream held;
+    std::ostream& messages = rank0 ? err : held;
+    Prepared p;
+    int status = prepare(command, rank0, messages, p);
+    if (mpi) {
+        const int rank0Status = int(mpi->broadcast(uint64_t(status)));
+        // Collective: every rank takes part when rank 0 could start, even one that could not.
+        const std::string rank0Scene = rank0Status == kSuccess ? mpi->broadcast(p.identity.sceneHash) : "";
+        if (status == kSuccess && rank0Status == kSuccess && rank0Scene != p.identity.sceneHash) {
+            messages << fmt::format("drt: the scene '{}' (or a file it includes) differs from rank 0's (are the "
+                                    "files the same on every node?)\n",
+                                    command.scene);
+            status = kSceneError;
+        }
+        const int worst = mpi->agree(status);
+        if (worst != kSuccess) {
+            if (!rank0 && status != kSuccess && rank0Status == kSuccess) {
+                std::istringstream lines(held.str());
+                for (std::string line; std::getline(lines, line);)
+                    err << fmt::format("drt (rank {} of {}): {}\n", mpi->rank(), mpi->size(),
+                                       line.rfind("drt: ", 0) == 0 ? line.substr(5) : line);
+            }
+            if (rank0 && status == kSuccess)
+                err << "drt: another rank could not start the render (its messages are above); stopping\n";
+            return worst;
+        }
+        p.options.tileSize = int(mpi->broadcast(uint64_t(p.options.tileSize))); // a resumed render's
+    } else if (status != kSuccess) {
+        return status;
+    }
+    if (!mpi && interrupt.interrupted()) {
+        err << "drt: interrupted before the render started: nothing to save\n";
+        return interrupt.exitStatus();
+    }
+
+    std::optional<ProgressLine> progress;
+    std::function<void(double)> report;
+    if (rank0 && command.progress && !command.quiet) {
+        progress.emplace(err);
+        report = [&progress](double fraction) { progress->update(fraction); };
+    }
+    const auto start = std::chrono::steady_clock::now();
+    std::optional<RenderState> state;
+    status = kSuccess;
+    try {
+        state.emplace(p.options);
+        if (p.checkpoint) state->restore(p.checkpoint->state.data(), p.checkpoint->state.size());
+    } catch (const RenderError& e) {
+        err << fmt::format("drt: {}: {}\n", p.checkpoint ? "cannot resume" : command.scene, e.what());
+        status = p.checkpoint ? kUsageError : kSceneError;
+    }
+    if (mpi) status = mpi->agree(status); // every rank stops, or none
+    if (status != kSuccess) return status;
+    LocalTileScheduler scheduler(*state, interrupt.flag(), report);
+    const auto snapshot = [&](Checkpoint& checkpoint, Image& partial, std::string& text) {
+        scheduler.withState([&](const RenderState& s) {
+            checkpoint = makeCheckpoint(p.identity, s);
+            partial = partialImage(*p.scene, s);
+            text = progressText(s);
+        });
+    };
+    std::optional<ProgressSaver> saver;
+    if (rank0) saver.emplace(command.checkpointSeconds, interrupt.flag(), [&] {
+        Checkpoint checkpoint;
+        Image partial;
+        std::string text;
+        snapshot(checkpoint, partial, text);
+        if (std::string problem = saveProgress(command, p, checkpoint, std::move(partial), text); !problem.empty())
+            err << "drt: periodic checkpoint failed: " << problem << "\n";
+    });
+    TileRenderInfo info;
+    DistributedReport ranks;
+    try {
+        info = mpi ? renderDistributed(*mpi, *p.scene, p.options, *state, rank0 ? &scheduler : nullptr, &ranks)
+                   : renderTiles(*p.scene, p.options, *state, scheduler);
+    } catch (const RenderError& e) {
+        saver.reset();
+        if (progress) progress->finish();
+        err << fmt::format("drt: {}: render failed: {}\n", command.scene, e.what());
+        return kSceneError;
+    }
+    saver.reset();
+    if (progress) progress->finish();
+    if (!rank0) return kSuccess;
+
+    if (!state->finished()) {
+        Checkpoint checkpoint;
+        Image partial;
+        std::string text;
+        snapshot(checkpoint, partial, text);
+        if (std::string problem = saveProgress(command, p, checkpoint, std::move(partial), text); !problem.empty()) {
+            err << "drt: interrupted, and saving failed: " << problem << "\n";
+            return interrupt.exitStatus();
+        }
+        err << fmt::format("drt: interrupted: {}; saved to '{}' ({}) and the checkpoint '{}'; add --resume to the "
+                           "same command to continue\n",
+                           text, command.output,
+                           keepsAlpha(command.output) ? "unfinished pixels transparent black"
+                                                      : "unfinished pixels black",
+                           checkpointPathFor(command.output));
+        return interrupt.exitStatus();
+    }
+    RenderResult result = finishRender(*p.scene, *state, info);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    uint64_t nonFinitePixels = 0;
+    if (int written = writeOutputs(command, p.options, p.identity, p.record, result, nonFinitePixels, err);
+        written != kSuccess)
+        return written;
+    if (!command.quiet) {
+        printSummary(command, p.options, result, nonFinitePixels, seconds, err);
+        if (mpi) err << rankFigures(ranks);
+    }
+    return kSuccess;
+}
+
+} // namespace
+
+int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
+    (void)out;
+    std::optional<MpiJob> mpi;
+    if (MpiJob::launched()) {
+        if (!MpiJob::available()) {
+            err << "drt: started by an MPI launcher (mpirun, srun), but this drt was built without MPI: every "
+                   "process would render the whole image; install libopenmpi-dev and rebuild\n";
+            return kUsageError;
+        }
+        try {
+            mpi.emplace();
+        } catch (const RenderError& e) {
+            err << "drt: " << e.what() << "\n";
+            return kIoError;
+        }
+    }
+    const InterruptHandler interrupt;
+    return renderProcess(command, err, interrupt, mpi ? &*mpi : nullptr);
+}
+
+} // namespace drt::cli
