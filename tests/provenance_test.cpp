@@ -3,6 +3,7 @@
 // --reproducible (and in drt test's goldens).
 #include "image/image.h"
 #include "lang/load.h"
+#include "core/sha1.h"
 #include "render/provenance.h"
 #include "test_support.h"
 
@@ -27,6 +28,14 @@ TEST(Provenance, Sha1OfKnownTexts) {
     // FIPS 180 test vectors.
     EXPECT_EQ(sha1Hex("abc"), "a9993e364706816aba3e25717850c26c9cd0d89d");
     EXPECT_EQ(sha1Hex(""), "da39a3ee5e6b4b0d3255bfef95601890afd80709");
+    // 56 bytes: the padding needs a second block.
+    EXPECT_EQ(sha1Hex("abcdbcdecdefdefgefghfghighijhijkijkljklmjklmnklmnolmnopmnopnopq"),
+              "84983e441c3bd26ebaae4aa1f95129e5e54670f1");
+    // Many blocks, appended in pieces that straddle block boundaries.
+    Sha1 pieces;
+    for (int i = 0; i < 10000; ++i)
+        pieces.append(std::string(100, 'a'));
+    EXPECT_EQ(pieces.hexDigest(), "34aa973cd4c4daa4f61eeb2bdbad27316534016f"); // a million 'a'
 }
 
 TEST(Provenance, SceneHashCoversTheSceneAndItsIncludes) {

@@ -65,6 +65,8 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
         ->add_option("--checkpoint-every", a.command.checkpointSeconds,
                      "Save a checkpoint and the image so far every this many seconds (an interruption always saves)")
         ->check(CLI::PositiveNumber);
+    render->add_option("--stats", a.command.statsOutput,
+                       "Also write the render's times, ray counts and rates to this JSON file");
     render->add_flag("-q,--quiet", a.command.quiet, "No progress line and no summary");
     render->add_flag("--reproducible", a.command.reproducible,
                      "Leave the run's details (command line, threads, time) out of the file's metadata, so the same "

@@ -38,13 +38,16 @@ struct Prepared {
     RenderIdentity identity;
     RunRecord record; // for the files' metadata
     std::optional<Checkpoint> checkpoint; // --resume, rank 0
+    double loadSeconds = 0;               // parsing and the files the scene names (--stats)
 };
 
 int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepared& p) {
     p.record.started = std::time(nullptr);
+    const auto loadStart = std::chrono::steady_clock::now();
     if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides, &p.record.sceneSha1);
         status != kSuccess)
         return status;
+    p.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     p.record.filter = p.scene->render.filter.value_or(defaultFilterName());
     p.options = resolveRenderOptions(overlaySettings(p.scene->render, command.overrides));
     if (command.tileSize) p.options.tileSize = *command.tileSize;
@@ -169,6 +172,7 @@ std::string rankFigures(const DistributedReport& report) {
 
 int renderProcess(const RenderCommand& command, std::ostream& err, const InterruptHandler& interrupt,
                   MpiJob* mpi) {
+    const auto commandStart = std::chrono::steady_clock::now();
     const bool rank0 = !mpi || mpi->rank() == 0;
     // Ranks other than 0 keep their messages unless they alone failed (the
     // same scene error from every rank would print once per rank).
@@ -280,6 +284,14 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
     if (int written = writeOutputs(command, p.options, p.identity, p.record, result, nonFinitePixels, err);
         written != kSuccess)
         return written;
+    if (!command.statsOutput.empty()) {
+        const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - commandStart).count();
+        if (std::string problem = writeStatsJson(command, p.options, result, {p.loadSeconds, seconds, total});
+            !problem.empty()) {
+            err << "drt: " << problem << "\n";
+            return kIoError;
+        }
+    }
     if (!command.quiet) {
         printSummary(command, p.options, result, nonFinitePixels, seconds, err);
         if (mpi) err << rankFigures(ranks);

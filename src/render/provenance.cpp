@@ -1,12 +1,10 @@
 // Provenance metadata of rendered images (render/provenance.h).
 #include "render/provenance.h"
 
+#include "core/sha1.h"
 #include "sampling/sampler.h"
 
-#include <OpenImageIO/hash.h>
-
 #include <algorithm>
-#include <cctype>
 #include <fmt/format.h>
 #include <thread>
 
@@ -82,25 +80,17 @@ void recordRun(Provenance& provenance, const RenderOptions& options, const Rende
     provenance.record("drt:render_seconds", fmt::format("{:.3f}", stats.buildSeconds + stats.renderSeconds));
 }
 
-namespace {
-// OpenImageIO's digest is upper-case hex; sha1sum prints lower case.
-std::string lowerHex(std::string hex) {
-    for (char& c : hex)
-        c = char(std::tolower(static_cast<unsigned char>(c)));
-    return hex;
-}
-} // namespace
-
 std::string sha1Hex(std::string_view bytes) {
-    OIIO::SHA1 sha(bytes.data(), bytes.size());
-    return lowerHex(sha.digest());
+    Sha1 sha;
+    sha.append(bytes);
+    return sha.hexDigest();
 }
 
 std::string sceneTextSha1(const SourceFiles& files) {
-    OIIO::SHA1 sha;
+    Sha1 sha;
     for (int id = 0; id < files.count(); ++id)
-        sha.append(files.text(id).data(), files.text(id).size());
-    return lowerHex(sha.digest());
+        sha.append(files.text(id));
+    return sha.hexDigest();
 }
 
 std::string shellCommandLine(int argc, const char* const* argv) {
