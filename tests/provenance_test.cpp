@@ -29,7 +29,7 @@ TEST(Provenance, Sha1OfKnownTexts) {
     EXPECT_EQ(sha1Hex("abc"), "a9993e364706816aba3e25717850c26c9cd0d89d");
     EXPECT_EQ(sha1Hex(""), "da39a3ee5e6b4b0d3255bfef95601890afd80709");
     // 56 bytes: the padding needs a second block.
-    EXPECT_EQ(sha1Hex("abcdbcdecdefdefgefghfghighijhijkijkljklmjklmnklmnolmnopmnopnopq"),
+    EXPECT_EQ(sha1Hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
               "84983e441c3bd26ebaae4aa1f95129e5e54670f1");
     // Many blocks, appended in pieces that straddle block boundaries.
     Sha1 pieces;
