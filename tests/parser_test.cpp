@@ -188,8 +188,9 @@ TEST(Parser, AreaLightModes) {
     const Scene s = parseOk("light_source { 0 area_light x, z, 2, 2 }\n"
                             "light_source { 0 area_light x, z, 2, 2 area_illumination off area_sampling pov_grid }\n"
                             "light_source { 0 area_light x, z, 2, 2 area_sampling solid_angle inverse_square }\n"
-                            "light_source { 0 inverse_square off }");
-    ASSERT_EQ(s.lights.size(), 4u);
+                            "light_source { 0 inverse_square off }\n"
+                            "light_source { 0 area_light x, z, 3, 3 jitter area_illumination off area_sampling grid }");
+    ASSERT_EQ(s.lights.size(), 5u);
     ASSERT_TRUE(s.lights[0].area && s.lights[1].area && s.lights[2].area);
     EXPECT_TRUE(s.lights[0].areaIllumination);
     EXPECT_EQ(s.lights[0].area->sampling, AreaSampling::Stratified);
@@ -199,11 +200,13 @@ TEST(Parser, AreaLightModes) {
     EXPECT_EQ(s.lights[2].area->sampling, AreaSampling::SolidAngle);
     EXPECT_TRUE(s.lights[2].inverseSquare);
     EXPECT_FALSE(s.lights[3].inverseSquare);
+    ASSERT_TRUE(s.lights[4].area);
+    EXPECT_EQ(s.lights[4].area->sampling, AreaSampling::Grid);
 
     auto bad = parse("light_source { 0 area_light x, z, 2, 2 area_sampling cosine }");
     ASSERT_TRUE(bad->diags.hasErrors());
     const auto& d = bad->diags.all()[0];
-    EXPECT_EQ(d.message, "expected 'stratified', 'solid_angle' or 'pov_grid' after 'area_sampling', found 'cosine'");
+    EXPECT_EQ(d.message, "expected 'stratified', 'solid_angle', 'grid' or 'pov_grid' after 'area_sampling', found 'cosine'");
     EXPECT_EQ(d.loc.line, 1);
     EXPECT_EQ(d.loc.column, 54);
 }

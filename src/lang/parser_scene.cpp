@@ -221,7 +221,8 @@ void Parser::lightSource() {
             if (name.kind == TokenKind::Identifier && name.text == "stratified") area.sampling = AreaSampling::Stratified;
             else if (name.kind == TokenKind::Identifier && name.text == "solid_angle") area.sampling = AreaSampling::SolidAngle;
             else if (name.kind == TokenKind::Identifier && name.text == "pov_grid") area.sampling = AreaSampling::PovGrid;
-            else failExpected("'stratified', 'solid_angle' or 'pov_grid' after 'area_sampling'");
+            else if (name.kind == TokenKind::Identifier && name.text == "grid") area.sampling = AreaSampling::Grid;
+            else failExpected("'stratified', 'solid_angle', 'grid' or 'pov_grid' after 'area_sampling'");
             advance();
         }
         else failUnknown(word, known);

@@ -289,7 +289,9 @@ Light PovParser::lightSource(SourceLoc loc, std::optional<PovObject>* looksLike)
             if (a.size1 < 1 || a.size2 < 1) fail(at, "area_light sizes must be at least 1");
             if (a.size1 * double(a.size2) > 1e6) fail(at, "area_light grid is too large");
             // POV-Ray's semantics: edge-to-edge grid, shadow-only averaging unless area_illumination.
-            a.sampling = AreaSampling::PovGrid;
+            // The grid's points are shared out over the pixel's samples (Cook's association,
+            // render/lighting.h), which converges to POV-Ray's sum over the grid.
+            a.sampling = AreaSampling::Grid;
             l.area = a;
         } else if (w == "adaptive" || w == "jitter" || w == "circular" || w == "orient") {
             AreaLight& target = l.area ? *l.area : early;

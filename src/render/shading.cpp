@@ -35,8 +35,9 @@ Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal
     if (!(cosNL > 0)) return Color(0);
     Color result(0);
     if (finish.diffuse != 0) {
-        const double d =
-            (finish.diffuse * std::pow(cosNL, finish.brilliance) - crandU * finish.crand) * pigment.opacity();
+        // pow(x, 1) is x exactly: brilliance 1, the default, needs no pow.
+        const double shaped = finish.brilliance == 1 ? cosNL : std::pow(cosNL, finish.brilliance);
+        const double d = (finish.diffuse * shaped - crandU * finish.crand) * pigment.opacity();
         result += d * pigment.rgb * lightIntensity;
     }
     double highlight = 0;

@@ -23,6 +23,13 @@ Vec2 Sampler::get2DStratified(int dimension, int k, int count) {
     return {(cell % nx + j.x) / nx, (cell / nx + j.y) / ny};
 }
 
+uint32_t Sampler::stratifiedChoice(int dimension, int k, int count, uint32_t n) const {
+    if (n <= 1) return 0;
+    const uint64_t entry = uint64_t(index_) * uint64_t(std::max(count, 1)) + uint64_t(std::max(k, 0));
+    const uint64_t key = hashValues({seed_, uint64_t(x_), uint64_t(y_), uint64_t(dimension), entry / n, 0xc401ceULL});
+    return permuteIndex(static_cast<uint32_t>(entry % n), n, static_cast<uint32_t>(key >> 32));
+}
+
 namespace {
 
 // Independent uniform random values: the N^-1/2 baseline.

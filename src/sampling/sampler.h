@@ -48,6 +48,12 @@ public:
     // pixel sample (e.g. n1 x n2 area-light cells): the k-th of `count`
     // stratified 2D points in the given dimension.
     virtual Vec2 get2DStratified(int dimension, int k, int count);
+    // A choice among n things, stratified over the pixel's samples: the k-th of
+    // `count` choices of this pixel sample is entry index * count + k of a
+    // sequence that runs through one random permutation of 0..n-1 after
+    // another (per pixel and dimension), so any n choices in a row from a
+    // multiple of n pick each value once.
+    uint32_t stratifiedChoice(int dimension, int k, int count, uint32_t n) const;
 
     int samplesPerPixel() const { return samplesPerPixel_; }
     uint64_t seed() const { return seed_; }

@@ -334,9 +334,10 @@ struct Object {
 // Where an area light's n1 x n2 sample points go (docs/effects.md; the estimators are
 // in render/lighting.h).
 enum class AreaSampling {
-    PovGrid,    // POV-Ray: edge-to-edge n1 x n2 grid, jittered only with `jitter`
-    Stratified, // Cook: one jittered point in each of n1 x n2 cells of the rectangle
-    SolidAngle, // Urena, Fajardo & King 2013: n1 n2 stratified points uniform in solid angle
+    PovGrid,    // POV-Ray's method: every point of the edge-to-edge n1 x n2 grid at every hit
+    Stratified, // Cook: the pixel's samples stratified over the rectangle, one shadow ray per sample once spp >= n1 n2
+    SolidAngle, // Urena, Fajardo & King 2013: the same, uniform in solid angle
+    Grid,       // POV-Ray's grid points (jittered with `jitter`), shared out over the pixel's samples like Stratified
 };
 
 struct AreaLight {
@@ -348,9 +349,10 @@ struct AreaLight {
     int adaptive = -1; // POV-Ray `adaptive`; -1: not given (full grid)
     bool circular = false;
     bool orient = false;
-    // The scene model's default is POV-Ray's grid; the .drt parser sets
-    // Stratified (Cook's full area illumination is drt's documented default).
-    AreaSampling sampling = AreaSampling::PovGrid;
+    // The scene model's default is POV-Ray's grid points, one per camera
+    // sample (the POV-Ray front end's choice); the .drt parser sets Stratified
+    // (Cook's full area illumination is drt's documented default).
+    AreaSampling sampling = AreaSampling::Grid;
 };
 
 struct Light {
