@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -46,12 +47,28 @@ TEST(Provenance, SceneHashCoversTheSceneAndItsIncludes) {
     Diagnostics diags;
     ASSERT_TRUE(loadSceneFile(dir + "/scene.drt", diags)) << diags.formatAll();
     const std::string first = sceneTextSha1(diags.files());
-    EXPECT_EQ(first, sha1Hex(scene + "#declare R = 1;\n")); // scene, then the include: as `cat | sha1sum`
+    // The scene, then the include, each after its length and a newline.
+    EXPECT_EQ(first, sha1Hex(std::to_string(scene.size()) + "\n" + scene + "16\n#declare R = 1;\n"));
 
     test::writeFile(dir + "/parts.drt", "#declare R = 2;\n"); // only the include changes
     Diagnostics again;
     ASSERT_TRUE(loadSceneFile(dir + "/scene.drt", again)) << again.formatAll();
     EXPECT_NE(sceneTextSha1(again.files()), first);
+}
+
+TEST(Provenance, SceneHashKeepsTheFilesApart) {
+    // The same bytes split differently between a scene and its include are
+    // different scenes.
+    Diagnostics aThenBc, abThenC;
+    aThenBc.files().add("scene", "a");
+    aThenBc.files().add("include", "bc");
+    abThenC.files().add("scene", "ab");
+    abThenC.files().add("include", "c");
+    EXPECT_NE(sceneTextSha1(aThenBc.files()), sceneTextSha1(abThenC.files()));
+    Diagnostics abc;
+    abc.files().add("scene", "abc");
+    EXPECT_NE(sceneTextSha1(abc.files()), sceneTextSha1(abThenC.files()));
+    EXPECT_EQ(sceneTextSha1(abc.files()), sha1Hex("3\nabc"));
 }
 
 TEST(Provenance, CommandLineIsQuotedForTheShell) {
@@ -118,7 +135,8 @@ TEST(Provenance, RenderRecordsTheRunAndReproducibleFilesAreByteIdentical) {
         Image image;
         Metadata metadata;
         ASSERT_EQ(readImage(a, image, &metadata), "");
-        EXPECT_EQ(valueOf(metadata, "drt:scene_sha1"), sha1Hex(kScene));
+        EXPECT_EQ(valueOf(metadata, "drt:scene_sha1"),
+                  sha1Hex(std::to_string(std::strlen(kScene)) + "\n" + kScene));
         EXPECT_EQ(valueOf(metadata, "drt:command_line"), "<missing>");
     }
     // Without --reproducible: the command line (with a space in a path), threads and time, in a TIFF too.

@@ -3,6 +3,7 @@
 #include "cli/app.h"
 
 #include "cli/commands.h"
+#include "core/limits.h"
 #include "sampling/sampler.h"
 
 #include <CLI/CLI.hpp>
@@ -39,7 +40,13 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("--spp", a.spp, "Samples per pixel (overrides the scene)")->check(CLI::PositiveNumber);
     render->add_option("--threads", a.threads, "Worker threads (0: all cores)")
         ->check(CLI::NonNegativeNumber);
-    render->add_option("--seed", a.seed, "Random seed (overrides the scene)");
+    render->add_option("--seed", a.seed, "Random seed, 0 to 2^64-1 (overrides the scene)")
+        ->check(CLI::Validator(
+            [](std::string& value) {
+                return value.find('-') == 0 ? std::string("the seed must be a whole number from 0 to 2^64-1")
+                                            : std::string();
+            },
+            "0..2^64-1"));
     render->add_option("--sampler", a.sampler, "Sampler (overrides the scene)")
         ->check(CLI::IsMember(samplerNames()));
     render->add_option("--tile-size", a.tileSize, "Tile edge in pixels (the image does not depend on it)")
@@ -153,6 +160,22 @@ std::string installedDocs() {
     return !ec && std::filesystem::is_regular_file(docs / "README.md", ec) ? docs.string() : "";
 }
 
+// --limit NAME=VALUE (repeatable): every limit of core/limits.h (docs/limits.md).
+void addLimitOption(CLI::App* command, Limits& limits) {
+    std::string names;
+    for (const LimitInfo& info : limitTable()) names += std::string(names.empty() ? "" : ", ") + info.name;
+    command
+        ->add_option_function<std::vector<std::string>>(
+            "--limit",
+            [&limits](const std::vector<std::string>& assignments) {
+                for (const std::string& assignment : assignments)
+                    if (std::string problem = setLimit(limits, assignment); !problem.empty())
+                        throw CLI::ValidationError(problem);
+            },
+            "Raise or lower a limit, NAME=VALUE (repeatable; docs/limits.md): " + names)
+        ->type_name("NAME=VALUE");
+}
+
 } // namespace
 
 int runCommandLine(int argc, char** argv) {
@@ -192,6 +215,8 @@ int runCommandLine(int argc, char** argv) {
     test->add_option("--junit", testCommand.junitFile,
                      "Write JUnit XML (one testcase per scene) to this file, for CI test reports");
     test->add_option("--json", testCommand.jsonFile, "Write every test's outcome and figures as JSON to this file");
+    Limits limits;
+    for (CLI::App* command : {render, check, bench, convert, test}) addLimitOption(command, limits);
 
     try {
         app.parse(argc, argv);
@@ -199,6 +224,7 @@ int runCommandLine(int argc, char** argv) {
         const int status = app.exit(e, std::cout, std::cerr);
         return status == 0 ? kSuccess : kUsageError;
     }
+    setDefaultLimits(limits);
 
     if (render->parsed()) {
         fillOverrides(*render, renderArguments);

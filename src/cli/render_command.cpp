@@ -4,6 +4,7 @@
 #include "cli/commands.h"
 #include "assets/assets.h"
 
+#include "cli/paths.h"
 #include "cli/progress.h"
 #include "cli/render_parts.h"
 #include "distributed/checkpoint.h"
@@ -11,6 +12,8 @@
 #include "pov/load.h"
 #include "render/scene_warnings.h"
 #include "sampling/filter.h"
+#include "render/camera.h"
+#include "sampling/sampler.h"
 
 #include <algorithm>
 #include <chrono>
@@ -51,7 +54,7 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         return kSceneError;
     }
     Diagnostics diagnostics;
-    if (lowerExtension(path) == ".pov" || lowerExtension(path) == ".inc") {
+    if (isPovSceneFile(path)) {
         // POV-Ray front end: the scene sees the image size it will be rendered at.
         PovOptions options;
         options.strict = pov.strict;
@@ -70,6 +73,16 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
     if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
     if (sceneSha1)
         *sceneSha1 = sceneTextSha1(diagnostics.files());
+    if (scene && !diagnostics.hasErrors()) {
+        // The camera's problems (sky or up along the view, ...) are found by
+        // check too, and reported at the camera.
+        const RenderOptions size = resolveRenderOptions(overlaySettings(scene->render, overrides));
+        try {
+            resolveCamera(scene->camera, size.width, size.height);
+        } catch (const RenderError& e) {
+            diagnostics.error(scene->camera.loc, e.what());
+        }
+    }
     err << diagnostics.formatAll();
     if (scene && !diagnostics.hasErrors()) {
         // Apart from the front end's diagnostics, so that --strict does not make them errors.

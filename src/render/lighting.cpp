@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace drt {
@@ -41,6 +42,9 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
         if (!accel.intersect(ray, blocker)) return mediaScene ? transmittance * throughMedia(nullptr, 1) : transmittance;
         if (mediaScene) transmittance *= throughMedia(&blocker, blocker.t);
         if (!blocker.object->noShadow) {
+            // Leaving an object: the segment before this hit ran inside it (POV-Ray fades shadows too).
+            if (dot(ray.direction, blocker.geometricNormal) > 0)
+                transmittance *= interiorAttenuation(blocker.object->interior, blocker.t * length(ray.direction));
             transmittance *= textureFilter(blocker.object->texture, blocker.point);
             if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
@@ -158,7 +162,10 @@ public:
         // POV-Ray's own method takes every grid point at every hit; the others
         // share the n1 n2 points out over the pixel's samples (lighting.h).
         const int64_t spp = std::max(1, samplesPerPixel);
-        count_ = static_cast<int>(sampling_ == AreaSampling::PovGrid ? points : (points + spp - 1) / spp);
+        // The front ends keep n1 n2 within Limits::areaLightSamples; a scene
+        // built in code is clamped rather than overflow.
+        count_ = static_cast<int>(std::min<int64_t>(sampling_ == AreaSampling::PovGrid ? points : (points + spp - 1) / spp,
+                                                    std::numeric_limits<int>::max()));
         const Vec3 normal = cross(frame_.axis1, frame_.axis2);
         areaMeasure_ = length(normal);
         if (area_.circular) areaMeasure_ *= kPi / 4;

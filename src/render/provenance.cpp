@@ -88,8 +88,13 @@ std::string sha1Hex(std::string_view bytes) {
 
 std::string sceneTextSha1(const SourceFiles& files) {
     Sha1 sha;
-    for (int id = 0; id < files.count(); ++id)
-        sha.append(files.text(id));
+    for (int id = 0; id < files.count(); ++id) {
+        // Each file framed by its length, so that moving text from one file to
+        // the next ("a" + "bc" against "ab" + "c") changes the hash.
+        const std::string_view text = files.text(id);
+        sha.append(std::to_string(text.size()) + "\n");
+        sha.append(text);
+    }
     return sha.hexDigest();
 }
 

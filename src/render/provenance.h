@@ -54,9 +54,10 @@ Provenance renderProvenance(const std::string& scenePath, const std::string& sce
 void recordRun(Provenance& provenance, const RenderOptions& options, const RenderStats& stats,
                const std::string& commandLine, std::time_t started);
 
-// SHA-1 (hex) of the text of every file a front end read, in reading order:
-// the scene, then its includes. For a scene without includes it is the
-// `sha1sum` of the scene file.
+// SHA-1 (hex) of the text of every file a front end read, in reading order
+// (the scene, then its includes), each preceded by its length in bytes in
+// decimal and a newline. For a scene without includes it is what
+// `{ stat -c %s scene.drt; cat scene.drt; } | sha1sum` prints.
 std::string sceneTextSha1(const SourceFiles& files);
 std::string sha1Hex(std::string_view bytes);
 

@@ -64,6 +64,16 @@ protected:
     int samplesPerPixel_;
     uint64_t seed_;
     int x_ = 0, y_ = 0, index_ = 0;
+
+private:
+    // stratifiedChoice's permutation key for the last (pixel, dimension,
+    // round of n choices): the choices of one sample mostly share a round.
+    struct ChoiceKey {
+        int x = 0, y = 0, dimension = -1;
+        uint64_t round = 0;
+        uint32_t key = 0;
+    };
+    mutable ChoiceKey choiceKey_;
 };
 
 // Names accepted by --sampler and the scene: see samplerNames().

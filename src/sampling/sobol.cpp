@@ -64,10 +64,12 @@ constexpr uint32_t reverseBits(uint32_t x) {
 } // namespace
 
 uint32_t sobolValue(uint32_t index, int dimension) {
+    // Dimension 0 is van der Corput's (v_k = 2^(31-k)): the index with its bits reversed.
+    if (dimension == 0) return reverseBits(index);
     const auto& v = kDirections[static_cast<size_t>(dimension)];
     uint32_t result = 0;
-    for (int j = 0; index != 0; ++j, index >>= 1)
-        if (index & 1u) result ^= v[static_cast<size_t>(j)];
+    // No branch per bit: index bits are random, such a branch mispredicts half the time.
+    for (int j = 0; index != 0; ++j, index >>= 1) result ^= v[static_cast<size_t>(j)] & (0u - (index & 1u));
     return result;
 }
 

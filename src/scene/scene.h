@@ -5,6 +5,7 @@
 
 #include "core/color.h"
 #include "core/diagnostics.h"
+#include "core/heap_optional.h"
 #include "core/transform.h"
 #include "core/vec.h"
 #include "scene/algebraic.h"
@@ -125,14 +126,18 @@ struct Finish {
     double crand = 0;
 };
 
-// A bump pattern (POV-Ray `normal { bumps 0.4 scale 0.2 }`): the shading
-// normal is tilted by `amount` times the gradient of the pattern's scalar field.
+// A normal pattern (POV-Ray `normal { bumps 0.4 scale 0.2 }`), with
+// POV-Ray's rules (render/normal_pattern.cpp): bumps, dents, wrinkles,
+// ripples and waves have formulas of their own; every other pattern tilts the
+// normal down its slope, sampled `accuracy` apart in pattern space.
 struct Normal {
     PatternKind pattern = PatternKind::Bumps;
     double amount = 0.5;
     Turbulence turbulence;
-    PatternWave wave; // shapes the bump pattern's scalar field
+    PatternWave wave; // shapes the pattern's value (not for the five with formulas of their own)
     Transform toWorld; // as Pigment::toWorld
+    Vec3 gradientAxis{0, 1, 0}; // Gradient
+    double accuracy = 0.02;     // POV-Ray's `accuracy`: the slope's sample spacing
 };
 
 // A plain texture is one layer: pigment, finish, normal. Two extensions, both
@@ -147,7 +152,7 @@ struct Normal {
 struct Texture {
     Pigment pigment;
     Finish finish;
-    std::optional<Normal> normal; // none: the surface's own normal
+    HeapOptional<Normal> normal; // none: the surface's own normal (on the heap: most textures have none)
     struct MapEntry;
     std::vector<MapEntry> map;
     std::vector<Texture> layersAbove;
@@ -313,7 +318,7 @@ struct Motion {
 struct Object {
     Shape shape;
     Transform transform; // object -> world
-    std::optional<Motion> motion;
+    HeapOptional<Motion> motion; // on the heap: most objects do not move
     Texture texture;
     Interior interior;
     bool noShadow = false;

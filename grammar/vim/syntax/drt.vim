@@ -22,20 +22,20 @@ syn keyword drtKeyword color_map colour colour_map confidence conic_sweep conser
 syn keyword drtKeyword cubic_spline cubic_wave dents difference diffuse direction distance eccentricity
 syn keyword drtKeyword emission error extinction fade_color fade_colour fade_distance fade_power falloff
 syn keyword drtKeyword filter fisheye focal_distance focal_point fog_alt fog_offset fog_type font
-syn keyword drtKeyword frequency fresnel gamma gradient granite green height hexagon
-syn keyword drtKeyword hierarchy hollow interpolate intersection intervals inverse inverse_square ior
-syn keyword drtKeyword jitter lambda leopard linear_spline linear_sweep location look_at map_type
-syn keyword drtKeyword marble matrix max_samples max_trace_level media_attenuation media_interaction merge metallic
-syn keyword drtKeyword method min_samples mortar no_shadow octaves offset omega once
-syn keyword drtKeyword onion open orient orthographic panoramic perspective phase phong
-syn keyword drtKeyword phong_size point_at poly_wave pov_grid quadratic_spline radial radius ramp_wave
-syn keyword drtKeyword ratio red reflection reflection_blur refraction_blur rgb rgbf rgbft
-syn keyword drtKeyword rgbt right ripples rotate roughness sampler samples scale
-syn keyword drtKeyword scallop_wave seed shadowless shutter_close shutter_open sine_wave sky solid_angle
-syn keyword drtKeyword specular spherical spotlight srgb srgbf srgbft srgbt stratified
-syn keyword drtKeyword strength string sturm thickness threshold tightness tile2 translate
-syn keyword drtKeyword transmit triangle_wave turb_depth turbulence ultra_wide_angle union up variance
-syn keyword drtKeyword waves width wood wrinkles
+syn keyword drtKeyword frequency fresnel gamma gradient granite green grid height
+syn keyword drtKeyword hexagon hierarchy hollow interpolate intersection intervals inverse inverse_square
+syn keyword drtKeyword ior jitter lambda leopard linear_spline linear_sweep location look_at
+syn keyword drtKeyword map_type marble matrix max_samples max_trace_level media_attenuation media_interaction merge
+syn keyword drtKeyword metallic method min_samples mortar no_shadow octaves offset omega
+syn keyword drtKeyword once onion open orient orthographic panoramic perspective phase
+syn keyword drtKeyword phong phong_size point_at poly_wave pov_grid quadratic_spline radial radius
+syn keyword drtKeyword ramp_wave ratio red reflection reflection_blur refraction_blur rgb rgbf
+syn keyword drtKeyword rgbft rgbt right ripples rotate roughness sampler samples
+syn keyword drtKeyword scale scallop_wave seed shadowless shutter_close shutter_open sine_wave sky
+syn keyword drtKeyword solid_angle specular spherical spotlight srgb srgbf srgbft srgbt
+syn keyword drtKeyword stratified strength string sturm thickness threshold tightness tile2
+syn keyword drtKeyword translate transmit triangle_wave turb_depth turbulence ultra_wide_angle union up
+syn keyword drtKeyword variance waves width wood wrinkles
 syn match drtDirective "#\s*\%(declare\|include\|local\|version\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
