@@ -72,8 +72,8 @@ std::string referenceKey(const Scene& scene, const Scene& tweaked) {
     return filterOf(tweaked) == filterOf(scene) ? "" : "filter-" + filterOf(tweaked);
 }
 
-// Mean over pixels and channels of Var(r) / (r^2 + 0.01): the reference's
-// share of E[relMSE] (a noisy reference inflates every error by this much).
+// The reference's share of E[relMSE] (a noisy reference inflates every
+// error: docs/accuracy.md).
 double referenceNoise(const Reference& reference) {
     return reference.hasVariance ? bench::referenceNoise(reference.color, reference.variance) : 0;
 }

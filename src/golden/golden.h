@@ -50,7 +50,7 @@ struct GoldenSettings {
     double failPercent = 0;
     // Statistical policy: compare's family-wise false-alarm rate and tile edge;
     // the reference is rendered at referenceSamplesPerPixel (default 64x the
-    // test's: its noise is then 1/8 of the test's) with referenceSeed (default seed + 1, so the
+    // test's, see docs/accuracy.md) with referenceSeed (default seed + 1, so the
     // two estimates are independent).
     double alpha = 0.01;
     int tileSize = 8;
