@@ -58,11 +58,7 @@ std::string failureFigures(const CaseResult& result) {
     return line;
 }
 
-namespace {
-
-// XML text and attribute values: the five markup characters escaped, control
-// characters other than tab and newline (not allowed in XML 1.0) dropped.
-std::string xmlEscape(const std::string& text) {
+std::string escapeMarkup(const std::string& text) {
     std::string out;
     for (char ch : text) {
         switch (ch) {
@@ -93,6 +89,8 @@ std::string xmlEscape(const std::string& text) {
     return out;
 }
 
+namespace {
+
 // An attribute on one line: a newline in an attribute value is normalised to a
 // space by XML parsers anyway.
 std::string xmlAttribute(const std::string& text) {
@@ -100,7 +98,7 @@ std::string xmlAttribute(const std::string& text) {
     for (char& ch : flat)
         if (ch == '\n' || ch == '\t')
             ch = ' ';
-    return xmlEscape(flat);
+    return escapeMarkup(flat);
 }
 
 std::string hostName() {
@@ -154,7 +152,7 @@ std::string junitReport(const RunSummary& summary) {
         text += r.details;
         const char* element = failure ? "failure" : "error";
         cases += fmt::format(">\n      <{0} message=\"{1}\" type=\"{2}\">{3}</{0}>\n    </testcase>\n", element,
-                             xmlAttribute(r.message), outcomeName(r.outcome), xmlEscape(text));
+                             xmlAttribute(r.message), outcomeName(r.outcome), escapeMarkup(text));
     }
     const int failures = summary.failed + summary.missing;
     const std::string out = fmt::format(
@@ -174,7 +172,7 @@ std::string junitReport(const RunSummary& summary) {
                        "  </testsuite>\n"
                        "</testsuites>\n",
                        xmlAttribute(suite), cases, summary.cases.size(), failures, summary.errors, summary.seconds,
-                       localTimestamp(), xmlAttribute(hostName()), DRT_VERSION, xmlEscape(out));
+                       localTimestamp(), xmlAttribute(hostName()), DRT_VERSION, escapeMarkup(out));
 }
 
 namespace {

@@ -133,6 +133,9 @@ std::string failureFigures(const CaseResult& result);
 // as <error>, each with the one-line message and the figures; and JSON with the
 // same figures as numbers.
 std::string junitReport(const RunSummary& summary);
+// Text for XML or HTML: & < > " ' escaped, control characters other than tab
+// and newline (not allowed in XML 1.0) dropped.
+std::string escapeMarkup(const std::string& text);
 std::string jsonReport(const RunSummary& summary);
 // Writes text to a temporary file beside `path`, then renames it over `path`.
 // Returns "" or the reason.

@@ -19,29 +19,6 @@ namespace drt::golden {
 
 namespace {
 
-std::string escapeHtml(const std::string& text) {
-    std::string out;
-    for (char ch : text) {
-        switch (ch) {
-        case '&':
-            out += "&amp;";
-            break;
-        case '<':
-            out += "&lt;";
-            break;
-        case '>':
-            out += "&gt;";
-            break;
-        case '"':
-            out += "&quot;";
-            break;
-        default:
-            out += ch;
-        }
-    }
-    return out;
-}
-
 std::string base64(const std::string& bytes) {
     static const char* const digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
@@ -81,7 +58,7 @@ std::string pngDataUri(const fs::path& dir, const std::string& name, const Image
 
 std::string figure(const std::string& source, const std::string& caption) {
     return fmt::format("<figure><img src=\"{0}\" alt=\"{1}\"><figcaption>{1}</figcaption></figure>\n",
-                       escapeHtml(source), escapeHtml(caption));
+                       escapeMarkup(source), escapeMarkup(caption));
 }
 
 // The comparison's figures, only those that mean something under the policy:
@@ -91,7 +68,7 @@ std::string figuresTable(const CaseResult& result) {
     const CompareResult& r = *result.comparison;
     std::string rows;
     auto row = [&rows](const std::string& name, const std::string& value) {
-        rows += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", name, escapeHtml(value));
+        rows += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", name, escapeMarkup(value));
     };
     std::string channels;
     for (int c = 0; c < r.channels; ++c)
@@ -154,21 +131,21 @@ std::string writeReport(const std::string& reportDir, const RunSummary& summary)
                 const std::string bytes = fileBytes(r.previewPath);
                 if (!bytes.empty())
                     thumbnail = fmt::format("<img class=\"thumb\" src=\"data:image/png;base64,{}\" alt=\"{}\">",
-                                            base64(bytes), escapeHtml(r.name));
+                                            base64(bytes), escapeMarkup(r.name));
             }
             passedRows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2f} s</td><td>{}</td></tr>\n",
-                                      thumbnail, escapeHtml(r.name), policyName(r.policy), r.seconds,
+                                      thumbnail, escapeMarkup(r.name), policyName(r.policy), r.seconds,
                                       outcomeName(r.outcome));
             continue;
         }
         ++listed;
         body += fmt::format(
             "<section id=\"{0}\">\n<h2>{0} <span class=\"{1}\">{1}</span> ({2} policy)</h2>\n<p>{3}</p>\n",
-            escapeHtml(r.name), outcomeName(r.outcome), policyName(r.policy), escapeHtml(r.message));
+            escapeMarkup(r.name), outcomeName(r.outcome), policyName(r.policy), escapeMarkup(r.message));
         if (!r.scenePath.empty())
-            body += fmt::format("<p>scene: <code>{}</code></p>\n", escapeHtml(r.scenePath));
+            body += fmt::format("<p>scene: <code>{}</code></p>\n", escapeMarkup(r.scenePath));
         if (!r.details.empty())
-            body += "<pre>" + escapeHtml(r.details) + "</pre>\n";
+            body += "<pre>" + escapeMarkup(r.details) + "</pre>\n";
         if (r.candidate.width == 0 || r.golden.width == 0) {
             body += "</section>\n";
             continue;
@@ -206,7 +183,7 @@ std::string writeReport(const std::string& reportDir, const RunSummary& summary)
         const std::string exr = r.name + ".candidate.exr";
         if (std::string problem = writeImage((dir / exr).string(), r.candidate); !problem.empty())
             return problem;
-        body += fmt::format("<p><a href=\"{0}\">{0}</a>: the candidate in linear floats.</p>\n", escapeHtml(exr));
+        body += fmt::format("<p><a href=\"{0}\">{0}</a>: the candidate in linear floats.</p>\n", escapeMarkup(exr));
         body += "</section>\n";
     }
     if (!passedRows.empty())
@@ -219,7 +196,7 @@ std::string writeReport(const std::string& reportDir, const RunSummary& summary)
     const std::string page = fmt::format(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{0}</title>\n"
         "<style>\n{1}\n</style>\n</head>\n<body>\n<h1>{0}</h1>\n{2}{3}</body>\n</html>\n",
-        escapeHtml(title), kStyle, listed == 0 ? "<p>Every test passed.</p>\n" : "", body);
+        escapeMarkup(title), kStyle, listed == 0 ? "<p>Every test passed.</p>\n" : "", body);
     return writeTextFile((dir / "index.html").string(), page);
 }
 
