@@ -1,6 +1,6 @@
 // drt bench reads POV-Ray scenes as render does (drt test's are in
 // golden_ci_test.cpp): the front end is chosen by the file's extension.
-#include "pov/load.h"
+#include "lang/load.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -13,18 +13,18 @@ namespace drt {
 namespace {
 
 TEST(PovCommands, FrontEndIsChosenByTheExtension) {
-    EXPECT_TRUE(isPovSceneFile("a/b.pov"));
-    EXPECT_TRUE(isPovSceneFile("B.POV"));
-    EXPECT_TRUE(isPovSceneFile("colors.inc"));
-    EXPECT_FALSE(isPovSceneFile("scene.drt"));
-    EXPECT_FALSE(isPovSceneFile("pov"));
+    EXPECT_EQ(dialectForPath("a/b.pov"), DialectKind::Pov);
+    EXPECT_EQ(dialectForPath("B.POV"), DialectKind::Pov);
+    EXPECT_EQ(dialectForPath("colors.inc"), DialectKind::Pov);
+    EXPECT_EQ(dialectForPath("scene.drt"), DialectKind::Drt);
+    EXPECT_EQ(dialectForPath("pov"), DialectKind::Drt);
     const std::string dir = test::tempDir();
     // `#declare X = 1` without ';' is POV-Ray syntax the .drt parser rejects.
     test::writeFile(dir + "/s.pov", "#declare R = 1\nsphere { 0, R }\n");
     test::writeFile(dir + "/s.drt", "#declare R = 1\nsphere { 0, R }\n");
     Diagnostics pov, drt;
-    EXPECT_TRUE(loadAnySceneFile(dir + "/s.pov", pov)) << pov.formatAll();
-    EXPECT_FALSE(loadAnySceneFile(dir + "/s.drt", drt));
+    EXPECT_TRUE(loadScene(dir + "/s.pov", pov)) << pov.formatAll();
+    EXPECT_FALSE(loadScene(dir + "/s.drt", drt));
 }
 
 TEST(PovCommands, BenchReadsAPovScene) {

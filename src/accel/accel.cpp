@@ -120,12 +120,15 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     const Level* level = &impl_->top;
     const unsigned instID = rayhit.hit.instID[0];
     const Transform* motion = nullptr; // level space -> world, if the top level's is not world
+    hit.instance = -1;
     if (instID != RTC_INVALID_GEOMETRY_ID) {
-        const Instance& instance = impl_->instances[impl_->top.geometries[instID].index];
+        const size_t index = impl_->top.geometries[instID].index;
+        const Instance& instance = impl_->instances[index];
         level = instance.level.get();
         Vec3 unusedO, unusedD;
         query.levelRay(instID, rayhit.ray.time, unusedO, unusedD); // the callback's transform, or solved now
         motion = &*query.instanceToWorld;
+        hit.instance = static_cast<int>(index);
     }
     const bool shiftedTop = !motion && impl_->shifted;
     const Vec3& o = motion ? query.instanceOrigin : query.origin;
@@ -183,11 +186,13 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         frameUnit = mesh.extent > 0 ? frameUnitFor(mesh.extent) : 0;
     }
     if (motion) {
+        hit.restPoint = impl_->shifted ? point + impl_->frameOrigin : point;
         hit.point = motion->point(point);
         hit.geometricNormal = unitOrTowardOrigin(motion->normal(geometric));
         hit.shadingNormal = unitOr(motion->normal(shading), hit.geometricNormal);
     } else {
         hit.point = shiftedTop ? point + impl_->frameOrigin : point;
+        hit.restPoint = hit.point;
         hit.geometricNormal = geometric;
         hit.shadingNormal = shading;
     }
@@ -244,6 +249,11 @@ Vec3 Accelerator::offsetOrigin(const Hit& hit, const Vec3& direction) {
 }
 
 bool Accelerator::hasMotion() const { return !impl_->instances.empty(); }
+
+Transform Accelerator::restToWorld(const Hit& hit, double time) const {
+    if (hit.instance < 0 || size_t(hit.instance) >= impl_->instances.size()) return Transform();
+    return impl_->instances[size_t(hit.instance)].motion.at(std::fmin(1.0, std::fmax(0.0, time)));
+}
 
 void Accelerator::bounds(Vec3& lower, Vec3& upper) const {
     if (impl_->bounded) {

@@ -4,8 +4,8 @@
 // Spaces: "level space" is the space an Embree scene's geometry lives in. For
 // the top-level scene it is world space minus the frame origin (accel.h
 // "Frame"; zero for most scenes); for a moving object it is world space at time
-// 0 (Object::transform applied) minus the frame origin, and the instance's
-// transform maps it to the top level at the ray's time.
+// its rest pose (scene/motion.h: every motion the identity) minus the frame
+// origin, and the instance's transform maps it to the top level at the ray's time.
 #pragma once
 
 #include "accel/motion.h"
@@ -121,9 +121,9 @@ struct Level {
 
 struct Instance {
     std::unique_ptr<Level> level;
-    MotionPath motion;
+    InstanceMotion motion;
     bool shifted = false;
-    Vec3 frameOrigin; // level space = world at time 0 minus this, if shifted
+    Vec3 frameOrigin; // level space = rest-pose world minus this, if shifted
     // Level space -> world at time t.
     Transform toWorld(double t) const {
         return shifted ? Transform::translate(frameOrigin).then(motion.at(t)) : motion.at(t);

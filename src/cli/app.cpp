@@ -81,6 +81,9 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("-L,--include-path", a.command.pov.includePaths,
                        "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");
     render->add_flag("--strict", a.command.pov.strict, "POV-Ray scenes: unsupported features are errors");
+    render->add_option("--dialect", a.command.pov.dialect,
+                       "Read the scene as .drt or .pov whatever its extension (default: .pov, .inc, .mac are POV-Ray's)")
+        ->check(CLI::IsMember({"drt", "pov"}));
     return render;
 }
 
@@ -195,6 +198,9 @@ int runCommandLine(int argc, char** argv) {
     check->add_option("-L,--include-path", checkPov.includePaths,
                       "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");
     check->add_flag("--strict", checkPov.strict, "POV-Ray scenes: unsupported features are errors");
+    check->add_option("--dialect", checkPov.dialect,
+                      "Read the scene as .drt or .pov whatever its extension (default: .pov, .inc, .mac are POV-Ray's)")
+        ->check(CLI::IsMember({"drt", "pov"}));
     BenchCommand benchCommand;
     CLI::App* bench = addBenchSubcommand(app, benchCommand);
     ConvertCommand convertCommand;

@@ -6,10 +6,10 @@
 
 #include "cli/paths.h"
 #include "cli/progress.h"
+#include "accel/geometry_query.h"
 #include "cli/render_parts.h"
 #include "distributed/checkpoint.h"
 #include "lang/load.h"
-#include "pov/load.h"
 #include "render/scene_warnings.h"
 #include "sampling/filter.h"
 #include "render/camera.h"
@@ -54,22 +54,21 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         return kSceneError;
     }
     Diagnostics diagnostics;
-    if (isPovSceneFile(path)) {
-        // POV-Ray front end: the scene sees the image size it will be rendered at.
-        PovOptions options;
-        options.strict = pov.strict;
-        if (!pov.includePaths.empty()) {
-            const std::string dir = fs::path(path).parent_path().string();
-            options.includePaths.push_back(dir.empty() ? "." : dir);
-            options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(), pov.includePaths.end());
-            options.includePaths.push_back(kPovStandardIncludeDir);
-        }
-        if (overrides.width) options.imageWidth = *overrides.width;
-        if (overrides.height) options.imageHeight = *overrides.height;
-        scene = loadPovSceneFile(path, diagnostics, options);
-    } else {
-        scene = loadSceneFile(path, diagnostics);
+    // One front end for both dialects; the scene sees the image size it will be rendered at.
+    LoadOptions options;
+    if (!pov.dialect.empty()) options.dialect = dialectNamed(pov.dialect);
+    options.strict = pov.strict;
+    if (!pov.includePaths.empty()) {
+        const std::string dir = fs::path(path).parent_path().string();
+        options.includePaths.push_back(dir.empty() ? "." : dir);
+        options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(), pov.includePaths.end());
+        options.includePaths.push_back(kPovStandardIncludeDir);
     }
+    if (overrides.width) options.imageWidth = *overrides.width;
+    if (overrides.height) options.imageHeight = *overrides.height;
+    const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+    options.geometry = geometry.get();
+    scene = drt::loadScene(path, diagnostics, options);
     if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
     if (sceneSha1)
         *sceneSha1 = sceneTextSha1(diagnostics.files());

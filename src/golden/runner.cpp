@@ -5,7 +5,8 @@
 #include "golden/golden.h"
 
 #include "assets/assets.h"
-#include "pov/load.h"
+#include "accel/geometry_query.h"
+#include "lang/load.h"
 #include "render/provenance.h"
 #include "render/render.h"
 #include "sampling/filter.h"
@@ -144,11 +145,14 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
         return false;
     }
     Diagnostics diagnostics;
-    // POV-Ray scenes see the image size they are rendered at (image_width, image_height).
-    PovOptions pov;
-    pov.imageWidth = p.settings.width.value_or(pov.imageWidth);
-    pov.imageHeight = p.settings.height.value_or(pov.imageHeight);
-    std::optional<Scene> scene = loadAnySceneFile(scenePath, diagnostics, pov);
+    // Either dialect, by the extension; the scene sees the image size it is
+    // rendered at (image_width, image_height) and the geometry (trace, inside).
+    LoadOptions load;
+    load.imageWidth = p.settings.width.value_or(load.imageWidth);
+    load.imageHeight = p.settings.height.value_or(load.imageHeight);
+    const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+    load.geometry = geometry.get();
+    std::optional<Scene> scene = loadScene(scenePath, diagnostics, load);
     if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
     p.scenePath = scenePath;
     p.sceneSha1 = sceneTextSha1(diagnostics.files());

@@ -94,6 +94,16 @@ Ray spawn(const Hit& hit, const Vec3& direction, double time) {
 
 } // namespace
 
+// A bump pattern moves with its object: on a moving object it tilts the
+// normal in the object's rest pose, which is then turned to the world at the
+// ray's time (normals map by the inverse transpose).
+Vec3 Integrator::bumpNormal(const Normal& bumps, const Hit& hit, double time, const Vec3& normal) const {
+    if (hit.instance < 0) return perturbNormal(bumps, hit.point, normal);
+    const Transform toWorld = accel_.restToWorld(hit, time);
+    const Vec3 restNormal = normalize(toWorld.inverted().normal(normal));
+    return normalize(toWorld.normal(perturbNormal(bumps, hit.restPoint, restNormal)));
+}
+
 void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
                        std::vector<PendingRay>& stack) const {
     const Object& object = *hit.object;
@@ -135,7 +145,7 @@ void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture,
 void Integrator::shadePatterned(const SurfaceHit& surface, const Texture& texture, const Color& weight,
                                 Sampler& sampler, RayCounts& counts, Color& result,
                                 std::vector<PendingRay>& stack) const {
-    forEachPickedEntry(texture, surface.hit.point, [&](const Texture& entry, double w) {
+    forEachPickedEntry(texture, surface.hit.restPoint, [&](const Texture& entry, double w) {
         shadeTexture(surface, entry, weight * w, sampler, counts, result, stack);
     });
 }
@@ -162,7 +172,7 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         const Finish& finish = layer.finish;
         Vec3 normal = surface.normal;
         if (layer.normal) { // bump pattern; kept only while it still faces the viewer
-            const Vec3 bumped = perturbNormal(*layer.normal, hit.point, normal);
+            const Vec3 bumped = bumpNormal(*layer.normal, hit, pending.ray.time, normal);
             if (dot(bumped, incoming) < 0) normal = bumped;
         }
         if (i == 0) topNormal = normal;
@@ -171,7 +181,7 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         sp.hit = hit;
         sp.normal = normal;
         sp.incoming = incoming;
-        sp.pigment = evaluatePigment(layer.pigment, hit.point);
+        sp.pigment = evaluatePigment(layer.pigment, hit.restPoint); // textures move with their object
         sp.finish = &finish;
         sp.time = pending.ray.time;
         sp.depth = pending.depth;

@@ -45,7 +45,7 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
             // Leaving an object: the segment before this hit ran inside it (POV-Ray fades shadows too).
             if (dot(ray.direction, blocker.geometricNormal) > 0)
                 transmittance *= interiorAttenuation(blocker.object->interior, blocker.t * length(ray.direction));
-            transmittance *= textureFilter(blocker.object->texture, blocker.point);
+            transmittance *= textureFilter(blocker.object->texture, blocker.restPoint);
             if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
         if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);

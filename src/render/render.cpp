@@ -123,7 +123,7 @@ bool anyFinish(const std::vector<Object>& objects, const auto& predicate) {
 
 bool anyMotion(const std::vector<Object>& objects) {
     for (const Object& object : objects) {
-        if (object.motion) return true;
+        if (!object.motion.empty()) return true;
         if (const auto* csg = std::get_if<Csg>(&object.shape); csg && anyMotion(csg->children)) return true;
     }
     return false;

@@ -11,6 +11,7 @@
 #include "scene/algebraic.h"
 #include "scene/blob.h"
 #include "scene/extrusion.h"
+#include "scene/motion.h"
 #include "scene/revolution.h"
 
 #include <array>
@@ -305,20 +306,10 @@ struct Csg {
 using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid,
                            Extrusion, Revolution, Blob>;
 
-// Motion over the shutter (docs/effects.md): the extra transform reached at time 1,
-// applied after Object::transform. At time t the object is scaled by
-// lerp(1, scale, t), rotated by slerp(identity, rotate, t) and moved by
-// t * translate.
-struct Motion {
-    Vec3 translate{0, 0, 0};
-    Vec3 rotate{0, 0, 0}; // degrees, as POV-Ray's rotate
-    Vec3 scale{1, 1, 1};
-};
-
 struct Object {
     Shape shape;
-    Transform transform; // object -> world
-    HeapOptional<Motion> motion; // on the heap: most objects do not move
+    Transform transform; // object -> world (the transforms before the first motion)
+    MotionChain motion;  // motions and the transforms after each (scene/motion.h); empty: still
     Texture texture;
     Interior interior;
     bool noShadow = false;
@@ -330,6 +321,8 @@ struct Object {
     // inside only where it is inside every clip too. Clip objects live in the
     // space Object::transform maps to (world for a top-level object, the CSG's
     // space for a member); transforms written after clipped_by move them too.
+    // A moving top-level object's clips are in its rest pose's world (the
+    // front ends fold the transforms after its motions in) and move with it.
     std::vector<Object> clippedBy;
     SourceLoc loc;
 };

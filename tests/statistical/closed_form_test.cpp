@@ -61,8 +61,7 @@ Scene stripeScene(double shift) {
     object.shape = mesh;
     object.texture = emissive();
     if (shift != 0) {
-        object.motion = Motion{};
-        object.motion->translate = {shift * toWorld, 0, 0};
+        object.motion = {MotionStage{motionTo({shift * toWorld, 0, 0}), {}}};
         scene.camera.shutterOpen = 0;
         scene.camera.shutterClose = 1;
     }

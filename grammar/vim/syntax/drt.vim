@@ -4,11 +4,16 @@ if exists('b:current_syntax')
   finish
 endif
 
-syn keyword drtFunction abs acos asin atan atan2 ceil cos degrees
-syn keyword drtFunction exp floor int log max min mod pow
-syn keyword drtFunction radians sin sqrt tan vcross vdot vlength vnormalize
+syn keyword drtFunction abs acos acosh asc asin asinh atan atan2
+syn keyword drtFunction atanh bitwise_and bitwise_or bitwise_xor ceil chr concat cos
+syn keyword drtFunction cosh defined degrees dimension_size dimensions div exp file_exists
+syn keyword drtFunction floor inside int ln log max max_extent min
+syn keyword drtFunction min_extent mod pow radians rand seed select sin
+syn keyword drtFunction sinh sqr sqrt str strcmp strlen strlwr strupr
+syn keyword drtFunction substr tan tanh trace val vaxis_rotate vcross vdot
+syn keyword drtFunction vlength vnormalize vrotate vstr
 syn keyword drtBoolean false no off on true yes
-syn keyword drtConstant pi x y z
+syn keyword drtConstant clock image_height image_width pi tau x y z
 syn keyword drtBlock background blob box camera clipped_by cone cubic cylinder
 syn keyword drtBlock density disc finish fog global_settings image_map interior lathe
 syn keyword drtBlock light_source media mesh motion normal object pigment pigment_map
@@ -16,27 +21,28 @@ syn keyword drtBlock plane poly prism quadric quartic render scattering sky_sphe
 syn keyword drtBlock smooth_triangle sor sphere superellipsoid text texture texture_map tiles
 syn keyword drtBlock torus triangle
 syn keyword drtKeyword absorption adaptive adc_bailout agate all ambient ambient_light angle
-syn keyword drtKeyword aperture area_illumination area_light area_sampling assumed_gamma average bezier_spline blue
-syn keyword drtKeyword bozo brick brick_size brilliance bumps checker circular color
-syn keyword drtKeyword color_map colour colour_map confidence conic_sweep conserve_energy crackle crand
-syn keyword drtKeyword cubic_spline cubic_wave dents difference diffuse direction distance eccentricity
-syn keyword drtKeyword emission error extinction fade_color fade_colour fade_distance fade_power falloff
-syn keyword drtKeyword filter fisheye focal_distance focal_point fog_alt fog_offset fog_type font
-syn keyword drtKeyword frequency fresnel gamma gradient granite green grid height
-syn keyword drtKeyword hexagon hierarchy hollow interpolate intersection intervals inverse inverse_square
-syn keyword drtKeyword ior jitter lambda leopard linear_spline linear_sweep location look_at
-syn keyword drtKeyword map_type marble matrix max_samples max_trace_level media_attenuation media_interaction merge
-syn keyword drtKeyword metallic method min_samples mortar no_shadow octaves offset omega
-syn keyword drtKeyword once onion open orient orthographic panoramic perspective phase
-syn keyword drtKeyword phong phong_size point_at poly_wave pov_grid quadratic_spline radial radius
-syn keyword drtKeyword ramp_wave ratio red reflection reflection_blur refraction_blur rgb rgbf
-syn keyword drtKeyword rgbft rgbt right ripples rotate roughness sampler samples
-syn keyword drtKeyword scale scallop_wave seed shadowless shutter_close shutter_open sine_wave sky
-syn keyword drtKeyword solid_angle specular spherical spotlight srgb srgbf srgbft srgbt
-syn keyword drtKeyword stratified strength string sturm thickness threshold tightness tile2
-syn keyword drtKeyword translate transmit triangle_wave turb_depth turbulence ultra_wide_angle union up
-syn keyword drtKeyword variance waves width wood wrinkles
-syn match drtDirective "#\s*\%(declare\|include\|local\|version\)\>"
+syn keyword drtKeyword aperture area_illumination area_light area_sampling array assumed_gamma at average
+syn keyword drtKeyword bezier_spline blue bozo brick brick_size brilliance bumps checker
+syn keyword drtKeyword circular color color_map colour colour_map confidence conic_sweep conserve_energy
+syn keyword drtKeyword crackle crand cubic_spline cubic_wave dents difference diffuse direction
+syn keyword drtKeyword distance eccentricity emission error extinction fade_color fade_colour fade_distance
+syn keyword drtKeyword fade_power falloff filter fisheye focal_distance focal_point fog_alt fog_offset
+syn keyword drtKeyword fog_type font frequency fresnel gamma gradient granite green
+syn keyword drtKeyword grid height hexagon hierarchy hollow interpolate intersection intervals
+syn keyword drtKeyword inverse inverse_square ior jitter lambda leopard linear_spline linear_sweep
+syn keyword drtKeyword location look_at map_type marble matrix max_samples max_trace_level media_attenuation
+syn keyword drtKeyword media_interaction merge metallic method min_samples mortar no_shadow octaves
+syn keyword drtKeyword offset omega once onion open orient orthographic panoramic
+syn keyword drtKeyword perspective phase phong phong_size point_at poly_wave pov_grid quadratic_spline
+syn keyword drtKeyword radial radius ramp_wave ratio red reflection reflection_blur refraction_blur
+syn keyword drtKeyword rgb rgbf rgbft rgbt right ripples rotate roughness
+syn keyword drtKeyword sampler samples scale scallop_wave shadowless shutter_close shutter_open sine_wave
+syn keyword drtKeyword sky solid_angle specular spherical spline spotlight srgb srgbf
+syn keyword drtKeyword srgbft srgbt stratified strength string sturm thickness threshold
+syn keyword drtKeyword tightness tile2 translate transmit triangle_wave turb_depth turbulence u
+syn keyword drtKeyword ultra_wide_angle union up v variance waves width wood
+syn keyword drtKeyword wrinkles
+syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|switch\|undef\|version\|warning\|while\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
 syn match drtEscape contained +\\["\\nt]+
