@@ -111,7 +111,9 @@ void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampl
     Color weight = pending.weight;
     if (!surface.entering) // the ray crossed the object's interior
         weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
-    shadeTexture(surface, object.texture, weight, sampler, counts, result, stack);
+    forEachSurfaceTexture(hit, [&](const Texture& texture, double share) {
+        shadeTexture(surface, texture, weight * share, sampler, counts, result, stack);
+    });
 }
 
 void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,
@@ -135,7 +137,8 @@ void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture,
 void Integrator::shadePatterned(const SurfaceHit& surface, const Texture& texture, const Color& weight,
                                 Sampler& sampler, RayCounts& counts, Color& result,
                                 std::vector<PendingRay>& stack) const {
-    forEachPickedEntry(texture, surface.hit.point, [&](const Texture& entry, double w) {
+    const Vec3* uv = surface.hit.hasUv ? &surface.hit.uv : nullptr;
+    forEachPickedEntry(texture, surface.hit.point, uv, [&](const Texture& entry, double w) {
         shadeTexture(surface, entry, weight * w, sampler, counts, result, stack);
     });
 }
@@ -171,7 +174,7 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         sp.hit = hit;
         sp.normal = normal;
         sp.incoming = incoming;
-        sp.pigment = evaluatePigment(layer.pigment, hit.point);
+        sp.pigment = evaluatePigment(layer.pigment, hit.point, hit.hasUv ? &hit.uv : nullptr);
         sp.finish = &finish;
         sp.time = pending.ray.time;
         sp.depth = pending.depth;

@@ -45,7 +45,11 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
             // Leaving an object: the segment before this hit ran inside it (POV-Ray fades shadows too).
             if (dot(ray.direction, blocker.geometricNormal) > 0)
                 transmittance *= interiorAttenuation(blocker.object->interior, blocker.t * length(ray.direction));
-            transmittance *= textureFilter(blocker.object->texture, blocker.point);
+            Color filter(0);
+            forEachSurfaceTexture(blocker, [&](const Texture& texture, double share) {
+                filter += textureFilter(texture, blocker.point, blocker.hasUv ? &blocker.uv : nullptr) * share;
+            });
+            transmittance *= filter;
             if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
         if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
@@ -84,6 +88,9 @@ bool anyFilteringCaster(const std::vector<Object>& objects) {
     for (const Object& object : objects) {
         if (object.noShadow) continue;
         if (mayLetLightThrough(object.texture)) return true;
+        if (const auto* mesh = std::get_if<Mesh>(&object.shape))
+            for (const Texture& own : mesh->textures)
+                if (mayLetLightThrough(own)) return true;
         if (const auto* csg = std::get_if<Csg>(&object.shape); csg && anyFilteringCaster(csg->children)) return true;
     }
     return false;

@@ -116,6 +116,9 @@ bool converged(const PixelAccumulator& pixel, const RenderOptions& options) {
 bool anyFinish(const std::vector<Object>& objects, const auto& predicate) {
     for (const Object& object : objects) {
         if (anyFinish(object.texture, predicate)) return true;
+        if (const auto* mesh = std::get_if<Mesh>(&object.shape))
+            for (const Texture& own : mesh->textures)
+                if (anyFinish(own, predicate)) return true;
         if (const auto* csg = std::get_if<Csg>(&object.shape); csg && anyFinish(csg->children, predicate)) return true;
     }
     return false;

@@ -11,6 +11,7 @@
 #include "scene/algebraic.h"
 #include "scene/blob.h"
 #include "scene/extrusion.h"
+#include "scene/indexed_mesh.h"
 #include "scene/revolution.h"
 
 #include <array>
@@ -91,6 +92,11 @@ struct Pigment {
     // the pattern value are evaluated and blended like colour-map entries.
     struct MapEntry;
     std::vector<MapEntry> pigmentMap;
+    // POV-Ray's uv_mapping: the pattern is evaluated at (u, v, 0) of the
+    // surface's uv coordinates (Hit::uv) mapped by toWorld's inverse, and the
+    // object's transforms do not move it (transformPigmentSpaces leaves it).
+    // On a surface without uv coordinates it is evaluated at (0, 0, 0).
+    bool uvMapping = false;
 };
 
 struct Pigment::MapEntry {
@@ -185,7 +191,7 @@ inline void addLayerOnTop(Texture& bottom, Texture top) {
 
 // Applies a transform after the pattern space of a pigment and of all its sub-pigments.
 inline void transformPigmentSpaces(Pigment& p, const Transform& t) {
-    p.toWorld = p.toWorld.then(t);
+    if (!p.uvMapping) p.toWorld = p.toWorld.then(t);
     for (Pigment& child : p.children) transformPigmentSpaces(child, t);
     for (Pigment::MapEntry& entry : p.pigmentMap) transformPigmentSpaces(entry.pigment, t);
 }
@@ -274,7 +280,10 @@ struct Torus { // around the y axis
 // A mesh read from a file after parsing (src/assets fills vertices and
 // triangles): the file and what the scene said about it.
 struct MeshSource {
-    enum class Kind { PovHeightField }; // POV-Ray's height_field image rules
+    enum class Kind {
+        PovHeightField, // POV-Ray's height_field image rules
+        ModelFile,      // OBJ, PLY, glTF 2.0 through assimp (assets/model_load.cpp)
+    };
     Kind kind = Kind::PovHeightField;
     std::string path; // found by the front end
     bool smooth = false;
@@ -291,6 +300,14 @@ struct Mesh {
     // when present, normalIndices has one entry per triangle.
     std::vector<Vec3> normals;
     std::vector<std::array<int, 3>> normalIndices;
+    // The compact form (scene/indexed_mesh.h): when set, the vectors above are
+    // empty and the triangles are here. Copies of the Mesh share it, and the
+    // accelerator builds one BVH for all the objects that show it.
+    std::shared_ptr<const IndexedMesh> indexed;
+    // Textures of single triangles (IndexedMesh::faceTextures index them);
+    // the others take the object's texture. In the mesh's object space, like
+    // Object::texture.
+    std::vector<Texture> textures;
 };
 
 struct Object;
