@@ -128,6 +128,8 @@ private:
     bool objectModifier(ParsedObject& po);
     void motion(Object& object);
     void meshTriangle(Mesh& mesh, bool smooth);
+    Mesh meshFile(); // parser_mesh_file.cpp, at 'file' in 'mesh {'
+
     void setTexture(ParsedObject& po, const Texture& texture);
     void addChild(ParsedObject& parent, ParsedObject child);
     void applyTransform(ParsedObject& po, const Transform& t, const SourceLoc& loc);

@@ -189,6 +189,8 @@ void Parser::shapeBody(const Token& keyword, ParsedObject& po) {
         revolutionBody(keyword, po);
     } else if (w == "blob") {
         blobBody(keyword, po);
+    } else if (w == "mesh" && checkWord("file")) {
+        shape = meshFile();
     } else if (w == "mesh") {
         Mesh m;
         while (checkWord("triangle") || checkWord("smooth_triangle")) {

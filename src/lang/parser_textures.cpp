@@ -2,6 +2,8 @@
 // (scene.h); pattern defaults follow POV-Ray's built-in colour lists.
 #include "lang/parser.h"
 
+#include <utility>
+
 #include <algorithm>
 #include <map>
 
@@ -97,7 +99,7 @@ Pigment Parser::pigmentBody(TokenKind closer, const char* where) {
             std::vector<std::string> known{"color",    "rgb",       "checker", "hexagon",   "brick",
                                            "brick_size", "mortar", "gradient", "radial",  "onion", "spherical",
                                            "color_map", "pigment_map", "average", "image_map", "turbulence", "octaves", "omega", "lambda",
-                                           "translate", "rotate",   "scale",   "matrix"};
+                                           "uv_mapping", "translate", "rotate",   "scale",   "matrix"};
             known.insert(known.end(), kNoiseWords.begin(), kNoiseWords.end());
             known.insert(known.end(), waveWords().begin(), waveWords().end());
             failUnknown(current_, known);
@@ -113,7 +115,11 @@ Pigment Parser::pigmentBody(TokenKind closer, const char* where) {
 bool Parser::pigmentItem(Pigment& p) {
     const SourceLoc loc = current_.loc;
     if (std::optional<Transform> t = transformItem()) {
+        // In a uv-mapped pigment its own transforms move the pattern in uv
+        // space (transformPigmentSpaces leaves uv-mapped pigments alone).
+        const bool uv = std::exchange(p.uvMapping, false);
         transformPigmentSpaces(p, *t);
+        p.uvMapping = uv;
         return true;
     }
     const bool declaredColor = check(TokenKind::Identifier) && lookup(current_.text) &&
@@ -126,6 +132,11 @@ bool Parser::pigmentItem(Pigment& p) {
     }
     if (!check(TokenKind::Identifier)) return false;
     const std::string w = current_.text;
+    if (w == "uv_mapping") {
+        advance();
+        p.uvMapping = true;
+        return true;
+    }
     // A list pattern takes its sub-pigments (or colours), else POV-Ray's defaults.
     auto list = [&](PatternKind kind, std::vector<Pigment> defaults) {
         advance();
