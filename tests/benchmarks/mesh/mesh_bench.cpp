@@ -184,7 +184,7 @@ int measure(const std::string& mode, long n, const std::string& dir, int threads
 }
 
 struct Child {
-    std::map<std::string, double> values;
+    mutable std::map<std::string, double> values; // read with [] (0 when missing)
     double wallSeconds = 0;
     long peakKiB = 0; // the child's ru_maxrss
     bool ok = false;
