@@ -153,6 +153,9 @@ TEST(ModelFile, PlyAsciiAndBinaryGiveTheSameMesh) {
     ASSERT_TRUE(indexedMeshBounds(b, loB, hiB));
     EXPECT_EQ(hiA, (Vec3{2, 1, 0}));
     EXPECT_EQ(hiB, (Vec3{2, 1, 0}));
+    // PLY has no materials: the triangles show the object's texture.
+    EXPECT_TRUE(std::get<Mesh>(scene.objects[0].shape).textures.empty());
+    EXPECT_TRUE(a.faceTextures.empty());
 }
 
 std::string toBase64(const std::string& bytes) {

@@ -22,6 +22,7 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -35,8 +36,12 @@ namespace {
 // colour of its own (assimp's default material).
 std::optional<Pigment> materialPigment(const aiMaterial& material, double workingGamma,
                                        const MeshSource& source, Diagnostics& diags) {
-    if (std::string(material.GetName().C_Str()) == AI_DEFAULT_MATERIAL_NAME)
-        return std::nullopt;
+    // assimp gives a file without materials a default one (OBJ: "DefaultMaterial",
+    // grey; PLY, which has no materials at all: a nameless white one).
+    const std::string name = material.GetName().C_Str();
+    std::string extension = std::filesystem::path(source.path).extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (name == AI_DEFAULT_MATERIAL_NAME || (name.empty() && extension == ".ply")) return std::nullopt;
     aiString file;
     aiColor4D color(0.6f, 0.6f, 0.6f, 1.0f);
     const bool hasColor = material.Get(AI_MATKEY_BASE_COLOR, color) == AI_SUCCESS ||
