@@ -334,7 +334,7 @@ int main(int argc, char** argv) {
                     run({path, "render", file(dir, n, scene), "-o", dir + "/out.png", "--width", "320",
                          "--height", "240", "--spp", "2", "--threads", std::to_string(threads)});
                 const std::string what = fmt::format(
-                    "{} render {}", label, scene == std::string("drt") ? "text mesh" : "mesh {{ file }}");
+                    "{} render {}", label, scene == std::string("drt") ? "text mesh" : "mesh { file }");
                 if (!c.ok) {
                     row(what.c_str(), 0, 0, "cannot read it");
                     continue;
