@@ -323,7 +323,7 @@ TEST(Accel, DifferenceIntersectionMergeAndInverse) {
 TEST(Accel, OccludedHonoursNoShadow) {
     for (int kind = 0; kind < 3; ++kind) { // analytic, triangles, moving
         Object blocker = kind == 1 ? makeObject(Box{{-1, -1, -1}, {1, 1, 1}}) : makeObject(Sphere{{0, 0, 0}, 1});
-        if (kind == 2) blocker.motion = Motion{{0.1, 0, 0}, {0, 0, 0}, {1, 1, 1}};
+        if (kind == 2) blocker.motion = {MotionStage{motionTo({0.1, 0, 0}), {}}};
         Ray ray;
         ray.origin = {0, 0, -5};
         ray.direction = {0, 0, 1};
@@ -393,7 +393,7 @@ TEST(Accel, BoundsExcludePlanes) {
 
 TEST(Accel, MovingSphereIsHitWhereItIsAtTheRaysTime) {
     Object sphere = makeObject(Sphere{{0, 0, 0}, 1});
-    sphere.motion = Motion{{2, 0, 0}, {0, 0, 0}, {1, 1, 1}};
+    sphere.motion = {MotionStage{motionTo({2, 0, 0}), {}}};
     Scene scene = sceneOf({sphere});
     Accelerator accel(scene);
     EXPECT_TRUE(accel.hasMotion());
@@ -416,7 +416,7 @@ TEST(Accel, RotatingBoxSlerps) {
     // (cos 45, 0, -sin 45) and reaches 2; a linear blend of matrices would
     // shrink it to 1.41.
     Object bar = makeObject(Box{{0, -0.1, -0.1}, {2, 0.1, 0.1}});
-    bar.motion = Motion{{0, 0, 0}, {0, 90, 0}, {1, 1, 1}};
+    bar.motion = {MotionStage{motionTo({0, 0, 0}, {0, 90, 0}), {}}};
     const Scene accelScene = sceneOf({bar});
     Accelerator accel(accelScene);
     const double c = std::sqrt(0.5);
@@ -430,7 +430,7 @@ TEST(Accel, RotatingBoxSlerps) {
     expectHit(trace(accel, {0, 5, -1.5}, {0, -1, 0}, 1), 4.9, {0, 0.1, -1.5}, {0, 1, 0}, 1e-5);
 
     // 270 degrees turns the long way: at t = 0.5 it has turned 135 degrees.
-    bar.motion->rotate = {0, 270, 0};
+    bar.motion = {MotionStage{motionTo({0, 0, 0}, {0, 270, 0}), {}}};
     const Scene longWayScene = sceneOf({bar});
     Accelerator longWay(longWayScene);
     EXPECT_TRUE(trace(longWay, {-1.5 * c, 5, -1.5 * c}, {0, -1, 0}, 0.5));
@@ -439,7 +439,7 @@ TEST(Accel, RotatingBoxSlerps) {
 
 TEST(Accel, MotionScalePivotsOnTheWorldOrigin) {
     Object sphere = makeObject(Sphere{{0, 0, 0}, 1}, Transform::translate({2, 0, 0}));
-    sphere.motion = Motion{{0, 0, 0}, {0, 0, 0}, {3, 1, 1}};
+    sphere.motion = {MotionStage{motionTo({0, 0, 0}, {0, 0, 0}, {3, 1, 1}), {}}};
     const Scene accelScene = sceneOf({sphere});
     Accelerator accel(accelScene);
     // At t = 1 the x scale 3 maps the sphere to an ellipsoid around x = 6, x radius 3.
@@ -529,19 +529,19 @@ namespace {
 
 // A zero-length shutter (Accelerator(scene, time)) places moving objects at that
 // time in double precision: every query then answers bit for bit as on the static
-// scene whose transforms are object.transform.then(MotionPath::at(time)). The
+// scene whose transforms are placementAt(transform, motion, time). The
 // motion moves the objects to ~5e4, where Embree's float instance transform would
 // be off by ~4e-3 (ulp(5e4) = 0.0039), which moves silhouettes and shadows.
 TEST(Accel, ZeroLengthShutterBakesMotionBitForBit) {
-    const Motion motion{{1e5 + 0.3, 20.1, -1e5 - 0.7}, {10, 70, 0}, {1.3, 0.9, 1.1}};
+    const MotionChain motion{MotionStage{motionTo({1e5 + 0.3, 20.1, -1e5 - 0.7}, {10, 70, 0}, {1.3, 0.9, 1.1}), {}}};
     std::vector<Object> objects = {makeObject(Sphere{{0.4, 0, 0}, 0.7}, Transform::rotate({0, 0, 30})),
                                    makeObject(Box{{-1, -0.5, -0.5}, {0, 0.5, 0.5}}, Transform::scale({1, 2, 1}))};
     for (Object& o : objects) o.motion = motion;
     std::vector<Object> placed = objects;
     constexpr double kTime = 0.5;
     for (Object& o : placed) {
-        o.motion.reset();
-        o.transform = o.transform.then(accel::MotionPath(motion).at(kTime));
+        o.transform = placementAt(o.transform, o.motion, kTime);
+        o.motion.clear();
     }
     const Scene movingScene = sceneOf(objects), stillScene = sceneOf(placed);
     const Accelerator baked(movingScene, kTime), still(stillScene), interpolated(movingScene);

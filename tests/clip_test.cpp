@@ -175,7 +175,7 @@ TEST(Clip, MovingClippedMeshIsARenderError) {
     mesh.triangles = {{0, 1, 2}};
     Object tri = makeObject(mesh);
     tri.clippedBy.push_back(makeObject(Sphere{{0, 0, 0}, 1}));
-    tri.motion = Motion{{1, 0, 0}, {0, 0, 0}, {1, 1, 1}};
+    tri.motion = {MotionStage{motionTo({1, 0, 0}), {}}};
     EXPECT_THROW(buildAccelerator(sceneOf({tri})), RenderError);
 }
 

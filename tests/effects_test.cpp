@@ -1,4 +1,4 @@
-// Exact (bit-for-bit) limits of the distribution effects (issue 3): each effect
+// Exact (bit-for-bit) limits of the distribution effects (docs/effects.md): each effect
 // switched to its degenerate value renders the image without it. Plus the
 // area-light estimators' exact cases and light decorrelation.
 #include "accel/motion.h"
@@ -69,15 +69,15 @@ TEST(Effects, ApertureZeroIsThePinholeBitForBit) {
 
 TEST(Effects, ZeroLengthShutterIsTheStaticSceneAtThatTime) {
     Scene moving = testScene();
-    const Motion motion{{0.5, 0.3, 0}, {0, 40, 0}, {1.2, 1, 1}};
+    const MotionChain motion{MotionStage{motionTo({0.5, 0.3, 0}, {0, 40, 0}, {1.2, 1, 1}), {}}};
     moving.objects[1].motion = motion;
     moving.camera.shutterOpen = moving.camera.shutterClose = 0.5;
-    // The static pose at time 1/2 as the accelerator defines it (motion.h:
-    // scale, then rotate about the motion's axis, then translate, appended
+    // The static pose at time 1/2 as the scene model defines it
+    // (scene/motion.h: scale, then rotate, then translate, each interpolated,
     // after the object's own identity transform), composed by the same
-    // MotionPath::at, so both scenes hold the same double-precision transform.
+    // placementAt, so both scenes hold the same double-precision transform.
     Scene still = testScene();
-    still.objects[1].transform = accel::MotionPath(motion).at(0.5);
+    still.objects[1].transform = placementAt(Transform(), motion, 0.5);
     // (Accel.ZeroLengthShutterBakesMotionBitForBit checks the same per ray
     // with a motion whose float form Embree would round visibly.)
     const RenderOptions options = smallOptions();
@@ -88,9 +88,8 @@ TEST(Effects, ZeroLengthShutterIsTheStaticSceneAtThatTime) {
     // scale by 1.1 in x) differs from it only by rounding in the last bits of
     // the transform, which may move an edge sample.
     Scene byHand = testScene();
-    const Motion half{{0.25, 0.15, 0}, {0, 20, 0}, {1.1, 1, 1}};
     byHand.objects[1].transform =
-        Transform::scale(half.scale).then(Transform::rotate(half.rotate)).then(Transform::translate(half.translate));
+        Transform::scale({1.1, 1, 1}).then(Transform::rotate({0, 20, 0})).then(Transform::translate({0.25, 0.15, 0}));
     const RenderResult c = render(byHand, options);
     double worst = 0;
     for (size_t i = 0; i < a.color.pixels.size(); ++i)

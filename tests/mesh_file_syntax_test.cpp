@@ -1,7 +1,7 @@
-// `mesh { file "..." }` and `uv_mapping` in .drt scenes, end to end: the
-// parser finds the file, the assets stage reads it, and the render shows it
-// with its uv-mapped pattern at known pixels; errors carry file, line, column
-// and caret.
+// `mesh { file "..." }` and `uv_mapping` in .drt and .pov scenes, end to end:
+// the front end finds the file, the assets stage reads it, and the render
+// shows it with its uv-mapped pattern at known pixels; errors carry file,
+// line, column and caret.
 #include "assets/assets.h"
 #include "lang/load.h"
 #include "render/render.h"
@@ -27,8 +27,9 @@ f 1/1 3/3 2/2
 f 1/1 4/4 3/3
 )";
 
-std::optional<Scene> parse(const std::string& dir, const std::string& text, Diagnostics& diags) {
-    const std::string path = test::writeFile(dir + "/scene.drt", text);
+std::optional<Scene> parse(const std::string& dir, const std::string& text, Diagnostics& diags,
+                           const std::string& name = "scene.drt") {
+    const std::string path = test::writeFile(dir + "/" + name, text);
     auto scene = loadSceneFile(path, diags);
     if (scene && !diags.hasErrors())
         resolveAssets(*scene, diags);
@@ -101,6 +102,79 @@ TEST(MeshFileSyntax, MissingAndMalformedFilesAreErrorsWithLineColumnAndCaret) {
     EXPECT_NE(bad.err.find("bad.drt:1:13: error: cannot read the model"), std::string::npos) << bad.err;
     EXPECT_NE(bad.err.find("malformed or truncated"), std::string::npos) << bad.err;
     EXPECT_FALSE(std::filesystem::exists(dir + "/bad.png"));
+}
+
+// The checker of ModelFileWithUvMappedCheckerShowsItsCells, written as a
+// POV-Ray scene with uv_mapping in the texture: the same cells.
+TEST(MeshFileSyntax, PovSceneReadsTheModelAndUvMapsTheTexture) {
+    const std::string dir = test::tempDir();
+    test::writeFile(dir + "/square.obj", kSquareObj);
+    const std::string scene = R"(
+camera { orthographic location <1, 1, -5> direction z right 2 * x up 2 * y }
+#declare Name = "square";
+mesh { file concat(Name, ".obj")
+  texture { uv_mapping pigment { checker color rgb <1, 0, 0>, color rgb <0, 0, 1> scale 0.25 }
+            finish { ambient 1 diffuse 0 } }
+  translate x * 0 }
+)";
+    Diagnostics diags;
+    const auto loaded = parse(dir, scene, diags, "scene.pov");
+    ASSERT_TRUE(loaded && !diags.hasErrors()) << diags.formatAll();
+    RenderOptions options;
+    options.width = options.height = 8;
+    options.samplesPerPixel = 1;
+    const RenderResult r = render(*loaded, options);
+    EXPECT_NEAR(r.color.at(2, 6, 2), 1, 1e-6);
+    EXPECT_NEAR(r.color.at(2, 6, 0), 0, 1e-6);
+    EXPECT_NEAR(r.color.at(0, 7, 0), 1, 1e-6);
+    EXPECT_NEAR(r.color.at(1, 7, 0), 1, 1e-6);
+}
+
+// The object's transforms move a uv-mapped pattern with the surface (it
+// stays on the same uv cells); the pigment's own transforms act in uv space.
+TEST(MeshFileSyntax, UvMappedPatternIgnoresTheObjectsTransformsButNotItsOwn) {
+    Diagnostics diags;
+    const auto scene = loadSceneText(R"(
+mesh { triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> }
+  pigment { uv_mapping checker color rgb 1, color rgb 0 scale 0.5 translate x }
+  scale 3 rotate y * 30 }
+)",
+                                     "uv.drt", diags);
+    ASSERT_TRUE(scene && !diags.hasErrors()) << diags.formatAll();
+    const Pigment& p = scene->objects[0].texture.pigment;
+    EXPECT_TRUE(p.uvMapping);
+    EXPECT_TRUE(p.children.empty() || p.children[0].uvMapping);
+    // Pattern space = uv space scaled by 0.5, then moved by x: the object's scale and rotation are not in it.
+    const Vec3 uvPoint = p.toWorld.inversePoint(Vec3(1.25, 0.5, 0));
+    EXPECT_NEAR(uvPoint.x, 0.5, 1e-12);
+    EXPECT_NEAR(uvPoint.y, 1.0, 1e-12);
+    EXPECT_NEAR(uvPoint.z, 0.0, 1e-12);
+}
+
+TEST(MeshFileSyntax, EveryFrontEndErrorIsLocated) {
+    const std::string dir = test::tempDir();
+    std::filesystem::create_directories(dir + "/folder.obj");
+    struct Case {
+        const char* file;
+        const char* text;
+        const char* expected;
+    };
+    const Case cases[] = {
+        {"missing.pov", "mesh {\n  file \"nothing.obj\" }\n",
+         "missing.pov:2:8: error: cannot find model file 'nothing.obj'"},
+        {"unquoted.drt", "mesh { file square }\n", "unquoted.drt:1:13: error: expected the model file name in quotes"},
+        {"folder.drt", "mesh { file \"folder.obj\" }\n", "folder.drt:1:13: error: cannot read the model"},
+    };
+    for (const Case& c : cases) {
+        test::writeFile(dir + "/" + c.file, c.text);
+        const test::CommandResult r = test::runDrt("render " + dir + "/" + c.file + " -o " + dir + "/out.png");
+        EXPECT_EQ(r.exitCode, 1) << c.file;
+        EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("^"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir + "/out.png")) << c.file;
+    }
+    const test::CommandResult folder = test::runDrt("render " + dir + "/folder.drt -o " + dir + "/out.png");
+    EXPECT_NE(folder.err.find("it is a directory"), std::string::npos) << folder.err;
 }
 
 } // namespace

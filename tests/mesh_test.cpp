@@ -293,7 +293,7 @@ TEST(IndexedMesh, NoShadowPlacementIsSkippedByShadowRays) {
 
 TEST(IndexedMesh, MovingCompactMeshIsCopiedAndStillHasUvs) {
     Object o = makeObject(compact(unitSquare()));
-    o.motion = Motion{{2, 0, 0}, {}, {1, 1, 1}};
+    o.motion = {MotionStage{motionTo({2, 0, 0}), Transform()}};
     const Scene scene = sceneOf({o});
     const Accelerator accel(scene);
     EXPECT_EQ(accel.meshStats().sharedMeshes, 0u);

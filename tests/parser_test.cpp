@@ -422,16 +422,69 @@ TEST(Parser, NestedDeclaredUnion) {
 TEST(Parser, MotionBlock) {
     const Scene s = parseOk("sphere { 0, 1 translate x motion { translate <0, 1, 0> rotate <0, 0, 10> scale 2 } }\n"
                             "sphere { 0, 1 motion { translate x } scale 2 }\n"
-                            "union { sphere { 0, 1 } motion { translate y } translate z }\n");
-    ASSERT_TRUE(s.objects.at(0).motion);
-    expectNear(s.objects[0].motion->translate, {0, 1, 0});
-    expectNear(s.objects[0].motion->rotate, {0, 0, 10});
-    expectNear(s.objects[0].motion->scale, {2, 2, 2});
-    EXPECT_FALSE(s.objects.size() < 3);
-    // A later transform turns a translation-only motion with it.
-    expectNear(s.objects[1].motion->translate, {2, 0, 0});
-    expectNear(s.objects[2].motion->translate, {0, 1, 0});
-    EXPECT_FALSE(parseOk("sphere { 0, 1 }").objects.at(0).motion);
+                            "union { sphere { 0, 1 } motion { translate y } translate z }\n"
+                            "sphere { 0, 1 motion { spline at 0.5 rotate y*180 at 1 rotate y*360 translate x } }\n");
+    ASSERT_EQ(s.objects.size(), 4u);
+    // One key at time 1, from the identity the parser puts at time 0.
+    const Object& a = s.objects[0];
+    ASSERT_EQ(a.motion.size(), 1u);
+    const Motion& m = a.motion[0].motion;
+    ASSERT_EQ(m.keys.size(), 2u);
+    EXPECT_EQ(m.keys[0], MotionKey{0});
+    EXPECT_EQ(m.keys[1].time, 1);
+    expectNear(m.keys[1].translate, {0, 1, 0});
+    expectNear(m.keys[1].rotate, {0, 0, 10});
+    expectNear(m.keys[1].scale, {2, 2, 2});
+    EXPECT_FALSE(m.spline);
+    expectNear(a.transform.point({0, 0, 0}), {1, 0, 0}); // the transforms before the motion
+    // A transform after the motion goes after it (the motion is scaled too).
+    const Object& b = s.objects[1];
+    expectNear(b.transform.point({0, 0, 0}), {0, 0, 0});
+    expectNear(placementAt(b.transform, b.motion, 1).point({0, 0, 0}), {2, 0, 0});
+    expectNear(placementAt(b.transform, b.motion, 0.5).point({0, 0, 0}), {1, 0, 0});
+    // A union's motion and later transforms reach its member.
+    const Object& c = s.objects[2];
+    expectNear(placementAt(c.transform, c.motion, 1).point({0, 0, 0}), {0, 1, 1});
+    // Keys with times; an identity key at 0 is added.
+    const Motion& d = s.objects[3].motion.at(0).motion;
+    ASSERT_EQ(d.keys.size(), 3u);
+    EXPECT_TRUE(d.spline);
+    EXPECT_EQ(d.keys[0], MotionKey{0});
+    EXPECT_EQ(d.keys[1].time, 0.5);
+    expectNear(d.keys[2].rotate, {0, 360, 0});
+    expectNear(d.keys[2].translate, {1, 0, 0});
+    expectNear(d.keys[2].scale, {1, 1, 1});
+    EXPECT_TRUE(parseOk("sphere { 0, 1 }").objects.at(0).motion.empty());
+}
+
+TEST(Parser, MotionStandsWhereItIsWritten) {
+    // Spinning about its own centre c = <3, 0, 0>: moved to the origin, turned, moved back.
+    const Scene s = parseOk("sphere { <3, 0, 1>, 0.5 pigment { checker } translate <-3, 0, 0> "
+                            "motion { rotate y*360 } translate <3, 0, 0> }\n"
+                            "union { sphere { <1, 0, 0>, 0.5 motion { rotate y*90 } } translate <0, 2, 0> rotate x*90 }\n");
+    const Object& wheel = s.objects.at(0);
+    for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+        const Transform at = placementAt(wheel.transform, wheel.motion, t);
+        expectNear(at.point({3, 0, 0}), {3, 0, 0}); // the centre stays put
+        expectNear(at.point({3, 0, 1}), Vec3{3, 0, 0} + Transform::rotate({0, 360 * t, 0}).point({0, 0, 1}));
+    }
+    // The texture is placed in the rest pose (every motion the identity).
+    expectNear(wheel.texture.pigment.toWorld.point({1, 2, 3}), {1, 2, 3});
+    // A member of a transformed union turns in the union's own space.
+    const Object& member = s.objects.at(1);
+    const Transform outer = Transform::translate({0, 2, 0}).then(Transform::rotate({90, 0, 0}));
+    for (double t : {0.0, 0.5, 1.0})
+        expectNear(placementAt(member.transform, member.motion, t).point({1, 0, 0}),
+                   outer.point(Transform::rotate({0, 90 * t, 0}).point({1, 0, 0})));
+}
+
+TEST(Parser, ClipsOfAMovingObjectAreInItsRestPose) {
+    const Scene s = parseOk("sphere { 0, 1 clipped_by { box { -1, 0 } } translate x motion { rotate y*90 } "
+                            "translate <0, 2, 0> }");
+    const Object& o = s.objects.at(0);
+    ASSERT_EQ(o.clippedBy.size(), 1u);
+    expectNear(o.clippedBy[0].transform.point({0, 0, 0}), {1, 2, 0});
+    expectNear(restPlacement(o.transform, o.motion).point({0, 0, 0}), {1, 2, 0});
 }
 
 TEST(Parser, SemicolonsAndVersionAreAccepted) {
@@ -466,7 +519,7 @@ TEST(Parser, ErrorInIncludedFileShowsTheIncludeChain) {
     EXPECT_FALSE(loadSceneFile(main, diags));
     ASSERT_EQ(diags.errorCount(), 1);
     const Diagnostic& d = diags.all()[0];
-    EXPECT_EQ(d.message, "sphere radius must be positive");
+    EXPECT_EQ(d.message, "sphere radius must be positive, got -1");
     EXPECT_EQ(d.loc.line, 2);
     EXPECT_EQ(d.loc.column, 13);
     ASSERT_EQ(d.includedFrom.size(), 2u);

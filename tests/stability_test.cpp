@@ -1,4 +1,4 @@
-// Stability where methods fail (issue 6): each test drives the renderer into a
+// Stability where methods fail: each test drives the renderer into a
 // regime where a naive method breaks (tiny or huge scenes, far from the origin,
 // total internal reflection, grazing rays, degenerate lights, lenses, shutters
 // and triangles, deep recursion, coincident surfaces) and asserts no NaN/Inf,
@@ -359,7 +359,7 @@ TEST(Stability, ZeroApertureIsThePinholeAndHugeAperturesStayFinite) {
 
 TEST(Stability, ZeroShutterIsStaticAndLongShuttersStayFinite) {
     Scene moving = shadowScene();
-    moving.objects[1].motion = Motion{{1, 0, 0}, {0, 0, 0}, {1, 1, 1}};
+    moving.objects[1].motion = {MotionStage{motionTo({1, 0, 0}), {}}};
     const RenderResult still = render(shadowScene(), options(32, 24, 4));
     moving.camera.shutterOpen = moving.camera.shutterClose = 0; // time 0: the pose without motion
     const RenderResult zero = render(moving, options(32, 24, 4));

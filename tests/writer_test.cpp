@@ -200,11 +200,23 @@ struct Differ {
                  eq(s.prism->points.size(), t.prism->points.size(), p + ".prism.points");
         return ok;
     }
-    bool motion(const std::optional<Motion>& a, const std::optional<Motion>& b, const std::string& p) {
-        if (!eq(a.has_value(), b.has_value(), p))
+    bool motion(const MotionChain& a, const MotionChain& b, const std::string& p) {
+        if (!eq(a.size(), b.size(), p + ".size"))
             return false;
-        return !a || (eq(a->translate, b->translate, p + ".translate") &&
-                      eq(a->rotate, b->rotate, p + ".rotate") && eq(a->scale, b->scale, p + ".scale"));
+        for (size_t i = 0; i < a.size(); ++i) {
+            const Motion &m = a[i].motion, &n = b[i].motion;
+            const std::string q = p + "[" + std::to_string(i) + "]";
+            if (!eq(m.keys.size(), n.keys.size(), q + ".keys") || !eq(m.spline, n.spline, q + ".spline") ||
+                !transform(a[i].after, b[i].after, q + ".after"))
+                return false;
+            for (size_t k = 0; k < m.keys.size(); ++k)
+                if (!eq(m.keys[k].time, n.keys[k].time, q + ".time") ||
+                    !eq(m.keys[k].translate, n.keys[k].translate, q + ".translate") ||
+                    !eq(m.keys[k].rotate, n.keys[k].rotate, q + ".rotate") ||
+                    !eq(m.keys[k].scale, n.keys[k].scale, q + ".scale"))
+                    return false;
+        }
+        return true;
     }
     bool object(const Object& a, const Object& b, const std::string& p) {
         return shape(a.shape, b.shape, p + ".shape") &&

@@ -146,12 +146,16 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     const unsigned instID = rayhit.hit.instID[0];
     const Transform* motion = nullptr; // level space -> world, if the top level's is not world
     const Instance* instance = nullptr;
+    hit.instance = -1;
     if (instID != RTC_INVALID_GEOMETRY_ID) {
-        instance = &impl_->instances[impl_->top.geometries[instID].index];
+        const size_t index = impl_->top.geometries[instID].index;
+        instance = &impl_->instances[index];
         level = instance->level.get();
         Vec3 unusedO, unusedD;
         query.levelRay(instID, rayhit.ray.time, unusedO, unusedD); // the callback's transform, or solved now
         motion = &*query.instanceToWorld;
+        // A compact mesh's placement is still: only moving objects have a rest pose (restToWorld).
+        if (!instance->placed) hit.instance = static_cast<int>(index);
     }
     const bool shiftedTop = !motion && impl_->shifted;
     const Vec3& o = motion ? query.instanceOrigin : query.origin;
@@ -234,10 +238,13 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     }
     if (motion) {
         hit.point = motion->point(point);
+        if (instance->placed) hit.restPoint = hit.point;
+        else hit.restPoint = impl_->shifted ? point + impl_->frameOrigin : point;
         hit.geometricNormal = unitOrTowardOrigin(motion->normal(geometric));
         hit.shadingNormal = unitOr(motion->normal(shading), hit.geometricNormal);
     } else {
         hit.point = shiftedTop ? point + impl_->frameOrigin : point;
+        hit.restPoint = hit.point;
         hit.geometricNormal = geometric;
         hit.shadingNormal = shading;
     }
@@ -301,6 +308,13 @@ Accelerator::MeshStats Accelerator::meshStats() const {
     for (const Instance& instance : impl_->instances)
         if (instance.placed) ++stats.placements;
     return stats;
+}
+
+Transform Accelerator::restToWorld(const Hit& hit, double time) const {
+    if (hit.instance < 0 || size_t(hit.instance) >= impl_->instances.size()) return Transform();
+    const Instance& instance = impl_->instances[size_t(hit.instance)];
+    if (!instance.motion) return Transform();
+    return instance.motion->at(std::fmin(1.0, std::fmax(0.0, time)));
 }
 
 void Accelerator::bounds(Vec3& lower, Vec3& upper) const {

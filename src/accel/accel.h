@@ -6,19 +6,14 @@
 // (prism, text: extrusion_shape.h) are analytic Embree user geometry
 // (intersected in object space in double precision, so any affine transform
 // works); boxes, triangles and meshes are Embree triangles.
-// Objects with Motion become instances of their own sub-scene with two
-// transform time steps; static objects carry no time steps.
-//
-// Motion pivot (decided here): the motion's scale and rotation pivot on the
-// *world origin*, like every POV-Ray transform, i.e. the motion is appended
-// after Object::transform:
-//   world(t) = translate(t T) * slerp(I, R, t) * scale(lerp(1, S, t)) * transform.
-// To spin an object about its own centre, model it at the origin and put the
-// placement in the motion's translate (or in an enclosing object). R is turned
-// into one axis and an angle in [0, 360) degrees, so rotate 270*y turns 270
-// degrees (Embree instance time steps are added so each step turns < 180).
-// Motion is supported on top-level objects and on whole unions/CSGs, not on
-// children inside them (RenderError "not supported yet").
+// Moving objects (Object::motion, scene/motion.h) become instances of their
+// own sub-scene, built in their rest pose, with as many transform time steps
+// as their path needs (accel/motion.h); static objects carry no time steps.
+// Motion stands where it is written in an object's chain of transforms, so
+// `translate -c motion { rotate y*360 } translate c` spins about c. A union
+// whose members move is split into its members; a whole moving union is one
+// instance. Motion inside merge, difference or intersection is not supported
+// yet (RenderError).
 //
 // CSG: union children become separate geometry (Hit::object is the child
 // inside Csg::children). Merge, difference and intersection are evaluated
@@ -73,6 +68,12 @@ struct Hit {
     // object hit, which scales offsetOrigin's absolute offset near zero.
     Vec3 frameOrigin;
     double frameUnit = 1;
+    // Where the surface point is in its object's rest pose (scene/motion.h):
+    // textures move with their object, so they are evaluated here. The world
+    // point for objects that do not move.
+    Vec3 restPoint;
+    // The moving object's instance (for restToWorld), or -1.
+    int instance = -1;
 };
 
 class Accelerator {
@@ -80,7 +81,7 @@ public:
     // Throws RenderError (core/error.h) on Embree errors or invalid geometry.
     explicit Accelerator(const Scene& scene);
     // For rays that all have time `onlyTime` (a zero-length shutter): moving
-    // objects are placed at that time in double precision (MotionPath::at) and
+    // objects are placed at that time in double precision (placementAt) and
     // built as static geometry, so the image is the static scene's at that
     // time bit for bit. Rays with another time see the objects at onlyTime.
     Accelerator(const Scene& scene, double onlyTime);
@@ -114,6 +115,9 @@ public:
 
     // True if some object has Motion (the scene was built with time steps).
     bool hasMotion() const;
+    // The map from a moving object's rest pose to the world at `time`, for a
+    // hit on it (Hit::instance >= 0); the identity otherwise.
+    Transform restToWorld(const Hit& hit, double time) const;
     // Bounding box of everything finite in the scene (planes excluded).
     void bounds(Vec3& lower, Vec3& upper) const;
 

@@ -35,16 +35,28 @@ double determinant3(const Mat4& m) {
 
 AnalyticShape prepare(const Object& object) {
     try {
-        return *prepareShape(object.shape);
+        std::optional<AnalyticShape> shape = prepareShape(object.shape);
+        // Every shape not traced as triangles needs an entry in prepareShape (accel/shapes.cpp).
+        if (!shape) fail(object, "this shape has no intersection code");
+        return *shape;
     } catch (const std::invalid_argument& e) {
         fail(object, e.what());
     }
 }
 
-bool isAnalytic(const Shape& shape) {
-    return !std::holds_alternative<Mesh>(shape) && !std::holds_alternative<Csg>(shape) &&
-           !std::holds_alternative<Box>(shape);
+// Meshes and boxes go to Embree as triangles (CSG is split into its members
+// before this is asked); every other shape is traced by accel/shapes.cpp.
+bool tracedAsTriangles(const Shape& shape) {
+    return std::holds_alternative<Mesh>(shape) || std::holds_alternative<Box>(shape);
 }
+
+// Where a moving object is put (scene/motion.h): `placed` replaces
+// object.transform (its rest pose, or its pose at one time), and
+// `clipsTo`, if given, moves its clips from the rest pose to that time.
+struct Placed {
+    const Transform* placed = nullptr;
+    const Transform* clipsTo = nullptr;
+};
 
 struct Builder {
     AcceleratorState& impl;
@@ -52,14 +64,6 @@ struct Builder {
     // World (or world at time 0) -> level space: the frame shift, if any.
     Transform toLevel(const Transform& toWorld) const {
         return impl.shifted ? toWorld.then(Transform::translate(-impl.frameOrigin)) : toWorld;
-    }
-
-    MotionPath motionOf(const Object& object) {
-        try {
-            return MotionPath(*object.motion);
-        } catch (const std::invalid_argument& e) {
-            fail(object, e.what());
-        }
     }
 
     void extendWorldBounds(const Vec3& lo, const Vec3& hi) {
@@ -79,18 +83,17 @@ struct Builder {
         }
     };
 
-    // An object's transform into level space; `motionAt`, if given, is its
-    // motion baked in at one time (applied after object.transform).
-    static Transform placement(const Object& object, const Transform& parentToLevel, const Transform* motionAt) {
-        return (motionAt ? object.transform.then(*motionAt) : object.transform).then(parentToLevel);
+    // An object's transform into level space.
+    static Transform placement(const Object& object, const Transform& parentToLevel, Placed where) {
+        return (where.placed ? *where.placed : object.transform).then(parentToLevel);
     }
 
     // The clipped_by objects of `object` in level space (they live in the
-    // object's parent space and move with its motion).
-    std::vector<CsgNode> clipNodes(const Object& object, const Transform& parentToLevel, const Transform* motionAt) {
+    // object's parent space, a moving object's rest pose for a moving one).
+    std::vector<CsgNode> clipNodes(const Object& object, const Transform& parentToLevel, Placed where) {
         std::vector<CsgNode> clips;
         if (object.clippedBy.empty()) return clips;
-        const Transform clipToLevel = motionAt ? motionAt->then(parentToLevel) : parentToLevel;
+        const Transform clipToLevel = where.clipsTo ? where.clipsTo->then(parentToLevel) : parentToLevel;
         for (const Object& clip : object.clippedBy) {
             if (std::holds_alternative<Mesh>(clip.shape))
                 fail(clip, "a mesh or triangle as a clipped_by object is not supported yet");
@@ -99,12 +102,13 @@ struct Builder {
         return clips;
     }
 
-    CsgNode csgNode(const Object& object, const Transform& parentToLevel, const Transform* motionAt = nullptr) {
-        if (object.motion && !motionAt) fail(object, "motion on an object inside a CSG is not supported yet");
+    CsgNode csgNode(const Object& object, const Transform& parentToLevel, Placed where = {}) {
+        if (!object.motion.empty() && !where.placed)
+            fail(object, "motion on an object inside merge, difference or intersection is not supported yet");
         CsgNode node;
         node.inverse = object.inverse;
-        node.clips = clipNodes(object, parentToLevel, motionAt);
-        const Transform toLevel = placement(object, parentToLevel, motionAt);
+        node.clips = clipNodes(object, parentToLevel, where);
+        const Transform toLevel = placement(object, parentToLevel, where);
         if (const auto* csg = std::get_if<Csg>(&object.shape)) {
             if (csg->children.empty()) fail(object, "CSG with no children");
             node.leaf = false;
@@ -284,21 +288,22 @@ struct Builder {
         impl.instances.push_back(std::move(placed));
     }
 
-    // `motionAt`: see placement(). `parentClips`: the clipped_by objects of
-    // enclosing unions, in level space.
+    // `where`: see Placed. `parentClips`: the clipped_by objects of enclosing
+    // unions, in level space.
     void addObject(Level& level, LevelBounds& bounds, const Object& object, const Transform& parentToLevel,
-                   bool parentInverse, bool parentNoShadow, const Transform* motionAt = nullptr,
+                   bool parentInverse, bool parentNoShadow, Placed where = {},
                    const std::vector<CsgNode>& parentClips = {}) {
-        const Transform toLevel = placement(object, parentToLevel, motionAt);
+        const Transform toLevel = placement(object, parentToLevel, where);
         const bool inverse = object.inverse != parentInverse;
         const bool noShadow = object.noShadow || parentNoShadow;
         std::vector<CsgNode> clips = parentClips;
         if (const auto* csg = std::get_if<Csg>(&object.shape)) {
             if (csg->op == Csg::Op::Union) {
-                for (CsgNode& clip : clipNodes(object, parentToLevel, motionAt)) clips.push_back(std::move(clip));
+                for (CsgNode& clip : clipNodes(object, parentToLevel, where)) clips.push_back(std::move(clip));
                 for (const Object& child : csg->children) {
-                    if (child.motion) fail(child, "motion on an object inside a union is not supported yet");
-                    addObject(level, bounds, child, toLevel, inverse, noShadow, nullptr, clips);
+                    // Moving members were split off before (addPlaced).
+                    if (!child.motion.empty()) fail(child, "motion inside a moving union is not supported here");
+                    addObject(level, bounds, child, toLevel, inverse, noShadow, {}, clips);
                 }
                 return;
             }
@@ -306,7 +311,7 @@ struct Builder {
             p.object = &object;
             p.noShadow = noShadow;
             // The tree's root carries the inherited inversion; leaves keep their own.
-            p.csg = std::make_unique<CsgNode>(csgNode(object, parentToLevel, motionAt));
+            p.csg = std::make_unique<CsgNode>(csgNode(object, parentToLevel, where));
             p.csg->inverse = inverse;
             p.bounded = csgBounds(*p.csg, p.lower, p.upper);
             p.clips = std::move(clips);
@@ -314,14 +319,14 @@ struct Builder {
             addPrimitive(level, bounds, std::move(p));
             return;
         }
-        for (CsgNode& clip : clipNodes(object, parentToLevel, motionAt)) clips.push_back(std::move(clip));
+        for (CsgNode& clip : clipNodes(object, parentToLevel, where)) clips.push_back(std::move(clip));
         if (const Mesh* mesh = std::get_if<Mesh>(&object.shape);
             mesh && mesh->indexed && clips.empty() && &level == &impl.top) {
             addMeshInstance(bounds, object, toLevel, inverse, noShadow);
             return;
         }
         // A clipped box is traced as an analytic shape, so that its hits can be filtered.
-        if (!isAnalytic(object.shape) && !(!clips.empty() && std::holds_alternative<Box>(object.shape))) {
+        if (tracedAsTriangles(object.shape) && !(!clips.empty() && std::holds_alternative<Box>(object.shape))) {
             // Clipped meshes are filtered by Embree (embree_geometry.cpp), in the top level only.
             if (!clips.empty() && &level != &impl.top)
                 fail(object, "clipped_by on a moving mesh or triangle is not supported yet");
@@ -355,29 +360,42 @@ struct Builder {
     }
 
     // A moving object at the one time every ray has, in double precision:
-    // static geometry placed by the motion at that time. Composed as a static
-    // object whose transform is object.transform.then(motion at time) would be,
-    // so the two build bit for bit the same.
-    void addObjectAtTime(Level& level, LevelBounds& bounds, const Object& object, double time) {
-        const Transform motionAt = motionOf(object).at(time);
-        addObject(level, bounds, object, toLevel(Transform()), false, false, &motionAt);
+    // static geometry at placementAt(time). Composed as a static object whose
+    // transform is that placement would be, so the two build bit for bit the same.
+    void addObjectAtTime(Level& level, LevelBounds& bounds, const Object& object, const Transform& before,
+                         const MotionChain& chain, bool parentInverse, bool parentNoShadow, double time) {
+        const Transform placed = placementAt(before, chain, time);
+        const std::optional<Mat4> restInverse = inverse(restPlacement(before, chain).matrix());
+        if (!restInverse) fail(object, "the object's transform is singular");
+        const Transform clipsTo = Transform::fromMatrix(*restInverse)->then(placed);
+        addObject(level, bounds, object, toLevel(Transform()), parentInverse, parentNoShadow, {&placed, &clipsTo});
     }
 
-    void addMovingObject(const Object& object) {
+    void addMovingObject(const Object& object, const Transform& before, const MotionChain& chain,
+                         bool parentInverse, bool parentNoShadow) {
+        auto level = std::make_shared<Level>();
+        level->scene = newScene();
+        LevelBounds bounds;
+        const Transform rest = restPlacement(before, chain);
+        addObject(*level, bounds, object, toLevel(Transform()), parentInverse, parentNoShadow, {&rest, nullptr});
+        finishLevel(*level);
+        const Vec3 shift = impl.shifted ? impl.frameOrigin : Vec3{};
+        std::optional<InstanceMotion> motion;
+        try {
+            motion.emplace(before, chain, bounds.any ? bounds.lower + shift : Vec3(1),
+                           bounds.any ? bounds.upper + shift : Vec3(-1));
+        } catch (const std::invalid_argument& e) {
+            fail(object, e.what());
+        }
         Instance moving;
-        moving.level = std::make_shared<Level>();
-        moving.motion = motionOf(object);
+        moving.level = std::move(level);
+        moving.motion = std::move(motion);
         moving.shifted = impl.shifted;
         moving.frameOrigin = impl.frameOrigin;
         impl.anyMotion = true;
-        Level* level = moving.level.get();
-        level->scene = newScene();
-        LevelBounds bounds;
-        addObject(*level, bounds, object, toLevel(Transform()), false, false);
-        finishLevel(*level);
         RTCGeometry instance = rtcNewGeometry(impl.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
         impl.device.throwIfFailed("creating an instance");
-        rtcSetGeometryInstancedScene(instance, level->scene);
+        rtcSetGeometryInstancedScene(instance, moving.level->scene);
         const int steps = moving.motion->timeStepCount();
         rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(steps));
         for (int i = 0; i < steps; ++i) {
@@ -385,22 +403,72 @@ struct Builder {
             rtcSetGeometryTransformQuaternion(instance, static_cast<unsigned>(i), &step);
         }
         // Shadow rays skip a no_shadow object at the instance.
-        rtcSetGeometryMask(instance, object.noShadow ? kCameraMask : (kCameraMask | kShadowMask));
+        const bool noShadow = object.noShadow || parentNoShadow;
+        rtcSetGeometryMask(instance, noShadow ? kCameraMask : (kCameraMask | kShadowMask));
         rtcCommitGeometry(instance);
         const unsigned id = rtcAttachGeometry(impl.top.scene, instance);
         rtcReleaseGeometry(instance);
         impl.device.throwIfFailed("adding a moving object");
         if (bounds.any) {
-            // The swept bounds, sampled at nine times over the shutter.
-            for (int k = 0; k <= 8; ++k) {
+            // The swept bounds, sampled at every step and between steps.
+            const int samples = 4 * (steps - 1) + 4;
+            for (int k = 0; k <= samples; ++k) {
                 Vec3 lo = bounds.lower, hi = bounds.upper;
-                transformBounds(moving.toWorld(k / 8.0), lo, hi);
+                transformBounds(moving.toWorld(double(k) / samples), lo, hi);
                 extendWorldBounds(lo, hi);
             }
         }
         if (impl.top.geometries.size() <= id) impl.top.geometries.resize(id + 1);
         impl.top.geometries[id] = {GeometryKind::Instance, impl.instances.size()};
         impl.instances.push_back(std::move(moving));
+    }
+
+    // Whether a member of the union, or of a union inside it, has a motion of
+    // its own (the union is then split into its members).
+    static bool membersMove(const Csg& csg) {
+        for (const Object& child : csg.children) {
+            if (!child.motion.empty()) return true;
+            const auto* inner = std::get_if<Csg>(&child.shape);
+            if (inner && inner->op == Csg::Op::Union && membersMove(*inner)) return true;
+        }
+        return false;
+    }
+
+    static bool hasMovingMember(const Object& object) {
+        const auto* csg = std::get_if<Csg>(&object.shape);
+        return !object.motion.empty() || (csg && csg->op == Csg::Op::Union && membersMove(*csg));
+    }
+
+    // A top-level object, or a member of a union split because some member
+    // moves: `outer` is the union's own placement over time (scene/motion.h),
+    // the flags are the enclosing unions'.
+    void addPlaced(LevelBounds& bounds, const Object& object, const Transform* outerBefore,
+                   const MotionChain* outerChain, bool parentInverse, bool parentNoShadow) {
+        const bool moving = hasMovingMember(object);
+        if (!moving && !outerBefore) { // the common case: a still object
+            addObject(impl.top, bounds, object, toLevel(Transform()), parentInverse, parentNoShadow);
+            return;
+        }
+        Transform before = object.transform;
+        MotionChain chain = object.motion;
+        if (outerBefore) {
+            if (!object.clippedBy.empty())
+                fail(object, "clipped_by on a member of a union with moving members is not supported yet");
+            appendPlacement(before, chain, *outerBefore, *outerChain);
+        }
+        const auto* csg = std::get_if<Csg>(&object.shape);
+        if (csg && csg->op == Csg::Op::Union && membersMove(*csg)) {
+            if (!object.clippedBy.empty())
+                fail(object, "clipped_by on a union with moving members is not supported yet");
+            for (const Object& child : csg->children)
+                addPlaced(bounds, child, &before, &chain, parentInverse != object.inverse,
+                          parentNoShadow || object.noShadow);
+            return;
+        }
+        if (chain.empty()) addObject(impl.top, bounds, object, toLevel(Transform()), parentInverse, parentNoShadow, {&before});
+        else if (impl.onlyTime)
+            addObjectAtTime(impl.top, bounds, object, before, chain, parentInverse, parentNoShadow, *impl.onlyTime);
+        else addMovingObject(object, before, chain, parentInverse, parentNoShadow);
     }
 };
 
@@ -412,12 +480,7 @@ void buildLevels(const Scene& scene, AcceleratorState& impl) {
     Builder builder{impl};
     impl.top.scene = builder.newScene();
     Builder::LevelBounds bounds;
-    const Transform worldToTop = builder.toLevel(Transform());
-    for (const Object& object : scene.objects) {
-        if (!object.motion) builder.addObject(impl.top, bounds, object, worldToTop, false, false);
-        else if (impl.onlyTime) builder.addObjectAtTime(impl.top, bounds, object, *impl.onlyTime);
-        else builder.addMovingObject(object);
-    }
+    for (const Object& object : scene.objects) builder.addPlaced(bounds, object, nullptr, nullptr, false, false);
     if (bounds.any) {
         const Vec3 shift = impl.shifted ? impl.frameOrigin : Vec3{};
         builder.extendWorldBounds(bounds.lower + shift, bounds.upper + shift);

@@ -4,8 +4,8 @@
 // Spaces: "level space" is the space an Embree scene's geometry lives in. For
 // the top-level scene it is world space minus the frame origin (accel.h
 // "Frame"; zero for most scenes); for a moving object it is world space at time
-// 0 (Object::transform applied) minus the frame origin, and the instance's
-// transform maps it to the top level at the ray's time.
+// its rest pose (scene/motion.h: every motion the identity) minus the frame
+// origin, and the instance's transform maps it to the top level at the ray's time.
 #pragma once
 
 #include "accel/motion.h"
@@ -128,10 +128,10 @@ struct Level {
 // An Embree instance in the top level: a moving object's own level, or one
 // placement of a compact mesh's shared level (`placed`).
 struct Instance {
-    std::shared_ptr<Level> level;
-    std::optional<MotionPath> motion; // moving objects
+    std::shared_ptr<Level> level;        // shared by the placements of one compact mesh
+    std::optional<InstanceMotion> motion; // moving objects
     bool shifted = false;
-    Vec3 frameOrigin; // level space = world at time 0 minus this, if shifted
+    Vec3 frameOrigin; // level space = rest-pose world minus this, if shifted
     // Compact-mesh placements: level (object) space -> world, the object,
     // its inversion and Hit::frameUnit for its world size.
     std::optional<Transform> placed;

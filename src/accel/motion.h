@@ -1,18 +1,26 @@
-// Motion over the shutter (scene.h Motion) as drt interprets it, in double
-// precision, plus its Embree instance form.
+// A moving object's placement over the shutter (scene/motion.h) as Embree's
+// multi-step instance motion, and the same interpolation in double precision.
 //
-// Pivot: the motion scale and rotation pivot on the world origin, like every
-// POV-Ray transform; the motion is simply appended after Object::transform:
-//   world(t) = translate(t T) * rotate(t theta about a) * scale(lerp(1, S, t)) * transform.
-// The rotation `rotate <x, y, z>` (degrees, x then y then z) is turned into one
-// axis a and angle theta in [0, 360) from its quaternion, and interpolated at
-// constant angular speed about that axis (slerp from the identity). A
-// single-axis rotation below 360 degrees therefore turns the long way if asked
-// to (rotate 270*y turns by 270 degrees, not -90).
+// The instance maps the object's rest pose (its level space) to the world at
+// time t: A(t) = placementAt(t) * restPlacement^-1. Embree takes A at S + 1
+// equally spaced times, each as a quaternion decomposition about one pivot p
+// (scene/motion.h AffineParts), and between steps moves p on a straight line,
+// slerps the rotation and blends scale and skew linearly. drt chooses:
+//   - p, the point whose path is straightest (bestPivot over the steps and
+//     their midpoints): the centre of a spin, of an orbit or of a rolling
+//     wheel, so that their arcs are followed exactly, not cut by chords;
+//   - S, the smallest step count that puts every key time on a step (when one
+//     of at most 128 does), turns at most 90 degrees per step (so Embree's
+//     shorter-arc slerp turns the right way; the rotation is tracked at 256
+//     times per unit time first), and keeps the interpolated path within 1e-4 of
+//     the object's size of the true one at every step's midpoint, doubling S
+//     up to 128 (Embree's limit) until it does.
+// at(t) repeats Embree's interpolation in double, so a hit Embree reports is
+// re-solved on the same moving surface.
 #pragma once
 
 #include "core/transform.h"
-#include "scene/scene.h"
+#include "scene/motion.h"
 
 #include <embree3/rtcore.h>
 
@@ -20,28 +28,24 @@
 
 namespace drt::accel {
 
-class MotionPath {
+class InstanceMotion {
 public:
-    // Throws std::invalid_argument for non-positive or non-finite scale.
-    explicit MotionPath(const Motion& motion);
+    // `before` and `chain` place the object in the world over time; lower and
+    // upper bound its rest pose (world space; unbounded: pass lower > upper).
+    InstanceMotion(const Transform& before, const MotionChain& chain, const Vec3& lower, const Vec3& upper);
 
-    // The motion part of the transform at time t in [0, 1] (applied after the
-    // object's own transform).
+    // Rest pose (world) -> world at time t in [0, 1], as Embree interpolates it.
     Transform at(double t) const;
 
-    // Embree instance time steps: enough that each step turns less than 180
-    // degrees, because Embree slerps along the shorter arc between steps.
-    int timeStepCount() const;
-    // With a frame origin f (accel.h "Frame"), the step maps level space
-    // (world at time 0 minus f) to the top level (world minus f):
-    //   x -> R Sc (x + f) + t T - f.
+    int timeStepCount() const { return static_cast<int>(steps_.size()); }
+    // With a frame origin f (accel.h "Frame"), the step maps level space (rest
+    // world minus f) to the top level (world minus f).
     RTCQuaternionDecomposition timeStep(int index, const Vec3& frameOrigin = {}) const;
+    const Vec3& pivot() const { return pivot_; }
 
 private:
-    Vec3 scale_{1, 1, 1};
-    Vec3 axis_{0, 1, 0};
-    double angleDegrees_ = 0;
-    Vec3 translate_;
+    std::vector<AffineParts> steps_;
+    Vec3 pivot_;
 };
 
 } // namespace drt::accel

@@ -13,6 +13,7 @@
 
 #include "bench/bench.h"
 #include "compare/compare.h"
+#include "render/provenance.h"
 #include "render/render.h"
 
 #include <iosfwd>
@@ -29,9 +30,11 @@ namespace drt::cli {
 enum ExitCode { kSuccess = 0, kSceneError = 1, kUsageError = 2, kIoError = 3 };
 
 // Options of the POV-Ray front end (pov/load.h) for .pov scenes: -L and --strict.
+// How the front end reads a scene (both dialects).
 struct PovCliOptions {
     std::vector<std::string> includePaths; // searched after the scene's folder
     bool strict = false;                   // warnings become errors
+    std::string dialect;                   // "drt", "pov", or "": from the file's extension
 };
 
 struct RenderCommand {
@@ -48,6 +51,8 @@ struct RenderCommand {
     bool quiet = false;
     bool progress = false; // draw a progress line (the caller checks that stderr is a terminal)
     PovCliOptions pov;
+    std::string commandLine; // recorded in the output's metadata ("" : not recorded)
+    bool reproducible = false; // --reproducible: metadata without run details (byte-identical files)
 };
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err);
 
@@ -60,6 +65,7 @@ struct MergeCommand {
     std::string output;
     std::string varianceOutput; // where the variance parts go
     std::string sppImageOutput; // where the samples-per-pixel parts go
+    std::string commandLine;    // recorded in the outputs' metadata instead of the first part's
 };
 int runMerge(const MergeCommand& command, std::ostream& out, std::ostream& err);
 // Declares the `merge` subcommand and its options (bound to `command`) on `app`.
@@ -92,6 +98,8 @@ struct TestCommand {
     bool update = false;            // --update: rewrite the goldens
     std::string reportDir;          // --report: HTML page of the failures
     std::vector<std::string> only;  // --only NAME (repeatable): run these tests
+    std::string junitFile;          // --junit: JUnit XML of every test
+    std::string jsonFile;           // --json: the same as JSON
 };
 int runTest(const TestCommand& command, std::ostream& out, std::ostream& err);
 
@@ -132,8 +140,5 @@ struct ConversionCheck {
 };
 ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions& pov, int width, int height);
 
-// The metadata drt stores in rendered images (keys "drt:...").
-Metadata renderMetadata(const std::string& scenePath, const RenderOptions& options, const RenderStats& stats,
-                        uint64_t nonFinitePixels);
 
 } // namespace drt::cli

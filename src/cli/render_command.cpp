@@ -6,10 +6,12 @@
 
 #include "cli/paths.h"
 #include "cli/progress.h"
+#include "accel/geometry_query.h"
 #include "cli/render_parts.h"
 #include "distributed/checkpoint.h"
 #include "lang/load.h"
-#include "pov/load.h"
+#include "render/scene_warnings.h"
+#include "sampling/filter.h"
 #include "render/camera.h"
 #include "sampling/sampler.h"
 
@@ -40,7 +42,7 @@ bool looksBinary(const std::string& path) {
 } // namespace
 
 int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov,
-              const RenderSettings& overrides) {
+              const RenderSettings& overrides, std::string* sceneSha1) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !std::ifstream(path)) {
         err << fmt::format("drt: cannot read scene '{}': {}\n", path,
@@ -52,23 +54,24 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         return kSceneError;
     }
     Diagnostics diagnostics;
-    if (lowerExtension(path) == ".pov" || lowerExtension(path) == ".inc") {
-        // POV-Ray front end: the scene sees the image size it will be rendered at.
-        PovOptions options;
-        options.strict = pov.strict;
-        if (!pov.includePaths.empty()) {
-            const std::string dir = fs::path(path).parent_path().string();
-            options.includePaths.push_back(dir.empty() ? "." : dir);
-            options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(), pov.includePaths.end());
-            options.includePaths.push_back(kPovStandardIncludeDir);
-        }
-        if (overrides.width) options.imageWidth = *overrides.width;
-        if (overrides.height) options.imageHeight = *overrides.height;
-        scene = loadPovSceneFile(path, diagnostics, options);
-    } else {
-        scene = loadSceneFile(path, diagnostics);
+    // One front end for both dialects; the scene sees the image size it will be rendered at.
+    LoadOptions options;
+    if (!pov.dialect.empty()) options.dialect = dialectNamed(pov.dialect);
+    options.strict = pov.strict;
+    if (!pov.includePaths.empty()) {
+        const std::string dir = fs::path(path).parent_path().string();
+        options.includePaths.push_back(dir.empty() ? "." : dir);
+        options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(), pov.includePaths.end());
+        options.includePaths.push_back(kPovStandardIncludeDir);
     }
+    if (overrides.width) options.imageWidth = *overrides.width;
+    if (overrides.height) options.imageHeight = *overrides.height;
+    const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+    options.geometry = geometry.get();
+    scene = drt::loadScene(path, diagnostics, options);
     if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+    if (sceneSha1)
+        *sceneSha1 = sceneTextSha1(diagnostics.files());
     if (scene && !diagnostics.hasErrors()) {
         // The camera's problems (sky or up along the view, ...) are found by
         // check too, and reported at the camera.
@@ -80,6 +83,12 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         }
     }
     err << diagnostics.formatAll();
+    if (scene && !diagnostics.hasErrors()) {
+        // Apart from the front end's diagnostics, so that --strict does not make them errors.
+        Diagnostics sceneWarnings(diagnostics.sharedFiles());
+        warnAboutScene(*scene, path, sceneWarnings);
+        err << sceneWarnings.formatAll();
+    }
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),
                            diagnostics.errorCount() == 1 ? "" : "s");
@@ -130,25 +139,22 @@ std::string millions(uint64_t n) {
 
 } // namespace
 
-Metadata renderMetadata(const std::string& scenePath, const RenderOptions& options, const RenderStats& stats,
-                        uint64_t nonFinitePixels) {
-    return {
-        {"Software", fmt::format("drt {}", DRT_VERSION)},
-        {"drt:version", DRT_VERSION},
-        {"drt:scene", fs::path(scenePath).filename().string()},
-        {"drt:seed", std::to_string(options.seed)},
-        {"drt:spp", options.adaptive ? fmt::format("{}-{} adaptive", stats.minPixelSamples, stats.maxPixelSamples)
-                                     : std::to_string(options.samplesPerPixel)},
-        {"drt:sampler", options.sampler.empty() ? defaultSamplerName() : options.sampler},
-        {"drt:render_seconds", fmt::format("{:.3f}", stats.renderSeconds)},
-        {"drt:nonfinite_samples", std::to_string(stats.nonFiniteSamples)},
-        {"drt:nonfinite_pixels", std::to_string(nonFinitePixels)},
-        {"drt:effects", describeEffects(stats.effects)},
-        {"drt:samples_taken", std::to_string(stats.pixelSamples)},
-        {"drt:adaptive", options.adaptive ? fmt::format("error {} min {} max {}", options.adaptiveError,
-                                                         options.minSamplesPerPixel, options.maxSamplesPerPixel)
-                                          : "off"},
-    };
+Metadata renderMetadata(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
+                        const RunRecord& record, const RenderStats& stats, uint64_t nonFinitePixels) {
+    Provenance p = renderProvenance(command.scene, record.sceneSha1, options, record.filter);
+    p.identify("drt:effects", describeEffects(stats.effects));
+    p.identify("drt:samples_taken", std::to_string(stats.pixelSamples));
+    if (options.adaptive)
+        p.identify("drt:spp_range", fmt::format("{}-{}", stats.minPixelSamples, stats.maxPixelSamples));
+    p.identify("drt:nonfinite_samples", std::to_string(stats.nonFiniteSamples));
+    p.identify("drt:nonfinite_pixels", std::to_string(nonFinitePixels));
+    // What crops are merged and checkpoints resumed by: the same for every run.
+    Metadata identityEntries;
+    addIdentity(identityEntries, identity, options.crop, options.width, options.height);
+    for (const auto& [key, value] : identityEntries)
+        p.identify(key, value);
+    recordRun(p, options, stats, command.commandLine, record.started);
+    return p.metadata(command.reproducible);
 }
 
 int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err) {
@@ -235,10 +241,9 @@ std::string writeStatsJson(const RenderCommand& command, const RenderOptions& op
 }
 
 int writeOutputs(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
-                 RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err) {
+                 const RunRecord& record, RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err) {
     nonFinitePixels = clearNonFinite(result.color);
-    Metadata metadata = renderMetadata(command.scene, options, result.stats, nonFinitePixels);
-    addIdentity(metadata, identity, options.crop, options.width, options.height);
+    const Metadata metadata = renderMetadata(command, options, identity, record, result.stats, nonFinitePixels);
     if (std::string problem = writeImage(command.output, result.color, metadata); !problem.empty()) {
         err << "drt: " << problem << "\n";
         return kIoError;

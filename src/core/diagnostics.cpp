@@ -31,7 +31,15 @@ void Diagnostics::report(Severity s, SourceLoc loc, std::string message, std::ve
     if (s == Severity::Error) lastDropped_ = ++errorCount_ > limits_.errors && ++droppedErrors_;
     if (s == Severity::Warning) lastDropped_ = ++warningCount_ > limits_.errors && ++droppedWarnings_;
     if (lastDropped_) return;
-    diagnostics_.push_back({s, loc, std::move(message), std::move(includedFrom)});
+    diagnostics_.push_back({s, loc, std::move(message), std::move(includedFrom), {}});
+}
+
+void Diagnostics::attachNote(SourceLoc loc, std::string message, std::vector<SourceLoc> includedFrom) {
+    if (diagnostics_.empty()) {
+        report(Severity::Note, loc, std::move(message), std::move(includedFrom));
+        return;
+    }
+    diagnostics_.back().notes.push_back({Severity::Note, loc, std::move(message), std::move(includedFrom), {}});
 }
 
 static const char* severityName(Severity s) {
@@ -47,7 +55,11 @@ std::string Diagnostics::format(const Diagnostic& d) const {
     std::string out;
     for (auto it = d.includedFrom.rbegin(); it != d.includedFrom.rend(); ++it)
         if (it->valid()) out += fmt::format("In file included from {}:{}:\n", files_->path(it->file), it->line);
-    if (!d.loc.valid()) return out + fmt::format("drt: {}: {}\n", severityName(d.severity), d.message);
+    if (!d.loc.valid()) {
+        out += fmt::format("drt: {}: {}\n", severityName(d.severity), d.message);
+        for (const Diagnostic& n : d.notes) out += format(n);
+        return out;
+    }
     out += fmt::format("{}:{}:{}: {}: {}\n", files_->path(d.loc.file), d.loc.line, d.loc.column,
                        severityName(d.severity), d.message);
     if (!files_->quotable(d.loc.file)) return out;
@@ -67,6 +79,7 @@ std::string Diagnostics::format(const Diagnostic& d) const {
     for (size_t i = 0; i < column && i < src.size(); ++i)
         caret += (src[i] == '\t') ? '\t' : ' ';
     out += fmt::format("  {}\n  {}^\n", src, caret);
+    for (const Diagnostic& n : d.notes) out += format(n);
     return out;
 }
 

@@ -5,6 +5,8 @@
 // if the result is identical (writer_detail.h).
 #include "lang/writer.h"
 
+#include "lang/keywords.h"
+#include "lang/shape_syntax.h"
 #include "lang/writer_detail.h"
 
 #include <algorithm>
@@ -23,53 +25,6 @@ using namespace writer; // texture text (writer_texture.cpp)
 
 namespace {
 
-const char* cameraMappingKeyword(CameraMapping m) {
-    switch (m) {
-    case CameraMapping::Fisheye: return "fisheye";
-    case CameraMapping::UltraWideAngle: return "ultra_wide_angle";
-    case CameraMapping::Panoramic: return "panoramic";
-    case CameraMapping::Cylinder1: return "cylinder 1";
-    case CameraMapping::Cylinder2: return "cylinder 2";
-    case CameraMapping::Cylinder3: return "cylinder 3";
-    case CameraMapping::Cylinder4: return "cylinder 4";
-    case CameraMapping::Spherical: return "spherical";
-    case CameraMapping::Planar: break;
-    }
-    return "perspective";
-}
-
-// The parser normalises plane, disc and smooth-triangle normals. A unit
-// vector rarely normalises to itself to the last bit, so look for the short
-// direction the author most likely wrote (<0, 1, 1> for a 45-degree disc).
-Vec3 unnormalised(const Vec3& n) {
-    const double largest = maxComponent(abs(n));
-    if (!(largest > 0))
-        return n;
-    const Vec3 scaled = n / largest;
-    auto rounded = [&](double perUnit) {
-        auto r = [&](double v) { return std::round(v * perUnit) / perUnit; };
-        return Vec3(r(scaled.x), r(scaled.y), r(scaled.z));
-    };
-    for (const Vec3& c : {n, rounded(1e10), rounded(1e6), scaled})
-        if (length(c) > 0 && c / length(c) == n)
-            return c;
-    return n;
-}
-
-const char* csgKeyword(Csg::Op op) {
-    switch (op) {
-    case Csg::Op::Union:
-        return "union";
-    case Csg::Op::Merge:
-        return "merge";
-    case Csg::Op::Difference:
-        return "difference";
-    case Csg::Op::Intersection:
-        return "intersection";
-    }
-    return "union";
-}
-
 class SceneWriter {
   public:
     explicit SceneWriter(const WriterOptions& options) : options_(options) {}
@@ -86,14 +41,15 @@ class SceneWriter {
     void camera(const CameraSpec& c);
     void light(const Light& l);
     void topLevelObject(const Object& o);
-    void flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow, bool hollow,
-                      const std::optional<Motion>& motion, const std::vector<Object>& clips);
+    void flattenUnion(const Object& o, const Transform& parentBefore, const MotionChain& parentChain, bool inverse,
+                      bool noShadow, bool hollow, const std::vector<Object>& clips);
     void clips(const std::vector<Object>& clippedBy, int indent);
+    void writeClips(const Object& o, const Transform& toWritten, int indent);
     void object(const Object& o, int indent);
     std::string shapeHead(const Object& o, int indent);
-    std::string meshText(const Mesh& m, int indent);
     void texture(const Texture& t, const std::string& pigment, const std::string& normal, int indent);
     static std::string motionText(const Motion& m);
+    std::string placementText(const Object& o);
 
     WriterOptions options_;
     std::string out_;
@@ -198,10 +154,8 @@ void SceneWriter::settings(const Scene& scene) {
 void SceneWriter::camera(const CameraSpec& c) {
     const CameraSpec d;
     line(0, "camera {");
-    if (c.orthographic)
-        line(1, "orthographic");
-    if (c.mapping != CameraMapping::Planar)
-        line(1, cameraMappingKeyword(c.mapping));
+    if (c.orthographic || c.mapping != CameraMapping::Planar)
+        line(1, lang::cameraKeyword(c));
     line(1, "location " + vector(c.location));
     if (!(c.direction == d.direction))
         line(1, "direction " + vector(c.direction));
@@ -276,9 +230,7 @@ void SceneWriter::light(const Light& l) {
     if (l.area && !l.areaIllumination)
         line(1, "area_illumination off"); // a no-op without an area
     if (l.area && l.area->sampling != AreaSampling::Stratified)
-        line(1, l.area->sampling == AreaSampling::PovGrid ? "area_sampling pov_grid"
-                : l.area->sampling == AreaSampling::Grid  ? "area_sampling grid"
-                                                          : "area_sampling solid_angle");
+        line(1, std::string("area_sampling ") + lang::areaSamplingWord(l.area->sampling));
     if (l.inverseSquare)
         line(1, "inverse_square");
     line(0, "}");
@@ -286,7 +238,7 @@ void SceneWriter::light(const Light& l) {
 
 void SceneWriter::topLevelObject(const Object& o) {
     if (const Csg* csg = std::get_if<Csg>(&o.shape); csg && csg->op == Csg::Op::Union) {
-        flattenUnion(o, Transform{}, false, false, false, std::nullopt, {});
+        flattenUnion(o, Transform{}, MotionChain{}, false, false, false, {});
         return;
     }
     out_ += "\n";
@@ -294,32 +246,24 @@ void SceneWriter::topLevelObject(const Object& o) {
 }
 
 // The .drt parser stores a union as its members, each with the union's
-// transforms after its own; the renderer treats both forms alike.
-void SceneWriter::flattenUnion(const Object& o, const Transform& parent, bool inverse, bool noShadow,
-                               bool hollow, const std::optional<Motion>& motion,
-                               const std::vector<Object>& parentClips) {
+// transforms and motions after its own; the renderer treats both forms alike.
+void SceneWriter::flattenUnion(const Object& o, const Transform& parentBefore, const MotionChain& parentChain,
+                               bool inverse, bool noShadow, bool hollow, const std::vector<Object>& parentClips) {
     Object leaf = o;
-    leaf.transform = o.transform.then(parent);
-    // Clips live in the object's parent space: take them to world space.
+    appendPlacement(leaf.transform, leaf.motion, parentBefore, parentChain);
+    // Clips live in the object's parent space: take them to the rest pose's world.
+    const Transform clipToRest = restPlacement(Transform{}, o.motion).then(restPlacement(parentBefore, parentChain));
     leaf.clippedBy = parentClips;
     for (const Object& clip : o.clippedBy) {
         leaf.clippedBy.push_back(clip);
-        leaf.clippedBy.back().transform = clip.transform.then(parent);
+        leaf.clippedBy.back().transform = clip.transform.then(clipToRest);
     }
     leaf.inverse = o.inverse != inverse;
     leaf.noShadow = o.noShadow || noShadow;
     leaf.hollow = o.hollow || hollow;
-    if (motion) {
-        if (leaf.motion)
-            problems_.insert("motion on both a union and one of its members");
-        else
-            leaf.motion = motion;
-    }
     if (const Csg* csg = std::get_if<Csg>(&o.shape); csg && csg->op == Csg::Op::Union) {
-        if (leaf.motion && !parent.isIdentity())
-            problems_.insert("motion inside a transformed union");
         for (const Object& child : csg->children)
-            flattenUnion(child, leaf.transform, leaf.inverse, leaf.noShadow, leaf.hollow, leaf.motion,
+            flattenUnion(child, leaf.transform, leaf.motion, leaf.inverse, leaf.noShadow, leaf.hollow,
                          leaf.clippedBy);
         return;
     }
@@ -336,26 +280,40 @@ void SceneWriter::object(const Object& o, int indent) {
     if (head.empty())
         return;
     line(indent, head);
+    // A moving object's textures and clips are in its rest pose: the
+    // transforms written after its motions take them there again.
+    const Transform afterMotions = restPlacement(Transform{}, o.motion);
+    const Transform undoAfterMotions = afterMotions.inverted();
     if (const Csg* csg = std::get_if<Csg>(&o.shape)) {
         for (const Object& child : csg->children) {
             Object baked = child;
             baked.transform = child.transform.then(o.transform);
             for (Object& clip : baked.clippedBy) clip.transform = clip.transform.then(o.transform);
+            if (!o.motion.empty()) {
+                transformTextureSpaces(baked.texture, undoAfterMotions);
+                transformInteriorSpaces(baked.interior, undoAfterMotions);
+            }
             object(baked, indent + 1);
         }
-        clips(o.clippedBy, indent + 1);
+        writeClips(o, undoAfterMotions, indent + 1);
         if (o.inverse)
             line(indent + 1, "inverse");
         if (o.noShadow)
             line(indent + 1, "no_shadow");
         if (o.hollow)
             line(indent + 1, "hollow");
-        if (o.motion)
-            line(indent + 1, motionText(*o.motion));
+        for (const MotionStage& stage : o.motion) {
+            line(indent + 1, motionText(stage.motion));
+            if (const std::vector<Step> after = decompose(stage.after); !after.empty())
+                line(indent + 1, formatSteps(after).substr(1));
+        }
         line(indent, "}");
         return;
     }
-    const std::vector<Step> steps = decompose(o.transform);
+    // Texture placement is decided on the rest pose; the placement itself is
+    // written as the transforms, motions and transforms after them.
+    const std::vector<Step> steps = decompose(restPlacement(o.transform, o.motion));
+    const std::string placement = placementText(o);
     // A texture moves with the transforms written after it. Before the
     // transforms, a pattern placed with the object needs no transform of its
     // own; after them, it needs its whole pattern -> world map. Take the form
@@ -373,8 +331,8 @@ void SceneWriter::object(const Object& o, int indent) {
         if (textureBefore)
             for (const std::string& block : before)
                 line(indent + 1, block);
-        if (!steps.empty())
-            line(indent + 1, formatSteps(steps).substr(1));
+        if (!placement.empty())
+            line(indent + 1, placement);
         if (!textureBefore)
             for (const std::string& block : after)
                 line(indent + 1, block);
@@ -394,8 +352,8 @@ void SceneWriter::object(const Object& o, int indent) {
                                    (!exactBefore && !exactAfter);
         if (textureBefore && !untextured)
             texture(t, before, normalBefore, indent + 1);
-        if (!steps.empty())
-            line(indent + 1, formatSteps(steps).substr(1));
+        if (!placement.empty())
+            line(indent + 1, placement);
         if (!textureBefore)
             texture(t, after, normalAfter, indent + 1);
     }
@@ -410,10 +368,45 @@ void SceneWriter::object(const Object& o, int indent) {
         flags += " inverse";
     if (!flags.empty())
         line(indent + 1, flags.substr(1));
-    if (o.motion)
-        line(indent + 1, motionText(*o.motion));
-    clips(o.clippedBy, indent + 1);
+    if (o.motion.empty())
+        clips(o.clippedBy, indent + 1);
     line(indent, "}");
+}
+
+// The object's transforms, motions and the transforms after them. A moving
+// object's clips are written before its first motion (clipped_by may not
+// follow one), in the space there.
+std::string SceneWriter::placementText(const Object& o) {
+    std::string text = formatSteps(decompose(o.transform));
+    if (o.motion.empty())
+        return text.empty() ? text : text.substr(1);
+    if (!o.clippedBy.empty()) {
+        const std::string saved = out_;
+        out_.clear();
+        writeClips(o, restPlacement(Transform{}, o.motion).inverted(), 0);
+        std::string block = out_;
+        out_ = saved;
+        while (!block.empty() && block.back() == '\n')
+            block.pop_back();
+        for (char& c : block)
+            if (c == '\n')
+                c = ' ';
+        text += " " + block;
+    }
+    for (const MotionStage& stage : o.motion)
+        text += " " + motionText(stage.motion) + formatSteps(decompose(stage.after));
+    return text.substr(1);
+}
+
+// Clips stored in the rest pose's world, written where `toWritten` maps them.
+void SceneWriter::writeClips(const Object& o, const Transform& toWritten, int indent) {
+    if (o.motion.empty()) {
+        clips(o.clippedBy, indent);
+        return;
+    }
+    std::vector<Object> moved = o.clippedBy;
+    for (Object& clip : moved) clip.transform = clip.transform.then(toWritten);
+    clips(moved, indent);
 }
 
 // After the object's transforms, so that none of them moves the clips again.
@@ -431,115 +424,35 @@ void SceneWriter::clips(const std::vector<Object>& clippedBy, int indent) {
     line(indent, "}");
 }
 
+// One key at time 1 from the identity at 0 is written without `at`.
 std::string SceneWriter::motionText(const Motion& m) {
-    std::string text = "motion {";
-    if (!(m.translate == Vec3(0)))
-        text += " translate " + vector(m.translate);
-    if (!(m.rotate == Vec3(0)))
-        text += " rotate " + vector(m.rotate);
-    if (!(m.scale == Vec3(1)))
-        text += " scale " + vector(m.scale);
+    const auto items = [](const MotionKey& k) {
+        std::string text;
+        if (!(k.translate == Vec3(0)))
+            text += " translate " + vector(k.translate);
+        if (!(k.rotate == Vec3(0)))
+            text += " rotate " + vector(k.rotate);
+        if (!(k.scale == Vec3(1)))
+            text += " scale " + vector(k.scale);
+        return text;
+    };
+    std::string text = m.spline ? "motion { spline" : "motion {";
+    const bool oneStep = m.keys.size() == 2 && m.keys[0] == MotionKey{0} && m.keys[1].time == 1;
+    if (oneStep)
+        return text + items(m.keys[1]) + " }";
+    for (size_t i = 0; i < m.keys.size(); ++i) {
+        if (i == 0 && m.keys[0] == MotionKey{0})
+            continue; // the parser adds it again
+        text += " at " + number(m.keys[i].time) + items(m.keys[i]);
+    }
     return text + " }";
 }
 
-// The opening of an object's block, through its fixed arguments.
+// The opening of an object's block, through its fixed arguments (each
+// shape's entry in shapes_*.cpp).
 std::string SceneWriter::shapeHead(const Object& o, int indent) {
-    struct Visitor {
-        SceneWriter& w;
-        int indent;
-        std::string operator()(const Sphere& s) const {
-            return "sphere { " + vector(s.center) + ", " + number(s.radius);
-        }
-        std::string operator()(const Plane& p) const {
-            // The parser divides both the normal and the distance by the normal's length.
-            const Vec3 n = unnormalised(p.normal);
-            const double len = length(n);
-            const double guess = p.distance * len;
-            double d = guess;
-            for (double c : {guess, std::nextafter(guess, INFINITY), std::nextafter(guess, -INFINITY)})
-                if (c / len == p.distance) {
-                    d = c;
-                    break;
-                }
-            return "plane { " + vector(n) + ", " + number(d);
-        }
-        std::string operator()(const Box& b) const {
-            return "box { " + vector(b.corner1) + ", " + vector(b.corner2);
-        }
-        std::string operator()(const Cylinder& c) const {
-            return "cylinder { " + vector(c.base) + ", " + vector(c.cap) + ", " + number(c.radius) +
-                   (c.open ? " open" : "");
-        }
-        std::string operator()(const Cone& c) const {
-            return "cone { " + vector(c.base) + ", " + number(c.baseRadius) + ", " + vector(c.cap) + ", " +
-                   number(c.capRadius) + (c.open ? " open" : "");
-        }
-        std::string operator()(const Disc& d) const {
-            return "disc { " + vector(d.center) + ", " + vector(unnormalised(d.normal)) + ", " +
-                   number(d.radius) + (d.holeRadius != 0 ? ", " + number(d.holeRadius) : "");
-        }
-        std::string operator()(const Torus& t) const {
-            return "torus { " + number(t.majorRadius) + ", " + number(t.minorRadius);
-        }
-        std::string operator()(const Algebraic& a) const { return algebraicHead(a); }
-        std::string operator()(const Superellipsoid& s) const { return superellipsoidHead(s); }
-        std::string operator()(const Mesh& m) const { return w.meshText(m, indent); }
-        std::string operator()(const Extrusion& e) const { return writer::extrusionText(e, indent, w.problems_); }
-        std::string operator()(const Revolution& r) const { return writer::revolutionText(r, indent); }
-        std::string operator()(const Blob& b) const { return writer::blobText(b, indent); }
-        std::string operator()(const Csg& c) const {
-            if (c.children.empty()) {
-                w.problems_.insert("a CSG with no members (left out)");
-                return "";
-            }
-            return std::string(csgKeyword(c.op)) + " {";
-        }
-    };
-    return std::visit(Visitor{*this, indent}, o.shape);
-}
-
-// A face normal exactly as the .drt parser computes it for a flat triangle.
-static Vec3 faceNormal(const Vec3& a, const Vec3& b, const Vec3& c) {
-    Vec3 n = cross(b - a, c - a);
-    return length(n) > 0 ? normalize(n) : n;
-}
-
-std::string SceneWriter::meshText(const Mesh& m, int indent) {
-    if (m.triangles.empty()) {
-        problems_.insert("a mesh with no triangles (left out)");
-        return "";
-    }
-    const bool hasNormals = !m.normals.empty() && m.normalIndices.size() == m.triangles.size();
-    auto triangleBody = [&](size_t t, bool& smooth) {
-        const auto& tri = m.triangles[t];
-        const Vec3 a = m.vertices[size_t(tri[0])], b = m.vertices[size_t(tri[1])],
-                   c = m.vertices[size_t(tri[2])];
-        smooth = false;
-        Vec3 n[3];
-        if (hasNormals) {
-            const Vec3 face = faceNormal(a, b, c);
-            for (int k = 0; k < 3; ++k) {
-                n[k] = m.normals[size_t(m.normalIndices[t][size_t(k)])];
-                smooth = smooth || !(n[k] == face);
-            }
-        }
-        if (!smooth)
-            return vector(a) + ", " + vector(b) + ", " + vector(c);
-        return vector(a) + ", " + vector(unnormalised(n[0])) + ", " + vector(b) + ", " +
-               vector(unnormalised(n[1])) + ", " + vector(c) + ", " + vector(unnormalised(n[2]));
-    };
-    bool smooth = false;
-    if (m.triangles.size() == 1) {
-        const std::string body = triangleBody(0, smooth);
-        return std::string(smooth ? "smooth_triangle { " : "triangle { ") + body;
-    }
-    std::string text = "mesh {";
-    const std::string pad(size_t(indent + 1) * 2, ' ');
-    for (size_t t = 0; t < m.triangles.size(); ++t) {
-        const std::string body = triangleBody(t, smooth);
-        text += "\n" + pad + (smooth ? "smooth_triangle { " : "triangle { ") + body + " }";
-    }
-    return text;
+    lang::ShapeText text{indent, problems_};
+    return lang::shapeHead(o.shape, text);
 }
 
 void SceneWriter::texture(const Texture& t, const std::string& pigmentText, const std::string& normalText,
@@ -559,6 +472,28 @@ void SceneWriter::texture(const Texture& t, const std::string& pigmentText, cons
 }
 
 } // namespace
+
+namespace writer {
+
+// The parser normalises plane, disc and smooth-triangle normals. A unit
+// vector rarely normalises to itself to the last bit, so look for the short
+// direction the author most likely wrote (<0, 1, 1> for a 45-degree disc).
+Vec3 unnormalised(const Vec3& n) {
+    const double largest = maxComponent(abs(n));
+    if (!(largest > 0))
+        return n;
+    const Vec3 scaled = n / largest;
+    auto rounded = [&](double perUnit) {
+        auto r = [&](double v) { return std::round(v * perUnit) / perUnit; };
+        return Vec3(r(scaled.x), r(scaled.y), r(scaled.z));
+    };
+    for (const Vec3& c : {n, rounded(1e10), rounded(1e6), scaled})
+        if (length(c) > 0 && c / length(c) == n)
+            return c;
+    return n;
+}
+
+} // namespace writer
 
 std::string writeDrtScene(const Scene& scene, const WriterOptions& options) {
     SceneWriter writer(options);

@@ -94,6 +94,16 @@ Ray spawn(const Hit& hit, const Vec3& direction, double time) {
 
 } // namespace
 
+// A bump pattern moves with its object: on a moving object it tilts the
+// normal in the object's rest pose, which is then turned to the world at the
+// ray's time (normals map by the inverse transpose).
+Vec3 Integrator::bumpNormal(const Normal& bumps, const Hit& hit, double time, const Vec3& normal) const {
+    if (hit.instance < 0) return perturbNormal(bumps, hit.point, normal);
+    const Transform toWorld = accel_.restToWorld(hit, time);
+    const Vec3 restNormal = normalize(toWorld.inverted().normal(normal));
+    return normalize(toWorld.normal(perturbNormal(bumps, hit.restPoint, restNormal)));
+}
+
 void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
                        std::vector<PendingRay>& stack) const {
     const Object& object = *hit.object;
@@ -138,7 +148,7 @@ void Integrator::shadePatterned(const SurfaceHit& surface, const Texture& textur
                                 Sampler& sampler, RayCounts& counts, Color& result,
                                 std::vector<PendingRay>& stack) const {
     const Vec3* uv = surface.hit.hasUv ? &surface.hit.uv : nullptr;
-    forEachPickedEntry(texture, surface.hit.point, uv, [&](const Texture& entry, double w) {
+    forEachPickedEntry(texture, surface.hit.restPoint, uv, [&](const Texture& entry, double w) {
         shadeTexture(surface, entry, weight * w, sampler, counts, result, stack);
     });
 }
@@ -165,7 +175,7 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         const Finish& finish = layer.finish;
         Vec3 normal = surface.normal;
         if (layer.normal) { // bump pattern; kept only while it still faces the viewer
-            const Vec3 bumped = perturbNormal(*layer.normal, hit.point, normal);
+            const Vec3 bumped = bumpNormal(*layer.normal, hit, pending.ray.time, normal);
             if (dot(bumped, incoming) < 0) normal = bumped;
         }
         if (i == 0) topNormal = normal;
@@ -174,7 +184,8 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         sp.hit = hit;
         sp.normal = normal;
         sp.incoming = incoming;
-        sp.pigment = evaluatePigment(layer.pigment, hit.point, hit.hasUv ? &hit.uv : nullptr);
+        // Textures move with their object (restPoint); uv_mapping reads the surface's uv.
+        sp.pigment = evaluatePigment(layer.pigment, hit.restPoint, hit.hasUv ? &hit.uv : nullptr);
         sp.finish = &finish;
         sp.time = pending.ray.time;
         sp.depth = pending.depth;

@@ -69,6 +69,7 @@ private:
                         RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
     void shadeLayers(const SurfaceHit& surface, const Texture* const* layers, size_t count, const Color& weight,
                      Sampler& sampler, RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
+    Vec3 bumpNormal(const Normal& bumps, const Hit& hit, double time, const Vec3& normal) const;
 
     const Scene& scene_;
     const Accelerator& accel_;

@@ -47,7 +47,7 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
                 transmittance *= interiorAttenuation(blocker.object->interior, blocker.t * length(ray.direction));
             Color filter(0);
             forEachSurfaceTexture(blocker, [&](const Texture& texture, double share) {
-                filter += textureFilter(texture, blocker.point, blocker.hasUv ? &blocker.uv : nullptr) * share;
+                filter += textureFilter(texture, blocker.restPoint, blocker.hasUv ? &blocker.uv : nullptr) * share;
             });
             transmittance *= filter;
             if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);

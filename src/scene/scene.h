@@ -12,6 +12,7 @@
 #include "scene/blob.h"
 #include "scene/extrusion.h"
 #include "scene/indexed_mesh.h"
+#include "scene/motion.h"
 #include "scene/revolution.h"
 
 #include <array>
@@ -122,7 +123,7 @@ struct Finish {
     // `reflection { ... metallic m }`: tints reflected light by the pigment, by m.
     double reflectionMetallic = 0;
     bool conserveEnergy = false;
-    // Distribution ray tracing (drt extension, issue 3). 0 is a perfect mirror /
+    // Distribution ray tracing (drt extension, docs/effects.md). 0 is a perfect mirror /
     // perfect refraction; larger values widen the lobe around the ideal direction.
     double reflectionBlur = 0;
     double refractionBlur = 0;
@@ -322,20 +323,10 @@ struct Csg {
 using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid,
                            Extrusion, Revolution, Blob>;
 
-// Motion over the shutter (issue 3): the extra transform reached at time 1,
-// applied after Object::transform. At time t the object is scaled by
-// lerp(1, scale, t), rotated by slerp(identity, rotate, t) and moved by
-// t * translate.
-struct Motion {
-    Vec3 translate{0, 0, 0};
-    Vec3 rotate{0, 0, 0}; // degrees, as POV-Ray's rotate
-    Vec3 scale{1, 1, 1};
-};
-
 struct Object {
     Shape shape;
-    Transform transform; // object -> world
-    HeapOptional<Motion> motion; // on the heap: most objects do not move
+    Transform transform; // object -> world (the transforms before the first motion)
+    MotionChain motion;  // motions and the transforms after each (scene/motion.h); empty: still
     Texture texture;
     Interior interior;
     bool noShadow = false;
@@ -347,13 +338,15 @@ struct Object {
     // inside only where it is inside every clip too. Clip objects live in the
     // space Object::transform maps to (world for a top-level object, the CSG's
     // space for a member); transforms written after clipped_by move them too.
+    // A moving top-level object's clips are in its rest pose's world (the
+    // front ends fold the transforms after its motions in) and move with it.
     std::vector<Object> clippedBy;
     SourceLoc loc;
 };
 
 // ---------------------------------------------------------------- lights
 
-// Where an area light's n1 x n2 sample points go (issue 3; the estimators are
+// Where an area light's n1 x n2 sample points go (docs/effects.md; the estimators are
 // in render/lighting.h).
 enum class AreaSampling {
     PovGrid,    // POV-Ray's method: every point of the edge-to-edge n1 x n2 grid at every hit
@@ -434,7 +427,7 @@ struct CameraSpec {
     // verticalAngle angle / 2. No lens (aperture 0).
     CameraMapping mapping = CameraMapping::Planar;
     std::optional<double> verticalAngle; // spherical only
-    // Thin lens (issue 3). aperture is the lens *diameter* in scene units; 0 is a pinhole.
+    // Thin lens (docs/effects.md). aperture is the lens *diameter* in scene units; 0 is a pinhole.
     double aperture = 0;
     std::optional<Vec3> focalPoint;
     std::optional<double> focalDistance;
