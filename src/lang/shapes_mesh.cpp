@@ -280,6 +280,9 @@ void ShapeSyntax<Mesh>::read(Evaluator& e, const Token& keyword, ObjectValue& o)
 }
 
 std::string ShapeSyntax<Mesh>::head(const Mesh& m, ShapeText& text) {
+    // A model file not read yet: its name, which reads back to the same mesh.
+    if (m.source && m.source->kind == MeshSource::Kind::ModelFile)
+        return "mesh { file " + writer::quoted(m.source->path);
     if (m.triangles.empty()) {
         text.problems.insert("a mesh with no triangles (left out)");
         return "";
