@@ -340,7 +340,9 @@ bool Parser::objectModifier(ParsedObject& po) {
 // key_items = { ("translate" | "rotate" | "scale") vector3 }   (each at most once per key)
 // Without `at` the items are one key at time 1; keyed or not, the path starts
 // from the identity at time 0 unless a key is given there (scene/motion.h).
-void Parser::motion(Object& object) {
+void Parser::motion(Object& object) { object.motion.push_back(MotionStage{motionBlock(), Transform()}); }
+
+Motion Parser::motionBlock() {
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'motion'");
     Motion m;
@@ -386,7 +388,7 @@ void Parser::motion(Object& object) {
     }
     if (m.keys.empty()) m.keys.push_back(MotionKey{1});
     if (m.keys.front().time > 0) m.keys.insert(m.keys.begin(), MotionKey{0});
-    object.motion.push_back(MotionStage{std::move(m), Transform()});
+    return m;
 }
 
 // clipped_by = "clipped_by" "{" object { object } "}". The clips are kept in

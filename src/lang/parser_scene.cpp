@@ -63,7 +63,8 @@ std::optional<Transform> Parser::transformItem() {
 void Parser::camera() {
     static const std::vector<std::string> known{
         "perspective", "orthographic", "fisheye", "ultra_wide_angle", "panoramic", "cylinder", "spherical", "location",    "look_at",        "up",           "sky",          "right", "direction",
-        "angle",       "aperture",    "focal_point",    "focal_distance", "shutter_open", "shutter_close"};
+        "angle",       "aperture",    "focal_point",    "focal_distance", "shutter_open", "shutter_close",
+        "translate",   "rotate",      "scale",          "matrix",         "motion"};
     const Token keyword = current_;
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'camera'");
@@ -71,6 +72,16 @@ void Parser::camera() {
     cam.loc = keyword.loc;
     SourceLoc lookAtLoc, focalPointLoc, shutterLoc, apertureLoc, angleLoc, verticalLoc;
     while (!match(TokenKind::RightBrace)) {
+        // The camera's placement: transforms and motions move the whole
+        // camera once its vectors are set up (render/camera_path.h).
+        if (std::optional<Transform> t = transformItem()) {
+            appendTransform(cam.transform, cam.motion, *t);
+            continue;
+        }
+        if (checkWord("motion")) {
+            cam.motion.push_back(MotionStage{motionBlock(), Transform()});
+            continue;
+        }
         if (!check(TokenKind::Identifier)) failExpected("a camera keyword or '}'");
         const Token word = current_;
         const std::string& w = word.text;
@@ -137,7 +148,7 @@ void Parser::lightSource() {
         "color",   "colour", "rgb",         "spotlight", "point_at", "radius",   "falloff",
         "tightness", "fade_distance", "fade_power", "shadowless", "area_light", "jitter", "adaptive",
         "circular", "orient", "area_illumination", "area_sampling", "inverse_square", "media_interaction",
-        "media_attenuation", "translate", "rotate", "scale", "matrix"};
+        "media_attenuation", "translate", "rotate", "scale", "matrix", "motion"};
     const Token keyword = current_;
     advance();
     expect(TokenKind::LeftBrace, "'{' after 'light_source'");
@@ -151,8 +162,16 @@ void Parser::lightSource() {
     area.sampling = AreaSampling::Stratified;
     bool hasArea = false;
     SourceLoc pointAtLoc;
+    MotionChain motion; // the light's motions and the transforms after them (render/light_path.h)
     while (!match(TokenKind::RightBrace)) {
-        if (std::optional<Transform> t = transformItem()) {
+        if (checkWord("motion")) {
+            motion.push_back(MotionStage{motionBlock(), Transform()});
+            continue;
+        }
+        if (std::optional<Transform> t = transformItem(); t && !motion.empty()) {
+            motion.back().after = motion.back().after.then(*t);
+            continue;
+        } else if (t) {
             light.position = t->point(light.position);
             light.pointAt = t->point(light.pointAt);
             area.axis1 = t->vector(area.axis1);
@@ -229,6 +248,7 @@ void Parser::lightSource() {
     if (light.spotlight && light.pointAt == light.position)
         error(pointAtLoc.valid() ? pointAtLoc : keyword.loc, "'point_at' is the same point as the light position");
     if (hasArea) light.area = area;
+    if (!motion.empty()) light.motion = std::make_shared<LightMotion>(LightMotion{{}, std::move(motion)});
     scene_.lights.push_back(light);
 }
 

@@ -74,8 +74,10 @@ bool PovParser::isObjectWord(const Tok& t) const {
            (primitiveWords().count(t.text) || unsupportedShapes().count(t.text));
 }
 
+// After a motion, a transform goes after it (scene/motion.h); clips and
+// textures take every transform (they are placed in the rest pose).
 void PovParser::applyTransform(PovObject& o, const Transform& t) {
-    o.object.transform = o.object.transform.then(t);
+    appendTransform(o.object.transform, o.object.motion, t);
     for (Object& clip : o.object.clippedBy) clip.transform = clip.transform.then(t);
     transformPigments(o, t);
     for (Light& l : o.lights) transformLight(l, t);
@@ -392,6 +394,10 @@ PovObject PovParser::object(const Tok& keyword) {
                   c->kind == Kind::Interior || c->kind == Kind::Material)) {
             fail(t.loc, std::string("a ") + kindName(c->kind) + " identifier must be wrapped: " + kindName(c->kind) +
                             " { " + m + " }");
+        }
+        if (m == "motion") { // drt's motion blur (pov/motion.cpp)
+            o.motion.push_back(MotionStage{motionBlock(), Transform()});
+            continue;
         }
         if (m == "texture") {
             if (++textures > 1) { // `texture {A} texture {B}`: B is a layer on top of A

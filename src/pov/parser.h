@@ -134,6 +134,8 @@ public:
     // image_map.cpp: after 'image_map'; none if unsupported (a warning says why).
     std::optional<Pigment> imageMapPigment(SourceLoc keyword);
     void applyTransform(PovObject& o, const Transform& t);
+    // motion.cpp: drt's motion block, after 'motion' (scene/motion.h).
+    Motion motionBlock();
     // ------------------------------------------------------------ algebraic.cpp
     static bool isAlgebraicWord(const std::string& w);
     Shape algebraicShape(const Tok& keyword); // after the shape's '{'

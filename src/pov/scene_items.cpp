@@ -94,7 +94,16 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
             next();
             break;
         }
-        if (std::optional<Transform> tr = transformItem()) {
+        if (t.isWord("motion")) { // drt's motion blur: moves the resolved camera (render/camera_path.h)
+            next();
+            resolve();
+            c.motion.push_back(MotionStage{motionBlock(), Transform()});
+            continue;
+        }
+        if (std::optional<Transform> tr = transformItem(); tr && !c.motion.empty()) {
+            c.motion.back().after = c.motion.back().after.then(*tr);
+            continue;
+        } else if (tr) {
             resolve();
             c.location = tr->point(c.location);
             c.direction = tr->vector(c.direction);
@@ -215,6 +224,7 @@ Light PovParser::lightSource(SourceLoc loc, std::optional<PovObject>* looksLike)
     l.loc = loc;
     l.mediaAttenuation = false; // POV-Ray's default
     AreaLight early; // area-light modifiers given before area_light
+    MotionChain lightMotion; // drt's motion blocks and the transforms after them
     const Tok first = peek();
     const Cell id = first.kind == TokKind::Word ? use(first.text) : nullptr;
     if (id && id->kind == Kind::Object && id->object->lights.size() == 1 &&
@@ -244,7 +254,15 @@ Light PovParser::lightSource(SourceLoc loc, std::optional<PovObject>* looksLike)
             next();
             break;
         }
-        if (std::optional<Transform> tr = transformItem()) {
+        if (t.isWord("motion")) { // drt's motion blur: moves the light (render/light_path.h)
+            next();
+            lightMotion.push_back(MotionStage{motionBlock(), Transform()});
+            continue;
+        }
+        if (std::optional<Transform> tr = transformItem(); tr && !lightMotion.empty()) {
+            lightMotion.back().after = lightMotion.back().after.then(*tr);
+            continue;
+        } else if (tr) {
             if (looksLike && *looksLike) applyTransform(**looksLike, *tr);
             l.position = tr->point(l.position);
             l.pointAt = tr->point(l.pointAt);
@@ -317,6 +335,7 @@ Light PovParser::lightSource(SourceLoc loc, std::optional<PovObject>* looksLike)
             failExpected(t, "a light_source item or '}'");
         }
     }
+    if (!lightMotion.empty()) l.motion = std::make_shared<LightMotion>(LightMotion{{}, std::move(lightMotion)});
     return l;
 }
 

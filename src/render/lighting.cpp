@@ -1,4 +1,5 @@
 #include "render/lighting.h"
+#include "render/light_path.h"
 
 #include "sampling/warp.h"
 #include "render/media.h"
@@ -259,7 +260,10 @@ Color directLighting(const Scene& scene, const Accelerator& accel, const Shading
                      RayCounts& counts) {
     Color sum(0);
     for (size_t i = 0; i < scene.lights.size(); ++i) {
-        const Light& light = scene.lights[i];
+        // A moving light as it is at this point's time (render/light_path.h).
+        std::optional<Light> moved;
+        if (lightMoves(scene.lights[i])) moved = lightAt(scene.lights[i], point.time);
+        const Light& light = moved ? *moved : scene.lights[i];
         if (isBlack(light.color)) continue;
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
         // Shadow rays through media: only for lights that interact with media (POV-Ray).

@@ -1,10 +1,12 @@
 #include "render/media.h"
 
+#include "render/light_path.h"
 #include "render/pigment.h"
 #include "render/shading.h"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace drt {
 
@@ -99,7 +101,10 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
     Color sum(0);
     Hit from;
     from.point = p;
-    for (const Light& light : lighting.scene->lights) {
+    for (const Light& written : lighting.scene->lights) {
+        std::optional<Light> moved; // a moving light as it is at the ray's time (render/light_path.h)
+        if (lightMoves(written)) moved = lightAt(written, lighting.time);
+        const Light& light = moved ? *moved : written;
         if (!light.mediaInteraction || isBlack(light.color)) continue;
         const Vec3 toLight = light.position - p;
         const double distance = length(toLight);
