@@ -36,8 +36,38 @@ bool looksBinary(const std::string& path) {
 
 } // namespace
 
+// The front end for `path` as a function of the frame's clock: the .drt or
+// POV-Ray front end, then the files the scene names.
+SceneEvaluator sceneEvaluator(const std::string& path, const PovCliOptions& pov, const RenderSettings& overrides) {
+    return [path, pov, overrides](const FrameClock& frame, Diagnostics& diagnostics) -> std::optional<Scene> {
+        std::optional<Scene> scene;
+        if (lowerExtension(path) == ".pov" || lowerExtension(path) == ".inc") {
+            // POV-Ray front end: the scene sees the image size it will be rendered at.
+            PovOptions options;
+            options.strict = pov.strict;
+            options.frame = frame;
+            if (!pov.includePaths.empty()) {
+                const std::string dir = fs::path(path).parent_path().string();
+                options.includePaths.push_back(dir.empty() ? "." : dir);
+                options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(),
+                                            pov.includePaths.end());
+                options.includePaths.push_back(kPovStandardIncludeDir);
+            }
+            if (overrides.width) options.imageWidth = *overrides.width;
+            if (overrides.height) options.imageHeight = *overrides.height;
+            scene = loadPovSceneFile(path, diagnostics, options);
+        } else {
+            scene = loadSceneFile(path, diagnostics, frame);
+        }
+        if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+        return scene;
+    };
+}
+
+// At one frame's clock, moving over its shutter (animation.h evaluateFrame).
 int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov,
-              const RenderSettings& overrides) {
+              const RenderSettings& overrides, const FrameClock& frame, const FrameOptions& frameOptions,
+              FrameReport* report) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !std::ifstream(path)) {
         err << fmt::format("drt: cannot read scene '{}': {}\n", path,
@@ -49,23 +79,7 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         return kSceneError;
     }
     Diagnostics diagnostics;
-    if (lowerExtension(path) == ".pov" || lowerExtension(path) == ".inc") {
-        // POV-Ray front end: the scene sees the image size it will be rendered at.
-        PovOptions options;
-        options.strict = pov.strict;
-        if (!pov.includePaths.empty()) {
-            const std::string dir = fs::path(path).parent_path().string();
-            options.includePaths.push_back(dir.empty() ? "." : dir);
-            options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(), pov.includePaths.end());
-            options.includePaths.push_back(kPovStandardIncludeDir);
-        }
-        if (overrides.width) options.imageWidth = *overrides.width;
-        if (overrides.height) options.imageHeight = *overrides.height;
-        scene = loadPovSceneFile(path, diagnostics, options);
-    } else {
-        scene = loadSceneFile(path, diagnostics);
-    }
-    if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+    scene = evaluateFrame(sceneEvaluator(path, pov, overrides), frame, frameOptions, diagnostics, report);
     err << diagnostics.formatAll();
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),

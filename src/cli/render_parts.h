@@ -11,10 +11,16 @@
 
 namespace drt::cli {
 
-// Loads a scene, printing every diagnostic to `err`. Returns kSuccess and sets
-// `scene`, or the exit status to stop with.
+// The front end for `path` as a function of the frame's clock: evaluates the
+// scene text as seen at that clock (front end, then the files it names).
+SceneEvaluator sceneEvaluator(const std::string& path, const PovCliOptions& pov, const RenderSettings& overrides);
+
+// Loads a scene at one frame's clock, moving over its shutter (animation.h
+// evaluateFrame), printing every diagnostic to `err`. Returns kSuccess and
+// sets `scene`, or the exit status to stop with.
 int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov = {},
-              const RenderSettings& overrides = {});
+              const RenderSettings& overrides = {}, const FrameClock& frame = {}, const FrameOptions& frameOptions = {},
+              FrameReport* report = nullptr);
 
 // ".png" for "a/b.PNG".
 std::string lowerExtension(const std::string& path);

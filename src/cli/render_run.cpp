@@ -39,8 +39,12 @@ struct Prepared {
 };
 
 int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepared& p) {
-    if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides); status != kSuccess)
+    FrameReport report; // the scene at its frame's clock, moving over the shutter
+    if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides, stillFrameClock(command),
+                               frameOptions(command), &report);
+        status != kSuccess)
         return status;
+    printFrameReport(command, report, err);
     p.options = resolveRenderOptions(overlaySettings(p.scene->render, command.overrides));
     if (command.tileSize) p.options.tileSize = *command.tileSize;
     if (!command.crop.empty()) {
@@ -285,7 +289,6 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
 } // namespace
 
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
-    (void)out;
     std::optional<MpiJob> mpi;
     if (MpiJob::launched()) {
         if (!MpiJob::available()) {
@@ -301,7 +304,10 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
         }
     }
     const InterruptHandler interrupt;
-    return renderProcess(command, err, interrupt, mpi ? &*mpi : nullptr);
+    const auto renderOne = [&](const RenderCommand& c) { return renderProcess(c, err, interrupt, mpi ? &*mpi : nullptr); };
+    // An animation renders its frames one after another, each as a render of its own.
+    if (wantsAnimation(command)) return runAnimation(command, err, renderOne);
+    return renderOne(command);
 }
 
 } // namespace drt::cli

@@ -291,17 +291,17 @@ const Value* Parser::lookup(const std::string& name) const {
 // ---------------------------------------------------------------- entry points
 
 std::optional<Scene> loadSceneText(const std::string& text, const std::string& name, Diagnostics& diags,
-                                   const std::string& baseDir) {
+                                   const std::string& baseDir, const FrameClock& frame) {
     const int errorsBefore = diags.errorCount();
     const int fileId = diags.files().add(name, text);
     Scene scene;
-    Parser parser(diags, scene);
+    Parser parser(diags, scene, frame);
     parser.parseFile(fileId, (fs::path(baseDir) / fs::path(name).filename()).string(), baseDir);
     if (diags.errorCount() > errorsBefore) return std::nullopt;
     return scene;
 }
 
-std::optional<Scene> loadSceneFile(const std::string& path, Diagnostics& diags) {
+std::optional<Scene> loadSceneFile(const std::string& path, Diagnostics& diags, const FrameClock& frame) {
     std::optional<std::string> text = readWholeFile(path);
     if (!text || fs::is_directory(path)) {
         diags.error({}, "cannot read scene file '" + path + "'");
@@ -312,7 +312,7 @@ std::optional<Scene> loadSceneFile(const std::string& path, Diagnostics& diags) 
     const int errorsBefore = diags.errorCount();
     const int fileId = diags.files().add(path, *text);
     Scene scene;
-    Parser parser(diags, scene);
+    Parser parser(diags, scene, frame);
     parser.parseFile(fileId, path, dir);
     if (diags.errorCount() > errorsBefore) return std::nullopt;
     return scene;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "lang/lexer.h"
+#include "scene/frame_clock.h"
 #include "scene/scene.h"
 
 #include <array>
@@ -45,7 +46,8 @@ struct ParseAbort {};
 
 class Parser {
 public:
-    Parser(Diagnostics& diags, Scene& scene) : diags_(diags), scene_(scene) {}
+    Parser(Diagnostics& diags, Scene& scene, const FrameClock& frame = {})
+        : diags_(diags), scene_(scene), frame_(frame) {}
 
     // Parses the file with id `fileId` in diags.files(); `path` identifies it
     // for include-cycle detection and `dir` is where its #includes resolve.
@@ -103,6 +105,7 @@ private:
     bool atBoolean() const;
     int intExpr(const char* what);
     const Value* lookup(const std::string& name) const;
+    std::optional<double> clockIdentifier(const std::string& name);
 
     // ------------------------------------------------------ parser_scene.cpp
     void camera();
@@ -125,6 +128,7 @@ private:
     void objectModifiers(ParsedObject& po, const Token& keyword);
     bool objectModifier(ParsedObject& po);
     void motion(Object& object);
+    Motion motionBlock(); // at 'motion': the block, as scene/motion.h Motion
     void meshTriangle(Mesh& mesh, bool smooth);
     void setTexture(ParsedObject& po, const Texture& texture);
     void addChild(ParsedObject& parent, ParsedObject child);
@@ -180,6 +184,7 @@ private:
 
     Diagnostics& diags_;
     Scene& scene_;
+    FrameClock frame_; // what `clock`, `frame_number`, ... read
     std::vector<Source> sources_;
     std::map<int, std::vector<SourceLoc>> includeChains_; // file id -> #include locations, innermost first
     Token current_;

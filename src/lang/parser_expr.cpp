@@ -196,10 +196,24 @@ Value Parser::primary() {
         advance();
         return *v;
     }
-    std::vector<std::string> known{"x", "y", "z", "pi", "color", "rgb", "rgbf", "rgbt", "rgbft", "srgb"};
+    if (const std::optional<double> v = clockIdentifier(w)) {
+        advance();
+        return *v;
+    }
+    std::vector<std::string> known{"x", "y", "z", "pi", "color", "rgb", "rgbf", "rgbt", "rgbft", "srgb", "clock",
+                                   "clock_delta", "clock_on", "frame_number", "initial_frame", "final_frame",
+                                   "initial_clock", "final_clock"};
     for (const auto& f : functions()) known.push_back(f.name);
     for (const auto& [name, value] : symbols_) known.push_back(name);
     failUnknown(t, known, "identifier");
+}
+
+// The animation's identifiers (scene/frame_clock.h), unless #declare'd: the
+// scene records that it read `clock`, so that motion blur can find how it moves.
+std::optional<double> Parser::clockIdentifier(const std::string& name) {
+    const std::optional<double> v = frameClockValue(frame_, name);
+    if (v && name == "clock") scene_.readsClock = true;
+    return v;
 }
 
 // function "(" expression { "," expression } ")"

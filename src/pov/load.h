@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/diagnostics.h"
+#include "scene/frame_clock.h"
 #include "scene/scene.h"
 
 #include <optional>
@@ -24,8 +25,8 @@ struct PovOptions {
     // in Scene::render.
     int imageWidth = 320;
     int imageHeight = 240;
-    // POV-Ray's `clock` (animation time).
-    double clock = 0;
+    // What `clock`, `frame_number` and the other animation identifiers read.
+    FrameClock frame;
 };
 
 // The folder of Debian's povray-includes package, the last default include path.
