@@ -163,6 +163,34 @@ TEST(BenchChart, WritesValidSvgAndPng) {
     EXPECT_FALSE(fs::exists(base + ".png.tmp"));
 }
 
+TEST(BenchChart, UnconnectedSeriesDrawOnlyMarkersAndLevelsDrawALine) {
+    const std::string dir = test::tempDir();
+    const auto colouredPixels = [&](bool connected, bool level) {
+        Chart chart;
+        chart.series.push_back({"a", {{0.01, 0.1, 0, 0}, {0.1, 0.01, 0, 0}, {1, 0.001, 0, 0}}, connected});
+        if (level) chart.levels.push_back({0.003, "target"});
+        const std::string base = (fs::path(dir) / "chart").string();
+        EXPECT_EQ(writeChart(chart, base), "");
+        Image png;
+        EXPECT_EQ(readImage(base + ".png", png), "");
+        int coloured = 0, grey = 0;
+        for (int y = 0; y < png.height; ++y)
+            for (int x = 0; x < png.width; ++x) {
+                const float r = png.at(x, y, 0), g = png.at(x, y, 1), b = png.at(x, y, 2);
+                coloured += std::max({r, g, b}) - std::min({r, g, b}) > 0.4f;
+                grey += std::max({r, g, b}) - std::min({r, g, b}) < 0.02f && r > 0.05f && r < 0.3f;
+            }
+        return std::pair{coloured, grey};
+    };
+    const auto [line, lineGrey] = colouredPixels(true, false);
+    const auto [markers, markersGrey] = colouredPixels(false, false);
+    EXPECT_GT(markers, 20);           // the markers are drawn...
+    EXPECT_GT(line, markers + 200);   // ...but only the connected series has its line
+    const auto [withLevel, levelGrey] = colouredPixels(false, true);
+    EXPECT_EQ(withLevel, markers);
+    EXPECT_GT(levelGrey, markersGrey + 50); // the dotted level line (and its label)
+}
+
 TEST(BenchChart, UnwritableFolderIsReported) {
     Chart chart;
     chart.series.push_back({"a", {{1, 1, 0, 0}, {2, 0.5, 0, 0}}});

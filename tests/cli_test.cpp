@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 namespace fs = std::filesystem;
 
@@ -193,6 +194,74 @@ TEST(Cli, RenderWritesImageWithMetadataAndVariance) {
     // No temporary files are left behind.
     for (const auto& entry : fs::directory_iterator(dir))
         EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
+}
+
+TEST(Cli, RenderStatsJsonHasTheRayCountsAndRates) {
+    const std::string dir = test::tempDir();
+    const std::string scene = test::writeFile(dir + "/tiny.drt", kTinyScene);
+    const auto r = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.exr") +
+                          " --width 20 --height 10 --spp 3 --threads 2 --quiet --stats " +
+                          quoted(dir + "/stats.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json stats = nlohmann::json::parse(test::readFile(dir + "/stats.json"));
+    EXPECT_EQ(stats.at("width"), 20);
+    EXPECT_EQ(stats.at("spp"), 3);
+    EXPECT_EQ(stats.at("threads"), 2);
+    // One camera ray per sample; the light is visible from the floor, so shadow rays are traced too.
+    EXPECT_EQ(stats.at("camera_rays"), 20 * 10 * 3);
+    EXPECT_EQ(stats.at("pixel_samples"), 20 * 10 * 3);
+    EXPECT_GT(stats.at("shadow_rays").get<uint64_t>(), 0u);
+    EXPECT_EQ(stats.at("total_rays").get<uint64_t>(),
+              stats.at("camera_rays").get<uint64_t>() + stats.at("shadow_rays").get<uint64_t>() +
+                  stats.at("secondary_rays").get<uint64_t>());
+    const double trace = stats.at("trace_seconds"), rate = stats.at("mrays_per_second");
+    EXPECT_NEAR(rate, stats.at("total_rays").get<double>() / trace / 1e6, 1e-6 * rate);
+    EXPECT_GE(stats.at("total_seconds").get<double>(), stats.at("render_seconds").get<double>());
+    EXPECT_FALSE(fs::exists(dir + "/stats.json.tmp"));
+
+    // A folder that does not exist is an I/O error before rendering: no image either.
+    const auto missing = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/second.exr") + " --stats " +
+                                quoted(dir + "/no/such/stats.json"));
+    EXPECT_EQ(missing.exitCode, 3);
+    EXPECT_NE(missing.err.find("does not exist"), std::string::npos) << missing.err;
+    EXPECT_FALSE(fs::exists(dir + "/second.exr"));
+}
+
+// OpenImageIO is a module loaded on the first image operation: a command that
+// needs no image never loads it, and a missing or foreign module is a clear
+// I/O error before any rendering.
+TEST(Cli, ImageModuleIsLoadedOnlyForImagesAndItsAbsenceIsAnIoError) {
+    const std::string dir = test::tempDir();
+    const std::string scene = test::writeFile(dir + "/tiny.drt", kTinyScene);
+    // drt children inherit the variable; this test process does no image I/O meanwhile.
+    struct ModuleOverride {
+        explicit ModuleOverride(const std::string& path) { setenv("DRT_OIIO_MODULE", path.c_str(), 1); }
+        ~ModuleOverride() { unsetenv("DRT_OIIO_MODULE"); }
+    };
+    {
+        const ModuleOverride missing(dir + "/no-such-module.so");
+        const auto check = runDrt("check " + quoted(scene));
+        EXPECT_EQ(check.exitCode, 0) << check.err; // no image involved: the module is not needed
+        EXPECT_EQ(runDrt("--version").exitCode, 0);
+
+        const auto render = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.png"));
+        EXPECT_EQ(render.exitCode, 3);
+        EXPECT_NE(render.err.find("cannot load drt's OpenImageIO module libdrt_oiio.so"), std::string::npos)
+            << render.err;
+        EXPECT_NE(render.err.find("no-such-module.so: no such file"), std::string::npos) << render.err;
+        EXPECT_EQ(render.err.find("Mrays/s"), std::string::npos) << render.err; // nothing rendered
+        EXPECT_FALSE(fs::exists(dir + "/out.png"));
+    }
+    {
+        // A shared library that is not drt's module (the C library) is refused.
+        const ModuleOverride foreign("/lib/x86_64-linux-gnu/libc.so.6");
+        const auto render = runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.png"));
+        EXPECT_EQ(render.exitCode, 3);
+        EXPECT_NE(render.err.find("not a module of this drt build"), std::string::npos) << render.err;
+    }
+    // Without the override the module is found again.
+    EXPECT_EQ(runDrt("render " + quoted(scene) + " -o " + quoted(dir + "/out.png") + " --quiet").exitCode, 0);
+    EXPECT_TRUE(fs::exists(dir + "/out.png"));
 }
 
 TEST(Cli, CompareExitStatusesEndToEnd) {

@@ -180,7 +180,7 @@ const ErrorCase kCases[] = {
     {"MotionUnknown", "sphere { 0, 1 motion { rotat y } }", "unknown keyword 'rotat'; did you mean 'rotate'?", 1, 24},
     {"MotionNotWord", "sphere { 0, 1 motion { 1 } }", "expected 'at', 'translate', 'rotate', 'scale', 'spline' or '}' in motion, found '1'", 1, 24},
     {"MotionKeyTwice", "sphere { 0, 1 motion { at 0.5 rotate y at 1 rotate y rotate x } }", "'rotate' given twice in one motion key", 1, 54},
-    {"MotionKeyTimesDecrease", "sphere { 0, 1 motion { at 0.5 rotate y at 0.5 rotate x } }", "motion key times must increase", 1, 44},
+    {"MotionKeyTimesDecrease", "sphere { 0, 1 motion { at 0.5 rotate y at 0.5 rotate x } }", "motion key times must increase", 1, 43},
     {"MotionKeyTimeRange", "sphere { 0, 1 motion { at 1.5 rotate y } }", "motion key times must be in [0, 1]", 1, 27},
     {"MotionAtAfterItems", "sphere { 0, 1 motion { rotate y at 1 rotate x } }", "'at' after key items without a time; begin with 'at'", 1, 33},
     {"MotionSplineTwice", "sphere { 0, 1 motion { spline spline at 1 rotate y } }", "'spline' given twice in motion", 1, 31},

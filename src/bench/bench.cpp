@@ -3,6 +3,7 @@
 #include "bench/bench.h"
 #include "assets/assets.h"
 
+#include "bench/reference.h"
 #include "bench/report.h"
 #include "compare/compare.h"
 #include "lang/load.h"
@@ -71,21 +72,10 @@ std::string referenceKey(const Scene& scene, const Scene& tweaked) {
     return filterOf(tweaked) == filterOf(scene) ? "" : "filter-" + filterOf(tweaked);
 }
 
-// Mean over pixels and channels of Var(r) / (r^2 + 0.01): the reference's
-// share of E[relMSE] (ACCURACY-NOTES.md: a noisy reference inflates every error).
+// The reference's share of E[relMSE] (ACCURACY-NOTES.md: a noisy reference
+// inflates every error).
 double referenceNoise(const Reference& reference) {
-    if (!reference.hasVariance) return 0;
-    double sum = 0;
-    int64_t count = 0;
-    const int channels = std::min(3, reference.color.channels);
-    for (int y = 0; y < reference.color.height; ++y)
-        for (int x = 0; x < reference.color.width; ++x)
-            for (int c = 0; c < channels; ++c) {
-                const double r = reference.color.at(x, y, c);
-                const double v = reference.variance.at(x, y, std::min(c, reference.variance.channels - 1));
-                if (std::isfinite(r) && std::isfinite(v)) sum += v / (r * r + 0.01), ++count;
-            }
-    return count ? sum / double(count) : 0;
+    return reference.hasVariance ? bench::referenceNoise(reference.color, reference.variance) : 0;
 }
 
 // Global z-score: sum of errors over every finite pixel and channel divided by
@@ -167,31 +157,18 @@ Reference makeReference(const Scene& scene, RenderOptions options, int spp, cons
             throw BenchError(fmt::format("reference render failed: {}", e.what()), false);
         }
     }
-    RenderResult result;
-    result.color = Image(options.width, options.height, 3);
-    result.variance = Image(options.width, options.height, 3);
-    const double k = kReferenceParts;
-    for (size_t i = 0; i < result.color.pixels.size(); ++i) {
-        double mean = 0, squares = 0;
-        for (const Image& part : parts) mean += part.pixels[i] / k;
-        for (const Image& part : parts) squares += (part.pixels[i] - mean) * (part.pixels[i] - mean);
-        result.color.pixels[i] = float(mean);
-        result.variance.pixels[i] = float(squares / (k * (k - 1)));
-    }
-    for (Image* image : {&result.color, &result.variance})
-        for (float& v : image->pixels)
-            if (!std::isfinite(v)) v = 0;
+    AveragedImage result = averageImages(parts);
     const Metadata metadata = {{"Software", fmt::format("drt {}", DRT_VERSION)},
                                {"drt:bench_reference", identity},
                                {"drt:spp", std::to_string(options.samplesPerPixel * kReferenceParts)},
                                {"drt:seed", std::to_string(kReferenceSeed)}};
-    if (std::string problem = writeImage(colorPath.string(), result.color, metadata); !problem.empty())
+    if (std::string problem = writeImage(colorPath.string(), result.mean, metadata); !problem.empty())
         throw BenchError(problem, true);
-    if (std::string problem = writeImage(variancePath.string(), result.variance, metadata); !problem.empty())
+    if (std::string problem = writeImage(variancePath.string(), result.varianceOfMean, metadata); !problem.empty())
         throw BenchError(problem, true);
     log << fmt::format("bench: reference done in {:.1f} s\n", secondsSince(start));
-    reference.color = std::move(result.color);
-    reference.variance = std::move(result.variance);
+    reference.color = std::move(result.mean);
+    reference.variance = std::move(result.varianceOfMean);
     reference.hasVariance = true;
     reference.note = fmt::format("`{}` ({} spp, made in {:.1f} s)", colorPath.filename().string(), spp,
                                  secondsSince(start));

@@ -149,6 +149,8 @@ void drawChart(cairo_t* cr, const Chart& chart) {
             if (p.high > 0 && std::isfinite(p.high)) maxY = std::max(maxY, p.high);
         }
     }
+    for (const ChartLevel& level : chart.levels)
+        if (level.y > 0 && std::isfinite(level.y)) minY = std::min(minY, level.y), maxY = std::max(maxY, level.y);
     const LogAxis ax = decadeAxis(minX, maxX), ay = decadeAxis(minY, maxY);
 
     // Legend width decides the plot width.
@@ -201,6 +203,20 @@ void drawChart(cairo_t* cr, const Chart& chart) {
         cairo_set_dash(cr, nullptr, 0, 0);
     }
 
+    // Target levels: dotted lines, labelled at the right end.
+    for (const ChartLevel& level : chart.levels) {
+        if (!(level.y > 0) || !std::isfinite(level.y)) continue;
+        cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+        cairo_set_line_width(cr, 1);
+        const double dots[] = {2, 3};
+        cairo_set_dash(cr, dots, 2, 0);
+        cairo_move_to(cr, f.left, py(level.y)), cairo_line_to(cr, f.right, py(level.y));
+        cairo_stroke(cr);
+        cairo_set_dash(cr, nullptr, 0, 0);
+        cairo_set_font_size(cr, 10.5);
+        showText(cr, f.right - textWidth(cr, level.label) - 4, py(level.y) - 4, level.label);
+    }
+
     // Pareto front: a staircase (the best error reachable within each budget).
     if (!chart.paretoFront.empty()) {
         cairo_set_source_rgba(cr, 0.2, 0.2, 0.2, 0.22);
@@ -235,7 +251,7 @@ void drawChart(cairo_t* cr, const Chart& chart) {
         }
         setColor(cr, color);
         cairo_set_line_width(cr, 1.8);
-        for (size_t i = 0; i < points.size(); ++i) {
+        for (size_t i = 0; s.connected && i < points.size(); ++i) {
             if (i == 0) cairo_move_to(cr, px(points[i].x), py(points[i].y));
             else cairo_line_to(cr, px(points[i].x), py(points[i].y));
         }
@@ -272,7 +288,7 @@ void drawChart(cairo_t* cr, const Chart& chart) {
         const Rgb& color = kPalette[si % kPaletteSize];
         setColor(cr, color);
         cairo_set_line_width(cr, 1.8);
-        cairo_move_to(cr, lx, ly - 4), cairo_line_to(cr, lx + 26, ly - 4);
+        if (chart.series[si].connected) cairo_move_to(cr, lx, ly - 4), cairo_line_to(cr, lx + 26, ly - 4);
         cairo_stroke(cr);
         drawMarker(cr, int(si), lx + 13, ly - 4, 3.6);
         cairo_fill(cr);

@@ -18,6 +18,13 @@ struct ChartPoint {
 struct ChartSeries {
     std::string name; // legend entry
     std::vector<ChartPoint> points;
+    bool connected = true; // false: markers only (e.g. every setting of a renderer, not a curve)
+};
+
+// A labelled horizontal line (e.g. a target error), dotted, across the plot.
+struct ChartLevel {
+    double y = 0;
+    std::string label;
 };
 
 struct Chart {
@@ -34,6 +41,7 @@ struct Chart {
     // Points of the Pareto front in data coordinates, by increasing x; drawn
     // as a staircase under the markers, with rings on its points.
     std::vector<ChartPoint> paretoFront;
+    std::vector<ChartLevel> levels;
     int width = 760;
     int height = 500;
 };

@@ -91,6 +91,8 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
         ->add_option("--checkpoint-every", a.command.checkpointSeconds,
                      "Save a checkpoint and the image so far every this many seconds (an interruption always saves)")
         ->check(CLI::PositiveNumber);
+    render->add_option("--stats", a.command.statsOutput,
+                       "Also write the render's times, ray counts and rates to this JSON file");
     render->add_flag("-q,--quiet", a.command.quiet, "No progress line and no summary");
     render->add_option("-L,--include-path", a.command.pov.includePaths,
                        "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");

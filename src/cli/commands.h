@@ -55,6 +55,7 @@ struct RenderCommand {
     std::string output;
     std::string varianceOutput; // "" : none; else an .exr path
     std::string sppImageOutput; // "" : none; samples taken per pixel (--spp-image)
+    std::string statsOutput;    // "" : none; times, ray counts and rates as JSON (--stats)
     RenderSettings overrides; // what the command line sets over the scene's settings
     std::optional<int> tileSize;
     std::string crop;              // --crop "x0,x1,y0,y1" (pixels) or fractions; "" the whole image

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <ostream>
 
 namespace fs = std::filesystem;
@@ -187,7 +188,52 @@ int checkOutputs(const RenderCommand& command, std::ostream& err) {
             return kIoError;
         }
     }
+    if (!command.statsOutput.empty()) {
+        const fs::path folder = fs::absolute(command.statsOutput).parent_path();
+        std::error_code ec;
+        if (!fs::is_directory(folder, ec)) {
+            err << fmt::format("drt: cannot write '{}': the folder '{}' does not exist\n", command.statsOutput,
+                               folder.string());
+            return kIoError;
+        }
+    }
     return kSuccess;
+}
+
+std::string writeStatsJson(const RenderCommand& command, const RenderOptions& options, const RenderResult& result,
+                           const RenderTimes& times) {
+    const RenderStats& s = result.stats;
+    const double traceSeconds = s.renderSeconds > 0 ? s.renderSeconds : times.renderSeconds;
+    const nlohmann::json stats = {
+        {"scene", command.scene},
+        {"output", command.output},
+        {"width", result.color.width},
+        {"height", result.color.height},
+        {"spp", options.samplesPerPixel},
+        {"adaptive", options.adaptive},
+        {"threads", options.threads},
+        {"pixel_samples", s.pixelSamples},
+        {"load_seconds", times.loadSeconds},
+        {"build_seconds", s.buildSeconds},
+        {"trace_seconds", traceSeconds},
+        {"render_seconds", times.renderSeconds},
+        {"total_seconds", times.totalSeconds},
+        {"camera_rays", s.cameraRays},
+        {"shadow_rays", s.shadowRays},
+        {"secondary_rays", s.secondaryRays},
+        {"total_rays", s.totalRays()},
+        {"mrays_per_second", traceSeconds > 0 ? double(s.totalRays()) / traceSeconds / 1e6 : 0.0},
+        {"nonfinite_samples", s.nonFiniteSamples},
+    };
+    const std::string temporary = command.statsOutput + ".tmp";
+    {
+        std::ofstream file(temporary);
+        file << stats.dump(2) << "\n";
+        if (!file.flush()) return fmt::format("cannot write '{}'", command.statsOutput);
+    }
+    std::error_code ec;
+    fs::rename(temporary, command.statsOutput, ec);
+    return ec ? fmt::format("cannot write '{}': {}", command.statsOutput, ec.message()) : "";
 }
 
 int writeOutputs(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,

@@ -33,6 +33,15 @@ int checkOutputs(const RenderCommand& command, std::ostream& err);
 int writeOutputs(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
                  RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err);
 
+// `--stats FILE`: the summary line's figures as JSON, for benchmark scripts.
+// load = parse + the files the scene names; render = build + trace; total =
+// the whole command after start-up (load, render, writing every output).
+struct RenderTimes {
+    double loadSeconds = 0, renderSeconds = 0, totalSeconds = 0;
+};
+std::string writeStatsJson(const RenderCommand& command, const RenderOptions& options, const RenderResult& result,
+                           const RenderTimes& times);
+
 // The one-line summary after a render.
 void printSummary(const RenderCommand& command, const RenderOptions& options, const RenderResult& result,
                   uint64_t nonFinitePixels, double seconds, std::ostream& err);

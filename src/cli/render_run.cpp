@@ -36,14 +36,17 @@ struct Prepared {
     RenderOptions options;
     RenderIdentity identity;
     std::optional<Checkpoint> checkpoint; // --resume, rank 0
+    double loadSeconds = 0;               // parsing and the files the scene names (--stats)
 };
 
 int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepared& p) {
+    const auto loadStart = std::chrono::steady_clock::now();
     FrameReport report; // the scene at its frame's clock, moving over the shutter
     if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides, stillFrameClock(command),
                                frameOptions(command), &report);
         status != kSuccess)
         return status;
+    p.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     printFrameReport(command, report, err);
     p.options = resolveRenderOptions(overlaySettings(p.scene->render, command.overrides));
     if (command.tileSize) p.options.tileSize = *command.tileSize;
@@ -169,6 +172,7 @@ std::string rankFigures(const DistributedReport& report) {
 
 int renderProcess(const RenderCommand& command, std::ostream& err, const InterruptHandler& interrupt,
                   MpiJob* mpi) {
+    const auto commandStart = std::chrono::steady_clock::now();
     const bool rank0 = !mpi || mpi->rank() == 0;
     // Ranks other than 0 keep their messages unless they alone failed (the
     // same scene error from every rank would print once per rank).
@@ -279,6 +283,14 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
     if (int written = writeOutputs(command, p.options, p.identity, result, nonFinitePixels, err);
         written != kSuccess)
         return written;
+    if (!command.statsOutput.empty()) {
+        const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - commandStart).count();
+        if (std::string problem = writeStatsJson(command, p.options, result, {p.loadSeconds, seconds, total});
+            !problem.empty()) {
+            err << "drt: " << problem << "\n";
+            return kIoError;
+        }
+    }
     if (!command.quiet) {
         printSummary(command, p.options, result, nonFinitePixels, seconds, err);
         if (mpi) err << rankFigures(ranks);

@@ -1,21 +1,27 @@
-// Image I/O through OpenImageIO: the one path every image in drt takes to and
-// from disk.
+// The image I/O entry points. Every image goes through OpenImageIO, in the
+// module libdrt_oiio.so (image/oiio/), loaded once, on the first call
+// (image/image_io_module.h says why); the file handling around it stays here:
+// writes go to a temporary file (registered for removal on a signal) renamed
+// over the real one when complete. The module is $DRT_OIIO_MODULE if that is
+// set (and then nothing else is tried); else it is looked for beside the
+// executable, in ../lib/drt beside it (an installed drt), and in the build
+// tree it was built in.
 #include "image/image.h"
+#include "image/image_io_module.h"
 
-#include "image/srgb.h"
 #include "core/temporary_files.h"
-
-#include <OpenImageIO/imageio.h>
-#include <fmt/format.h>
 
 #include <atomic>
 #include <cerrno>
-#include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <system_error>
 #include <unistd.h>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -23,27 +29,61 @@ namespace drt {
 
 namespace {
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    for (char& c : ext)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
+struct LoadedModule {
+    const ImageIoModule* module = nullptr;
+    std::string error; // why there is none
+};
+
+std::vector<std::string> moduleCandidates() {
+    if (const char* given = std::getenv("DRT_OIIO_MODULE"); given && *given)
+        return {given};
+    std::vector<std::string> candidates;
+    std::error_code ec;
+    const fs::path executable = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        candidates.push_back((executable.parent_path() / kImageIoModuleFile).string());
+        candidates.push_back(
+            (executable.parent_path().parent_path() / "lib" / "drt" / kImageIoModuleFile).string());
+    }
+#ifdef DRT_OIIO_MODULE_BUILD_PATH
+    candidates.push_back(DRT_OIIO_MODULE_BUILD_PATH);
+#endif
+    return candidates;
 }
 
-// How pixels are stored in a format: float formats keep linear values, integer
-// formats store sRGB-encoded values.
-OIIO::TypeDesc storageType(const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    if (ext == ".exr" || ext == ".hdr" || ext == ".rgbe" || ext == ".pfm")
-        return OIIO::TypeDesc::FLOAT;
-    if (ext == ".tif" || ext == ".tiff")
-        return OIIO::TypeDesc::UINT16;
-    return OIIO::TypeDesc::UINT8;
+LoadedModule load() {
+    LoadedModule loaded;
+    std::string tried;
+    for (const std::string& path : moduleCandidates()) {
+        std::error_code ec;
+        if (!fs::exists(path, ec)) {
+            tried += "\n  " + path + ": no such file";
+            continue;
+        }
+        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) {
+            const char* why = dlerror();
+            tried += "\n  " + path + ": " + (why ? why : "cannot be loaded");
+            continue;
+        }
+        using Entry = const ImageIoModule* (*)();
+        const auto entry = reinterpret_cast<Entry>(dlsym(handle, kImageIoModuleSymbol));
+        const ImageIoModule* module = entry ? entry() : nullptr;
+        if (!module || module->version != kImageIoModuleVersion) {
+            tried += "\n  " + path + ": not a module of this drt build";
+            dlclose(handle);
+            continue;
+        }
+        loaded.module = module; // stays loaded until the process ends
+        return loaded;
+    }
+    loaded.error = std::string("cannot load drt's OpenImageIO module ") + kImageIoModuleFile + ":" + tried;
+    return loaded;
 }
 
-bool isIntegerType(OIIO::TypeDesc type) {
-    return type.basetype != OIIO::TypeDesc::FLOAT && type.basetype != OIIO::TypeDesc::HALF &&
-           type.basetype != OIIO::TypeDesc::DOUBLE;
+const LoadedModule& imageIo() {
+    static const LoadedModule loaded = load(); // thread-safe, once
+    return loaded;
 }
 
 // A name for the temporary file beside `path`, unique within this machine
@@ -59,30 +99,6 @@ fs::path folderOf(const std::string& path) {
     return folder.empty() ? fs::path(".") : folder;
 }
 
-// TIFF and JPEG keep only the description writeImage composes,
-// "drt key=value key=value ...": recover the keys the file did not keep.
-void recoverFromDescription(const std::string& description, Metadata& metadata) {
-    if (description.rfind("drt ", 0) != 0)
-        return;
-    size_t start = 4;
-    while (start < description.size()) {
-        size_t end = description.find(' ', start);
-        if (end == std::string::npos)
-            end = description.size();
-        const std::string item = description.substr(start, end - start);
-        start = end + 1;
-        const size_t equals = item.find('=');
-        if (equals == std::string::npos)
-            continue;
-        std::string key = item.substr(0, equals);
-        bool present = false;
-        for (const auto& entry : metadata)
-            present = present || entry.first == key;
-        if (!present)
-            metadata.emplace_back(std::move(key), item.substr(equals + 1));
-    }
-}
-
 } // namespace
 
 std::string checkWritable(const std::string& path) {
@@ -90,14 +106,12 @@ std::string checkWritable(const std::string& path) {
         return "no output file given";
     if (fs::path(path).filename().empty())
         return "'" + path + "' names a folder, not a file";
-    {
-        auto output = OIIO::ImageOutput::create(path);
-        if (!output) {
-            OIIO::geterror(); // clear OpenImageIO's pending message
-            return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) +
-                   "' (use .png, .jpg, .tif, .exr or .hdr)";
-        }
-    }
+    const LoadedModule& io = imageIo();
+    if (!io.module)
+        return io.error;
+    if (!io.module->hasWriter(path))
+        return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) +
+               "' (use .png, .jpg, .tif, .exr or .hdr)";
     const fs::path folder = folderOf(path);
     std::error_code ec;
     if (!fs::exists(folder, ec))
@@ -124,115 +138,35 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
     if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
         image.pixels.size() != size_t(image.width) * image.height * image.channels)
         return "cannot write '" + path + "': the image is empty or malformed";
-    auto output = OIIO::ImageOutput::create(path);
-    if (!output) {
-        OIIO::geterror();
+    const LoadedModule& io = imageIo();
+    if (!io.module)
+        return io.error;
+    if (!io.module->hasWriter(path))
         return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) + "'";
-    }
-
-    const OIIO::TypeDesc type = storageType(path);
-    const bool encode = isIntegerType(type);
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
-    spec.attribute("oiio:ColorSpace", encode ? "sRGB" : "Linear");
-    std::string description = "drt";
-    for (const auto& [key, value] : metadata) {
-        spec.attribute(key, value);
-        if (key.rfind("drt:", 0) == 0)
-            description += " " + key + "=" + value;
-    }
-    // Formats that drop unknown attributes (TIFF, JPEG) still keep a description.
-    if (!metadata.empty())
-        spec.attribute("ImageDescription", description);
-
-    // 8/16-bit: sRGB-encode, clamp, round; the quantisation itself is OpenImageIO's
-    // (round to nearest) when it converts our [0, 1] floats to the file's type.
-    std::vector<float> stored = image.pixels;
-    if (encode)
-        for (float& v : stored)
-            v = static_cast<float>(srgbEncode(v));
-
     const fs::path temporary = temporaryPath(fs::path(path));
     const TemporaryFile removedOnSignal(temporary.string());
     std::error_code ec;
     auto fail = [&](const std::string& reason) {
-        output.reset(); // closes the file before it is removed
         fs::remove(temporary, ec);
         return "cannot write '" + path + "': " + reason;
     };
-    if (!output->open(temporary.string(), spec))
-        return fail(output->geterror());
-    if (!output->write_image(OIIO::TypeDesc::FLOAT, stored.data()))
-        return fail(output->geterror());
-    if (!output->close())
-        return fail(output->geterror());
-    output.reset();
+    if (std::string problem = io.module->writeFile(temporary.string(), path, image, metadata);
+        !problem.empty())
+        return fail(problem);
     fs::rename(temporary, path, ec);
     if (ec)
         return fail(ec.message());
     return "";
 }
 
-std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info) {
-    std::error_code ec;
-    if (!fs::exists(path, ec))
-        return "cannot read '" + path + "': no such file";
-    // Colour as stored, not multiplied by alpha (OpenImageIO's default for PNG).
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto input = OIIO::ImageInput::open(path, &config);
-    if (!input) {
-        std::string reason = OIIO::geterror();
-        return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
-    }
-    const OIIO::ImageSpec& spec = input->spec();
-    Image result(spec.width, spec.height, spec.nchannels);
-    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
-        const std::string reason = input->geterror();
-        return "cannot read '" + path + "': " + reason;
-    }
-    info.isFloat = !isIntegerType(spec.format);
-    const int bits = spec.get_int_attribute("oiio:BitsPerSample", 0);
-    info.bitsPerChannel = info.isFloat ? 32 : (bits > 0 ? bits : int(spec.format.size()) * 8);
-    const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
-    info.srgbEncoded = !info.isFloat && colorSpace != "Linear" && colorSpace.rfind("Gamma", 0) != 0;
-    if (colorSpace == "Linear") info.fileGamma = 1;
-    else if (colorSpace.rfind("Gamma", 0) == 0) info.fileGamma = spec.get_float_attribute("oiio:Gamma", 0);
-    input->close();
-    image = std::move(result);
-    return "";
+std::string readImage(const std::string& path, Image& image, Metadata* metadata) {
+    const LoadedModule& io = imageIo();
+    return io.module ? io.module->readImage(path, image, metadata) : io.error;
 }
 
-std::string readImage(const std::string& path, Image& image, Metadata* metadata) {
-    std::error_code ec;
-    if (!fs::exists(path, ec))
-        return "cannot read '" + path + "': no such file";
-    auto input = OIIO::ImageInput::open(path);
-    if (!input) {
-        std::string reason = OIIO::geterror();
-        return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
-    }
-    const OIIO::ImageSpec& spec = input->spec();
-    Image result(spec.width, spec.height, spec.nchannels);
-    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
-        const std::string reason = input->geterror();
-        return "cannot read '" + path + "': " + reason;
-    }
-    // Integer files hold sRGB-encoded colour (the inverse of writeImage); alpha stays linear.
-    const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
-    if (isIntegerType(spec.format) && colorSpace != "Linear") {
-        for (size_t i = 0; i < result.pixels.size(); ++i)
-            if (int(i % result.channels) != spec.alpha_channel)
-                result.pixels[i] = static_cast<float>(srgbDecode(result.pixels[i]));
-    }
-    if (metadata) {
-        metadata->clear();
-        for (const OIIO::ParamValue& p : spec.extra_attribs)
-            metadata->emplace_back(p.name().string(), p.get_string(1024));
-        recoverFromDescription(spec.get_string_attribute("ImageDescription"), *metadata);
-    }
-    input->close();
-    image = std::move(result);
-    return "";
+std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info) {
+    const LoadedModule& io = imageIo();
+    return io.module ? io.module->readImageEncoded(path, image, info) : io.error;
 }
 
 } // namespace drt

@@ -1,0 +1,177 @@
+// Image I/O through OpenImageIO: every image drt reads or writes is decoded
+// or encoded here. Built as the module libdrt_oiio.so, which image/image.cpp
+// loads on the first image operation (image/image_io_module.h says why); the
+// file handling around it (temporary names, renames, clean-up on a signal)
+// stays in image/image.cpp.
+#include "image/image.h"
+#include "image/image_io_module.h"
+
+#include "image/srgb.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <filesystem>
+#include <system_error>
+
+namespace fs = std::filesystem;
+
+namespace drt::oiio {
+
+namespace {
+
+// How pixels are stored in a format: float formats keep linear values, integer
+// formats store sRGB-encoded values.
+OIIO::TypeDesc storageType(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == ".exr" || ext == ".hdr" || ext == ".rgbe" || ext == ".pfm")
+        return OIIO::TypeDesc::FLOAT;
+    if (ext == ".tif" || ext == ".tiff")
+        return OIIO::TypeDesc::UINT16;
+    return OIIO::TypeDesc::UINT8;
+}
+
+bool isIntegerType(OIIO::TypeDesc type) {
+    return type.basetype != OIIO::TypeDesc::FLOAT && type.basetype != OIIO::TypeDesc::HALF &&
+           type.basetype != OIIO::TypeDesc::DOUBLE;
+}
+
+// TIFF and JPEG keep only the description writeImage composes,
+// "drt key=value key=value ...": recover the keys the file did not keep.
+void recoverFromDescription(const std::string& description, Metadata& metadata) {
+    if (description.rfind("drt ", 0) != 0)
+        return;
+    size_t start = 4;
+    while (start < description.size()) {
+        size_t end = description.find(' ', start);
+        if (end == std::string::npos)
+            end = description.size();
+        const std::string item = description.substr(start, end - start);
+        start = end + 1;
+        const size_t equals = item.find('=');
+        if (equals == std::string::npos)
+            continue;
+        std::string key = item.substr(0, equals);
+        bool present = false;
+        for (const auto& entry : metadata)
+            present = present || entry.first == key;
+        if (!present)
+            metadata.emplace_back(std::move(key), item.substr(equals + 1));
+    }
+}
+
+} // namespace
+
+bool hasWriter(const std::string& path) {
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output)
+        OIIO::geterror(); // clear OpenImageIO's pending message
+    return bool(output);
+}
+
+std::string writeFile(const std::string& file, const std::string& path, const Image& image,
+                      const Metadata& metadata) {
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output) {
+        OIIO::geterror();
+        return "unknown image format '" + lowerExtension(path) + "'";
+    }
+    const OIIO::TypeDesc type = storageType(path);
+    const bool encode = isIntegerType(type);
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
+    spec.attribute("oiio:ColorSpace", encode ? "sRGB" : "Linear");
+    std::string description = "drt";
+    for (const auto& [key, value] : metadata) {
+        spec.attribute(key, value);
+        if (key.rfind("drt:", 0) == 0)
+            description += " " + key + "=" + value;
+    }
+    // Formats that drop unknown attributes (TIFF, JPEG) still keep a description.
+    if (!metadata.empty())
+        spec.attribute("ImageDescription", description);
+
+    // 8/16-bit: sRGB-encode, clamp, round; the quantisation itself is OpenImageIO's
+    // (round to nearest) when it converts our [0, 1] floats to the file's type.
+    std::vector<float> stored = image.pixels;
+    if (encode)
+        for (float& v : stored)
+            v = static_cast<float>(srgbEncode(v));
+    if (!output->open(file, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, stored.data()) ||
+        !output->close())
+        return output->geterror();
+    return "";
+}
+
+std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info) {
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        return "cannot read '" + path + "': no such file";
+    // Colour as stored, not multiplied by alpha (OpenImageIO's default for PNG).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto input = OIIO::ImageInput::open(path, &config);
+    if (!input) {
+        std::string reason = OIIO::geterror();
+        return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
+    }
+    const OIIO::ImageSpec& spec = input->spec();
+    Image result(spec.width, spec.height, spec.nchannels);
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
+        const std::string reason = input->geterror();
+        return "cannot read '" + path + "': " + reason;
+    }
+    info.isFloat = !isIntegerType(spec.format);
+    const int bits = spec.get_int_attribute("oiio:BitsPerSample", 0);
+    info.bitsPerChannel = info.isFloat ? 32 : (bits > 0 ? bits : int(spec.format.size()) * 8);
+    const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
+    info.srgbEncoded = !info.isFloat && colorSpace != "Linear" && colorSpace.rfind("Gamma", 0) != 0;
+    if (colorSpace == "Linear")
+        info.fileGamma = 1;
+    else if (colorSpace.rfind("Gamma", 0) == 0)
+        info.fileGamma = spec.get_float_attribute("oiio:Gamma", 0);
+    input->close();
+    image = std::move(result);
+    return "";
+}
+
+std::string readImage(const std::string& path, Image& image, Metadata* metadata) {
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        return "cannot read '" + path + "': no such file";
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) {
+        std::string reason = OIIO::geterror();
+        return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
+    }
+    const OIIO::ImageSpec& spec = input->spec();
+    Image result(spec.width, spec.height, spec.nchannels);
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
+        const std::string reason = input->geterror();
+        return "cannot read '" + path + "': " + reason;
+    }
+    // Integer files hold sRGB-encoded colour (the inverse of writeImage); alpha stays linear.
+    const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
+    if (isIntegerType(spec.format) && colorSpace != "Linear") {
+        for (size_t i = 0; i < result.pixels.size(); ++i)
+            if (int(i % result.channels) != spec.alpha_channel)
+                result.pixels[i] = static_cast<float>(srgbDecode(result.pixels[i]));
+    }
+    if (metadata) {
+        metadata->clear();
+        for (const OIIO::ParamValue& p : spec.extra_attribs)
+            metadata->emplace_back(p.name().string(), p.get_string(1024));
+        recoverFromDescription(spec.get_string_attribute("ImageDescription"), *metadata);
+    }
+    input->close();
+    image = std::move(result);
+    return "";
+}
+
+} // namespace drt::oiio
+
+extern "C" const drt::ImageIoModule* drt_image_io_module() {
+    static const drt::ImageIoModule module = {drt::kImageIoModuleVersion, &drt::oiio::hasWriter,
+                                              &drt::oiio::writeFile, &drt::oiio::readImage,
+                                              &drt::oiio::readImageEncoded};
+    return &module;
+}
