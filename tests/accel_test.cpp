@@ -12,11 +12,13 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <type_traits>
 
 namespace drt {
 namespace {
 
 using test::makeObject;
+using test::buildAccelerator;
 using test::sceneOf;
 
 std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction, double time = 0) {
@@ -75,7 +77,8 @@ TEST(Polynomial, QuarticWithCloseRoots) {
 // ---------------------------------------------------------------- shapes
 
 TEST(Accel, SphereHitFromOutsideAndInside) {
-    Accelerator accel(sceneOf({makeObject(Sphere{{0, 0, 0}, 1})}));
+    const Scene accelScene = sceneOf({makeObject(Sphere{{0, 0, 0}, 1})});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {0, 0, -5}, {0, 0, 1}), 4, {0, 0, -1}, {0, 0, -1});
     // t is in units of |direction|.
     expectHit(trace(accel, {0, 0, -5}, {0, 0, 2}), 2, {0, 0, -1}, {0, 0, -1});
@@ -89,7 +92,8 @@ TEST(Accel, TransformedSphereIsAnEllipsoid) {
     // an ellipsoid with semi-axes 1 (x), 1 (y), 2 (z) around (10, 0, 0).
     const Transform t = Transform::scale({2, 1, 1}).then(Transform::rotate({0, 90, 0})).then(
         Transform::translate({10, 0, 0}));
-    Accelerator accel(sceneOf({makeObject(Sphere{{0, 0, 0}, 1}, t)}));
+    const Scene accelScene = sceneOf({makeObject(Sphere{{0, 0, 0}, 1}, t)});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {10, 0, -10}, {0, 0, 1}), 8, {10, 0, -2}, {0, 0, -1});
     expectHit(trace(accel, {0, 0, 0}, {1, 0, 0}), 9, {9, 0, 0}, {-1, 0, 0});
     // At (10, 0.5, z): 0.25 + z^2/4 = 1, z = -sqrt(3); normal along (0, y, z/4).
@@ -101,7 +105,8 @@ TEST(Accel, PlaneIsInfiniteAndRotatable) {
     Plane plane;
     plane.normal = {0, 1, 0};
     plane.distance = -1;
-    Accelerator accel(sceneOf({makeObject(plane)}));
+    const Scene accelScene = sceneOf({makeObject(plane)});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {0, 5, 0}, {0.3, -1, 0.2}), 6, {1.8, -1, 1.2}, {0, 1, 0});
     expectHit(trace(accel, {1e6, 5, -3e6}, {0, -1, 0}), 6, {1e6, -1, -3e6}, {0, 1, 0});
     // From below the normal still faces out of the shape (up).
@@ -109,7 +114,8 @@ TEST(Accel, PlaneIsInfiniteAndRotatable) {
     EXPECT_FALSE(trace(accel, {0, 5, 0}, {1, 0, 0}));
 
     // Plane y = 0 rotated 30 degrees about x: normal (0, cos 30, sin 30).
-    Accelerator tilted(sceneOf({makeObject(Plane{}, Transform::rotate({30, 0, 0}))}));
+    const Scene tiltedScene = sceneOf({makeObject(Plane{}, Transform::rotate({30, 0, 0}))});
+    Accelerator tilted(tiltedScene);
     const Vec3 n{0, std::cos(kPi / 6), std::sin(kPi / 6)};
     auto hit = trace(tilted, {0, 2, 0}, {0, -1, 0});
     ASSERT_TRUE(hit);
@@ -119,14 +125,16 @@ TEST(Accel, PlaneIsInfiniteAndRotatable) {
 
 TEST(Accel, CylinderSideCapsAndOpen) {
     Cylinder closed{{0, 0, 0}, {0, 2, 0}, 1, false};
-    Accelerator accel(sceneOf({makeObject(closed)}));
+    const Scene accelScene = sceneOf({makeObject(closed)});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {-5, 1, 0}, {1, 0, 0}), 4, {-1, 1, 0}, {-1, 0, 0});
     expectHit(trace(accel, {0.5, 5, 0}, {0, -1, 0}), 3, {0.5, 2, 0}, {0, 1, 0});
     expectHit(trace(accel, {0.5, -5, 0}, {0, 1, 0}), 5, {0.5, 0, 0}, {0, -1, 0});
 
     Cylinder open = closed;
     open.open = true;
-    Accelerator openAccel(sceneOf({makeObject(open)}));
+    const Scene openAccelScene = sceneOf({makeObject(open)});
+    Accelerator openAccel(openAccelScene);
     EXPECT_FALSE(trace(openAccel, {0.5, 5, 0}, {0, -1, 0}));
     // From inside the tube: the inner wall, normal facing away from the axis.
     expectHit(trace(openAccel, {0, 1, 0}, {1, 0, 0}), 1, {1, 1, 0}, {1, 0, 0});
@@ -134,19 +142,22 @@ TEST(Accel, CylinderSideCapsAndOpen) {
 
 TEST(Accel, ConeSideCapAndOpen) {
     Cone cone{{0, 0, 0}, 1, {0, 2, 0}, 0, false}; // apex at y = 2
-    Accelerator accel(sceneOf({makeObject(cone)}));
+    const Scene accelScene = sceneOf({makeObject(cone)});
+    Accelerator accel(accelScene);
     // Radius 0.5 at y = 1; the side normal leans up by atan(1/2).
     expectHit(trace(accel, {-5, 1, 0}, {1, 0, 0}), 4.5, {-0.5, 1, 0}, normalize(Vec3{-1, 0.5, 0}));
     expectHit(trace(accel, {0.2, -5, 0}, {0, 1, 0}), 5, {0.2, 0, 0}, {0, -1, 0});
     cone.open = true;
-    Accelerator openAccel(sceneOf({makeObject(cone)}));
+    const Scene openAccelScene = sceneOf({makeObject(cone)});
+    Accelerator openAccel(openAccelScene);
     // Through the open base to the inner wall, where the radius 1 - y/2 is 0.2.
     expectHit(trace(openAccel, {0.2, -5, 0}, {0, 1, 0}), 6.6, {0.2, 1.6, 0}, normalize(Vec3{1, 0.5, 0}));
 }
 
 TEST(Accel, DiscWithHole) {
     Disc disc{{0, 1, 0}, {0, 1, 0}, 2, 1};
-    Accelerator accel(sceneOf({makeObject(disc)}));
+    const Scene accelScene = sceneOf({makeObject(disc)});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {1.5, 5, 0}, {0, -1, 0}), 4, {1.5, 1, 0}, {0, 1, 0});
     EXPECT_FALSE(trace(accel, {0.5, 5, 0}, {0, -1, 0})); // in the hole
     EXPECT_FALSE(trace(accel, {2.5, 5, 0}, {0, -1, 0})); // outside
@@ -158,7 +169,8 @@ double torusResidual(const Vec3& p, double R, double r) {
 }
 
 TEST(Accel, TorusKnownHits) {
-    Accelerator accel(sceneOf({makeObject(Torus{2, 0.5})}));
+    const Scene accelScene = sceneOf({makeObject(Torus{2, 0.5})});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}), 2.5, {-2.5, 0, 0}, {-1, 0, 0});
     expectHit(trace(accel, {2, 5, 0}, {0, -1, 0}), 4.5, {2, 0.5, 0}, {0, 1, 0});
     // Through the hole: miss along y at the centre.
@@ -174,7 +186,8 @@ TEST(Accel, TorusRandomRaysAgreeWithDenseSampling) {
     // on the surface, and no sign change of the implicit function before it.
     const double R = 1, r = 0.3;
     const Transform t = Transform::scale({1, 2, 0.5}).then(Transform::rotate({20, 30, 40}));
-    Accelerator accel(sceneOf({makeObject(Torus{R, r}, t)}));
+    const Scene accelScene = sceneOf({makeObject(Torus{R, r}, t)});
+    Accelerator accel(accelScene);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(-1, 1);
     int hits = 0;
@@ -212,7 +225,8 @@ TEST(Accel, BoxIsOutwardEvenWhenMirrored) {
     Box box{{-1, -1, -1}, {1, 1, 1}};
     const Transform t = Transform::scale({-2, 1, 1}).then(Transform::rotate({0, 0, 90}));
     // x scaled by -2 (a mirror), then rotate 90 about z: x -> y, y -> -x.
-    Accelerator accel(sceneOf({makeObject(box, t)}));
+    const Scene accelScene = sceneOf({makeObject(box, t)});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {0, 5, 0}, {0, -1, 0}), 3, {0, 2, 0}, {0, 1, 0});
     expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}), 4, {-1, 0, 0}, {-1, 0, 0});
     expectHit(trace(accel, {0.3, 0.2, 5}, {0, 0, -1}), 4, {0.3, 0.2, 1}, {0, 0, 1}, 1e-6);
@@ -242,7 +256,8 @@ TEST(Accel, DegenerateTrianglesGiveNoNaN) {
     Mesh mesh;
     mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 1, 0}};
     mesh.triangles = {{0, 1, 2}, {3, 3, 3}, {0, 4, 5}, {0, 1, 4}};
-    Accelerator accel(sceneOf({makeObject(mesh)}));
+    const Scene accelScene = sceneOf({makeObject(mesh)});
+    Accelerator accel(accelScene);
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-0.1, 1.1);
     int hits = 0;
@@ -298,7 +313,8 @@ TEST(Accel, DifferenceIntersectionMergeAndInverse) {
     // An inverted sphere: the normal faces out of the inverted shape (inward).
     auto inverted = makeObject(Sphere{{0, 0, 0}, 1});
     inverted.inverse = true;
-    Accelerator invertedAccel(sceneOf({inverted}));
+    const Scene invertedAccelScene = sceneOf({inverted});
+    Accelerator invertedAccel(invertedAccelScene);
     expectHit(trace(invertedAccel, {0, 0, -5}, {0, 0, 1}), 4, {0, 0, -1}, {0, 0, 1});
 }
 
@@ -312,12 +328,15 @@ TEST(Accel, OccludedHonoursNoShadow) {
         ray.origin = {0, 0, -5};
         ray.direction = {0, 0, 1};
         ray.tMax = 10;
-        EXPECT_TRUE(Accelerator(sceneOf({blocker})).occluded(ray)) << kind;
+        const Scene blockerScene = sceneOf({blocker});
+        const Accelerator blockerAccel(blockerScene);
+        EXPECT_TRUE(blockerAccel.occluded(ray)) << kind;
         ray.tMax = 3.5; // stops before the object
-        EXPECT_FALSE(Accelerator(sceneOf({blocker})).occluded(ray)) << kind;
+        EXPECT_FALSE(blockerAccel.occluded(ray)) << kind;
         ray.tMax = 10;
         blocker.noShadow = true;
-        Accelerator accel(sceneOf({blocker}));
+        const Scene accelScene = sceneOf({blocker});
+        Accelerator accel(accelScene);
         EXPECT_FALSE(accel.occluded(ray)) << kind;
         EXPECT_TRUE(trace(accel, ray.origin, ray.direction)) << kind; // still visible
     }
@@ -338,18 +357,31 @@ TEST(Accel, EmbreeErrorsBecomeRenderErrors) {
     }
 }
 
+// The accelerator points into its scene, so a temporary scene (freed while the
+// accelerator still reads it) is refused at compile time.
+TEST(Accel, TemporaryScenesDoNotCompile) {
+    static_assert(std::is_constructible_v<Accelerator, const Scene&>);
+    static_assert(std::is_constructible_v<Accelerator, const Scene&, double>);
+    static_assert(!std::is_constructible_v<Accelerator, Scene&&>);
+    static_assert(!std::is_constructible_v<Accelerator, Scene&&, double>);
+    static_assert(!std::is_constructible_v<Accelerator, Scene>);
+    const Scene scene = sceneOf({makeObject(Sphere{{0, 0, 0}, 1})});
+    EXPECT_TRUE(Accelerator(scene).occluded(Ray{{0, 0, -5}, {0, 0, 1}}));
+}
+
 TEST(Accel, InvalidGeometryIsARenderError) {
     Mesh mesh;
     mesh.vertices = {{0, 0, 0}, {1, 0, 0}};
     mesh.triangles = {{0, 1, 2}};
-    EXPECT_THROW(Accelerator(sceneOf({makeObject(mesh)})), RenderError);
-    EXPECT_THROW(Accelerator(sceneOf({makeObject(Sphere{{0, 0, 0}, -1})})), RenderError);
-    EXPECT_THROW(Accelerator(sceneOf({makeObject(Cylinder{{0, 0, 0}, {0, 0, 0}, 1, false})})), RenderError);
+    EXPECT_THROW(buildAccelerator(sceneOf({makeObject(mesh)})), RenderError);
+    EXPECT_THROW(buildAccelerator(sceneOf({makeObject(Sphere{{0, 0, 0}, -1})})), RenderError);
+    EXPECT_THROW(buildAccelerator(sceneOf({makeObject(Cylinder{{0, 0, 0}, {0, 0, 0}, 1, false})})), RenderError);
 }
 
 TEST(Accel, BoundsExcludePlanes) {
-    Accelerator accel(sceneOf({makeObject(Plane{}), makeObject(Sphere{{1, 2, 3}, 1}),
-                               makeObject(Box{{-1, -1, -1}, {0, 0, 0}})}));
+    const Scene accelScene = sceneOf({makeObject(Plane{}), makeObject(Sphere{{1, 2, 3}, 1}),
+                               makeObject(Box{{-1, -1, -1}, {0, 0, 0}})});
+    Accelerator accel(accelScene);
     Vec3 lo, hi;
     accel.bounds(lo, hi);
     expectNear(lo, {-1, -1, -1});
@@ -385,7 +417,8 @@ TEST(Accel, RotatingBoxSlerps) {
     // shrink it to 1.41.
     Object bar = makeObject(Box{{0, -0.1, -0.1}, {2, 0.1, 0.1}});
     bar.motion = {MotionStage{motionTo({0, 0, 0}, {0, 90, 0}), {}}};
-    Accelerator accel(sceneOf({bar}));
+    const Scene accelScene = sceneOf({bar});
+    Accelerator accel(accelScene);
     const double c = std::sqrt(0.5);
     expectHit(trace(accel, {1.8 * c, 5, -1.8 * c}, {0, -1, 0}, 0.5), 4.9, {1.8 * c, 0.1, -1.8 * c}, {0, 1, 0},
               1e-5);
@@ -398,7 +431,8 @@ TEST(Accel, RotatingBoxSlerps) {
 
     // 270 degrees turns the long way: at t = 0.5 it has turned 135 degrees.
     bar.motion = {MotionStage{motionTo({0, 0, 0}, {0, 270, 0}), {}}};
-    Accelerator longWay(sceneOf({bar}));
+    const Scene longWayScene = sceneOf({bar});
+    Accelerator longWay(longWayScene);
     EXPECT_TRUE(trace(longWay, {-1.5 * c, 5, -1.5 * c}, {0, -1, 0}, 0.5));
     EXPECT_FALSE(trace(longWay, {1.5 * c, 5, 1.5 * c}, {0, -1, 0}, 0.5));
 }
@@ -406,7 +440,8 @@ TEST(Accel, RotatingBoxSlerps) {
 TEST(Accel, MotionScalePivotsOnTheWorldOrigin) {
     Object sphere = makeObject(Sphere{{0, 0, 0}, 1}, Transform::translate({2, 0, 0}));
     sphere.motion = {MotionStage{motionTo({0, 0, 0}, {0, 0, 0}, {3, 1, 1}), {}}};
-    Accelerator accel(sceneOf({sphere}));
+    const Scene accelScene = sceneOf({sphere});
+    Accelerator accel(accelScene);
     // At t = 1 the x scale 3 maps the sphere to an ellipsoid around x = 6, x radius 3.
     expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}, 1), 8, {3, 0, 0}, {-1, 0, 0}, 1e-5);
     // At t = 0.5 the scale is 2: centre 4, x radius 2.
@@ -447,7 +482,8 @@ TEST(Accel, SpawnedRaysDoNotReHitTheirSurface) {
             for (size_t shapeIndex = 0; shapeIndex < shapes.size(); ++shapeIndex) {
                 const Transform t = Transform::rotate({10, 20, 30}).then(Transform::scale(Vec3(scale))).then(
                     Transform::translate(Vec3(offset)));
-                Accelerator accel(sceneOf({makeObject(shapes[shapeIndex], t)}));
+                const Scene accelScene = sceneOf({makeObject(shapes[shapeIndex], t)});
+                Accelerator accel(accelScene);
                 const bool solid = shapeIndex == 0 || shapeIndex == 2;
                 for (int i = 0; i < 600; ++i) {
                     const Vec3 target = t.point({u(rng) * 0.9, u(rng) * 0.2, u(rng) * 0.9});

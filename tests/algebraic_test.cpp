@@ -353,6 +353,7 @@ TEST(Superellipsoid, HitsLieOnTheSurfaceAndInsideIsNegative) {
 // ------------------------------------------------------------ through the Accelerator
 
 using test::makeObject;
+using test::buildAccelerator;
 using test::sceneOf;
 
 TEST(Algebraic, DifferenceWithASphereMatchesTheSphereVersion) {
@@ -364,9 +365,12 @@ TEST(Algebraic, DifferenceWithASphereMatchesTheSphereVersion) {
         csg.children = {makeObject(std::move(first)), makeObject(Sphere{{0.8, 0, 0}, 0.5})};
         return makeObject(csg, Transform::rotate({10, 20, 30}).then(Transform::translate({1, 2, 3})));
     };
-    const Accelerator quadricScene(sceneOf({differenceOf(quadric({1, 1, 1, 0, 0, 0, 0, 0, 0, -1}))}));
-    const Accelerator superScene(sceneOf({differenceOf(Superellipsoid{1, 1})}));
-    const Accelerator sphereScene(sceneOf({differenceOf(Sphere{{0, 0, 0}, 1})}));
+    const Scene quadricSceneScene = sceneOf({differenceOf(quadric({1, 1, 1, 0, 0, 0, 0, 0, 0, -1}))});
+    const Accelerator quadricScene(quadricSceneScene);
+    const Scene superSceneScene = sceneOf({differenceOf(Superellipsoid{1, 1})});
+    const Accelerator superScene(superSceneScene);
+    const Scene sphereSceneScene = sceneOf({differenceOf(Sphere{{0, 0, 0}, 1})});
+    const Accelerator sphereScene(sphereSceneScene);
     std::mt19937 rng(13);
     std::uniform_real_distribution<double> u(-1.2, 1.2);
     int hits = 0;
@@ -409,7 +413,8 @@ TEST(Algebraic, SpawnedRaysDoNotReHitTheirSurface) {
             for (const Shape& shape : shapes) {
                 const Transform t = Transform::rotate({10, 20, 30}).then(Transform::scale(Vec3(scale))).then(
                     Transform::translate(Vec3(offset)));
-                const Accelerator accel(sceneOf({makeObject(shape, t)}));
+                const Scene accelScene = sceneOf({makeObject(shape, t)});
+                const Accelerator accel(accelScene);
                 for (int i = 0; i < 300; ++i) {
                     Ray primary;
                     const Vec3 target = t.point({u(rng) * 0.8, u(rng) * 0.3, u(rng) * 0.8});
@@ -441,9 +446,9 @@ TEST(Algebraic, InvalidShapesAreRenderErrors) {
     Algebraic wrong;
     wrong.form = Algebraic::Form::Quartic;
     wrong.coefficients.assign(34, 1.0);
-    EXPECT_THROW(Accelerator(sceneOf({makeObject(wrong)})), std::exception);
-    EXPECT_THROW(Accelerator(sceneOf({makeObject(quadric({0, 0, 0, 0, 0, 0, 0, 0, 0, 1}))})), std::exception);
-    EXPECT_THROW(Accelerator(sceneOf({makeObject(Superellipsoid{0, 1})})), std::exception);
+    EXPECT_THROW(buildAccelerator(sceneOf({makeObject(wrong)})), std::exception);
+    EXPECT_THROW(buildAccelerator(sceneOf({makeObject(quadric({0, 0, 0, 0, 0, 0, 0, 0, 0, 1}))})), std::exception);
+    EXPECT_THROW(buildAccelerator(sceneOf({makeObject(Superellipsoid{0, 1})})), std::exception);
 }
 
 } // namespace

@@ -253,8 +253,10 @@ TEST(BlobAccel, DifferenceWithABoxMatchesTheClosedFormSphere) {
         return makeObject(csg, Transform::rotate({10, 20, 30}).then(Transform::translate({1, 2, 3})));
     };
     const double R = 2 * std::sqrt(1 - std::sqrt(0.25 / 1)); // radius 2, threshold 0.25: sqrt(2)
-    const Accelerator blobScene(sceneOf({differenceOf(blobOf(0.25, {ball({0, 0, 0}, 2, 1)}))}));
-    const Accelerator sphereScene(sceneOf({differenceOf(Sphere{{0, 0, 0}, R})}));
+    const Scene blobSceneScene = sceneOf({differenceOf(blobOf(0.25, {ball({0, 0, 0}, 2, 1)}))});
+    const Accelerator blobScene(blobSceneScene);
+    const Scene sphereSceneScene = sceneOf({differenceOf(Sphere{{0, 0, 0}, R})});
+    const Accelerator sphereScene(sphereSceneScene);
     const Transform place = Transform::rotate({10, 20, 30}).then(Transform::translate({1, 2, 3}));
     std::mt19937 rng(24);
     std::uniform_real_distribution<double> u(-1.5, 1.5);
@@ -285,7 +287,8 @@ TEST(BlobAccel, SpawnedRaysDoNotReHitTheirSurface) {
         for (double offset : {0.0, 1e4}) {
             const Transform t =
                 Transform::rotate({10, 20, 30}).then(Transform::scale(Vec3(scale))).then(Transform::translate(Vec3(offset)));
-            const Accelerator accel(sceneOf({makeObject(shape, t)}));
+            const Scene accelScene = sceneOf({makeObject(shape, t)});
+            const Accelerator accel(accelScene);
             for (int i = 0; i < 400; ++i) {
                 Ray primary;
                 const Vec3 target = t.point({u(rng), u(rng) * 0.7, u(rng) * 0.7});

@@ -12,6 +12,7 @@ namespace drt {
 namespace {
 
 using test::makeObject;
+using test::buildAccelerator;
 using test::sceneOf;
 
 std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction) {
@@ -42,7 +43,8 @@ Object leftHalfSphere(Transform transform = {}) {
 }
 
 TEST(Clip, SphereClippedByBoxHitsOnlyInsideTheBox) {
-    Accelerator accel(sceneOf({leftHalfSphere()}));
+    const Scene accelScene = sceneOf({leftHalfSphere()});
+    Accelerator accel(accelScene);
     // From -x: the kept half's outside at x = -1.
     expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}), 4, {-1, 0, 0}, {-1, 0, 0});
     // Straight down at x = -0.6: the top at y = 0.8.
@@ -67,7 +69,8 @@ TEST(Clip, ClippedBoxAndPlaneAreFilteredAndBounded) {
     // A plane y = 0 clipped to a 2 x 2 square at y = 10 (after a translate).
     Object floor = makeObject(Plane{{0, 1, 0}, 0}, Transform::translate({0, 10, 0}));
     floor.clippedBy.push_back(makeObject(Box{{-1, 9, -1}, {1, 11, 1}}));
-    Accelerator accel(sceneOf({box, floor}));
+    const Scene accelScene = sceneOf({box, floor});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {0, 0, -5}, {0, 0, 1}), 4, {0, 0, -1}, {0, 0, -1});
     // At x = y = 0.9 both faces (z = -1 and z = 1) are 1.62 from the centre: outside the clip.
     EXPECT_FALSE(trace(accel, {0.9, 0.9, -5}, {0, 0, 1}));
@@ -82,7 +85,8 @@ TEST(Clip, ClippedBoxAndPlaneAreFilteredAndBounded) {
 }
 
 TEST(Clip, ShadowRaysSeeOnlyTheKeptSurface) {
-    Accelerator accel(sceneOf({leftHalfSphere()}));
+    const Scene accelScene = sceneOf({leftHalfSphere()});
+    Accelerator accel(accelScene);
     Ray ray;
     ray.direction = {0, -1, 0};
     ray.tMax = 10;
@@ -96,7 +100,8 @@ TEST(Clip, ClipMovesWithTheObjectsParentSpace) {
     // The clip lives in the object's parent space: the sphere's transform
     // (translate x = 1) does not move the box, so the sphere, now spanning
     // 0 < x < 2, lies wholly outside the box (x < 0) and nothing is left.
-    Accelerator moved(sceneOf({leftHalfSphere(Transform::translate({1, 0, 0}))}));
+    const Scene movedScene = sceneOf({leftHalfSphere(Transform::translate({1, 0, 0}))});
+    Accelerator moved(movedScene);
     EXPECT_FALSE(trace(moved, {-5, 0, 0}, {1, 0, 0}));
     EXPECT_FALSE(trace(moved, {1, 5, 0}, {0, -1, 0}));
 }
@@ -105,7 +110,8 @@ TEST(Clip, UnionClipAppliesToEveryMember) {
     Csg csg{Csg::Op::Union, {makeObject(Sphere{{0, 0, 0}, 1}), makeObject(Sphere{{0, 5, 0}, 1})}};
     Object both = makeObject(csg, Transform::translate({0, 0, 10}));
     both.clippedBy.push_back(makeObject(Box{{-2, -2, 8}, {0, 8, 12}}));
-    Accelerator accel(sceneOf({both}));
+    const Scene accelScene = sceneOf({both});
+    Accelerator accel(accelScene);
     for (double y : {0.0, 5.0}) {
         expectHit(trace(accel, {-0.6, y, 0}, {0, 0, 1}), 10 - 0.8, {-0.6, y, 9.2}, {-0.6, 0, -0.8});
         EXPECT_FALSE(trace(accel, {0.6, y, 0}, {0, 0, 1}));
@@ -117,7 +123,8 @@ TEST(Clip, ClippedMemberOfAnIntersectionLeavesItOpen) {
     // half ball, but the cut at x = 0 has no surface (it belongs to the clip).
     Object half = leftHalfSphere();
     Csg csg{Csg::Op::Intersection, {half, makeObject(Box{{-3, -3, -3}, {3, 3, 3}})}};
-    Accelerator accel(sceneOf({makeObject(csg)}));
+    const Scene accelScene = sceneOf({makeObject(csg)});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {5, 0, 0}, {-1, 0, 0}), 6, {-1, 0, 0}, {-1, 0, 0});
     expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}), 4, {-1, 0, 0}, {-1, 0, 0});
     EXPECT_FALSE(trace(accel, {0.6, 5, 0}, {0, -1, 0}));
@@ -129,7 +136,8 @@ TEST(Clip, InvertedMemberOfAnIntersectionIsAShell) {
     Object hole = makeObject(Sphere{{0, 0, 0}, 0.5});
     hole.inverse = true;
     Csg csg{Csg::Op::Intersection, {makeObject(Sphere{{0, 0, 0}, 1}), hole}};
-    Accelerator accel(sceneOf({makeObject(csg)}));
+    const Scene accelScene = sceneOf({makeObject(csg)});
+    Accelerator accel(accelScene);
     expectHit(trace(accel, {-5, 0, 0}, {1, 0, 0}), 4, {-1, 0, 0}, {-1, 0, 0});
     // From the centre (outside the shell): the inner wall, facing the centre.
     expectHit(trace(accel, {0, 0, 0}, {1, 0, 0}), 0.5, {0.5, 0, 0}, {-1, 0, 0});
@@ -168,7 +176,7 @@ TEST(Clip, MovingClippedMeshIsARenderError) {
     Object tri = makeObject(mesh);
     tri.clippedBy.push_back(makeObject(Sphere{{0, 0, 0}, 1}));
     tri.motion = {MotionStage{motionTo({1, 0, 0}), {}}};
-    EXPECT_THROW(Accelerator(sceneOf({tri})), RenderError);
+    EXPECT_THROW(buildAccelerator(sceneOf({tri})), RenderError);
 }
 
 } // namespace

@@ -52,7 +52,9 @@ std::string quadrants(const std::string& dir) {
 Scene loadPov(const std::string& text, const std::string& dir, Diagnostics& diags) {
     std::optional<Scene> s = loadPovSceneText(text, "s.pov", diags, PovOptions{}, dir);
     EXPECT_TRUE(s) << diags.formatAll();
-    if (s) EXPECT_TRUE(resolveAssets(*s, diags)) << diags.formatAll();
+    if (s) {
+        EXPECT_TRUE(resolveAssets(*s, diags)) << diags.formatAll();
+    }
     return s ? *s : Scene{};
 }
 

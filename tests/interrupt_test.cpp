@@ -31,7 +31,7 @@ namespace {
 class Child {
 public:
     Child(const std::vector<std::string>& args, const std::string& errPath) {
-        std::vector<std::string> argv = {DRT_EXECUTABLE};
+        std::vector<std::string> argv = {test::drtExecutable()};
         argv.insert(argv.end(), args.begin(), args.end());
         std::vector<char*> pointers;
         for (std::string& a : argv) pointers.push_back(a.data());
@@ -57,7 +57,11 @@ public:
         if (::waitpid(pid_, &status, WNOHANG) == pid_) record(status);
         return !exited_;
     }
-    void signal(int number) { ::kill(pid_, number); }
+    // Only a child not yet reaped: its pid cannot have been reused, and
+    // kill(-1, ...) (no child) would signal every process we may signal.
+    void signal(int number) {
+        if (pid_ > 0 && !exited_) ::kill(pid_, number);
+    }
     // The exit status (128 + signal if a signal ended it); -1 after `seconds`.
     int wait(double seconds = 300) {
         const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
@@ -97,17 +101,17 @@ bool waitForWrites(Child& child, const std::string& path, int times) {
 std::vector<std::string> renderArgs(const std::string& output, bool adaptive) {
     std::vector<std::string> args = {"render",   test::sourcePath("examples/soft_shadows.drt"),
                                      "-o",       output,
-                                     "--width",  "64",
-                                     "--height", "48",
+                                     "--width",  "96",
+                                     "--height", "72",
                                      "--seed",   "5",
                                      "--tile-size", "8",
                                      "--threads", "1",
                                      "-q"};
     if (adaptive) {
-        for (const char* a : {"--adaptive", "--min-spp", "8", "--max-spp", "128", "--adaptive-error", "0.02"})
+        for (const char* a : {"--adaptive", "--min-spp", "16", "--max-spp", "512", "--adaptive-error", "0.01"})
             args.push_back(a);
     } else {
-        args.insert(args.end(), {"--spp", "40"});
+        args.insert(args.end(), {"--spp", "160"}); // long enough for several checkpoints
     }
     return args;
 }
@@ -220,8 +224,8 @@ TEST(Interrupt, ResumeRefusesAMissingCheckpointOrOneOfAnotherRender) {
     }
     const std::pair<std::vector<std::string>, std::string> refusals[] = {
         {{"--seed", "6"}, "has other settings: seed=5 there, seed=6 here"},
-        {{"--width", "65"}, "size=64x48 there, size=65x48 here"},
-        {{"--spp", "41"}, "spp=40 there, spp=41 here"},
+        {{"--width", "97"}, "size=96x72 there, size=97x72 here"},
+        {{"--spp", "161"}, "spp=160 there, spp=161 here"},
         {{"--crop", "0,8,0,8"}, "is of the whole image, this render is of the crop 0,8,0,8"},
     };
     for (const auto& [extra, message] : refusals) {

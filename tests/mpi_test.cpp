@@ -37,7 +37,7 @@ test::CommandResult mpirun(int ranks, const std::string& command, int seconds = 
     return r;
 }
 
-std::string drt() { return std::string("'") + DRT_EXECUTABLE + "'"; }
+std::string drt() { return std::string("'") + test::drtExecutable() + "'"; }
 std::string scene() { return std::string(1, '\'') + test::sourcePath("examples/soft_shadows.drt") + "'"; }
 
 Image pixelsOf(const std::string& path) {
@@ -104,7 +104,7 @@ TEST(Mpi, ASceneErrorOnOneRankEndsTheJobWithItsMessage) {
     // Rank 2 reads another file than ranks 0 and 1 (as if a node had other files).
     const auto onRank2 = [&](const std::string& scene2) {
         return "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 2 ]; then s=" + scene2 + "; else s=" +
-               test::sourcePath("examples/soft_shadows.drt") + "; fi; exec " + DRT_EXECUTABLE +
+               test::sourcePath("examples/soft_shadows.drt") + "; fi; exec " + test::drtExecutable() +
                " render \"$s\" -o " + dir + "/out.exr --width 20 --height 15 -q'";
     };
     const test::CommandResult error = mpirun(3, onRank2(broken), 120);
@@ -127,9 +127,9 @@ TEST(Mpi, ARankThatDiesEndsTheJobNonZeroWithoutAHang) {
     const std::string dir = test::tempDir();
     // Rank 1 is killed (SIGKILL) half a second into a render of several seconds.
     const std::string command = "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then exec timeout -s KILL 0.5 " +
-                                std::string(DRT_EXECUTABLE) + " render " + test::sourcePath("examples/soft_shadows.drt") +
+                                test::drtExecutable() + " render " + test::sourcePath("examples/soft_shadows.drt") +
                                 " -o " + dir + "/out.exr --width 200 --height 150 --spp 64 --threads 1; else exec " +
-                                DRT_EXECUTABLE + " render " + test::sourcePath("examples/soft_shadows.drt") + " -o " +
+                                test::drtExecutable() + " render " + test::sourcePath("examples/soft_shadows.drt") + " -o " +
                                 dir + "/out.exr --width 200 --height 150 --spp 64 --threads 1; fi'";
     const auto start = std::chrono::steady_clock::now();
     const test::CommandResult r = mpirun(3, command, 120);
@@ -149,10 +149,10 @@ TEST(Mpi, AnInterruptedJobResumesOnAnotherNumberOfRanks) {
     ASSERT_EQ(test::runDrt("render " + scene() + " -o '" + dir + "/full.exr'" + options).exitCode, 0);
     // Rank 0 is sent SIGTERM once its first periodic checkpoint is written.
     const std::string command =
-        "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 0 ]; then " + std::string(DRT_EXECUTABLE) + " render " +
+        "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 0 ]; then " + test::drtExecutable() + " render " +
         test::sourcePath("examples/soft_shadows.drt") + " -o " + out + options + " --checkpoint-every 0.05 & pid=$!; " +
         "while [ ! -e " + out + ".drt-checkpoint ] && kill -0 $pid 2>/dev/null; do sleep 0.01; done; kill -TERM $pid; " +
-        "wait $pid; else exec " + DRT_EXECUTABLE + " render " + test::sourcePath("examples/soft_shadows.drt") +
+        "wait $pid; else exec " + test::drtExecutable() + " render " + test::sourcePath("examples/soft_shadows.drt") +
         " -o " + out + options + "; fi'";
     const test::CommandResult interrupted = mpirun(2, command, 120);
     EXPECT_EQ(interrupted.exitCode, 143) << interrupted.err;

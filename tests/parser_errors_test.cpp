@@ -48,7 +48,7 @@ const ErrorCase kCases[] = {
     {"DeclareNeedsEquals", "#declare A 1;", "expected '=' after the declared name, found '1'", 1, 12},
     {"DeclareNeedsSemicolon", "#declare A = 1\nsphere { 0, A }", "expected ';' after the value of 'A'", 1, 14},
     {"IncludeNeedsString", "#include foo", "expected a file name in quotes after '#include', found 'foo'", 1, 10},
-    {"IncludeMissing", "#include \"no/such.drt\"", "cannot open include file 'no/such.drt' (looked for no/such.drt)", 1, 10},
+    {"IncludeMissing", "#include \"no/such.drt\"", "cannot include 'no/such.drt': cannot open 'no/such.drt': No such file or directory", 1, 10},
     {"MissingBrace", "sphere 0, 1 }", "expected '{' after 'sphere', found '0'", 1, 8},
     {"UnclosedBlock", "sphere { 0, 1", "expected an object modifier or '}' to close 'sphere', found end of file", 1, 14},
     // expressions
@@ -122,7 +122,7 @@ const ErrorCase kCases[] = {
     {"BackgroundUnclosed", "background { rgb 1 rgb 0", "expected '}' after the background colour, found end of file", 1, 25},
     {"GlobalUnknown", "global_settings { max_trace 3 }", "unknown keyword 'max_trace'; did you mean 'max_trace_level'?", 1, 19},
     {"GlobalNotWord", "global_settings { 3 }", "expected a global_settings keyword or '}', found '3'", 1, 19},
-    {"MaxTraceLevel", "global_settings { max_trace_level 0 }", "'max_trace_level' must be between 1 and 256", 1, 35},
+    {"MaxTraceLevel", "global_settings { max_trace_level 0 }", "'max_trace_level' must be at least 1", 1, 35},
     {"AssumedGamma", "global_settings { assumed_gamma 0 }", "'assumed_gamma' must be positive", 1, 33},
     {"AdcBailout", "global_settings { adc_bailout -1 }", "'adc_bailout' must not be negative", 1, 31},
     {"RenderWidth", "render { width 0 }", "'width' must be at least 1", 1, 16},
@@ -272,8 +272,8 @@ const ErrorCase kCases[] = {
     {"ScatteringEccentricity", "media { scattering { 5, 0.1 eccentricity 1 } }", "'eccentricity' must lie strictly between -1 and 1", 1, 42},
     {"ScatteringExtinction", "media { scattering { 1, 0.1 extinction -1 } }", "'extinction' must not be negative", 1, 40},
     {"ScatteringUnknown", "media { scattering { 1, 0.1 eccentric 0.5 } }", "unknown keyword 'eccentric'; did you mean 'eccentricity'?", 1, 29},
-    {"MediaIntervals", "media { intervals 0 }", "'intervals' must be between 1 and 4096", 1, 19},
-    {"MediaSamples", "media { samples 5000 }", "'samples' must be between 1 and 4096", 1, 17},
+    {"MediaIntervals", "media { intervals 0 }", "'intervals' must be at least 1", 1, 19},
+    {"MediaSamples", "media { samples 5000 }", "'samples' 5000 is over the limit of 4096 (limit media_intervals = 4096; raise it with --limit media_intervals=N)", 1, 17},
     {"MediaMethod", "media { method 4 }", "'method' must be 1, 2 or 3", 1, 16},
     {"PolyWaveExponent", "sphere { 0, 1 pigment { bozo poly_wave -2 } }", "the 'poly_wave' exponent must be positive", 1, 40},
     {"PolyWaveExponentNormal", "sphere { 0, 1 normal { bumps poly_wave 0 } }", "the 'poly_wave' exponent must be positive", 1, 40},
@@ -295,7 +295,8 @@ TEST(ParserErrors, IncludesNestedTooDeeply) {
     Diagnostics diags;
     EXPECT_FALSE(loadSceneFile(dir + "/f0.drt", diags));
     ASSERT_EQ(diags.errorCount(), 1);
-    EXPECT_EQ(diags.all()[0].message, "includes nested too deeply");
+    EXPECT_EQ(diags.all()[0].message,
+              "include depth 65 is over the limit of 64 (limit include_depth = 64; raise it with --limit include_depth=N)");
     EXPECT_EQ(diags.all()[0].loc.line, 1);
     EXPECT_EQ(diags.all()[0].loc.column, 10);
 }

@@ -131,7 +131,7 @@ TEST(PovScene, AreaLightsKeepPovRaysSemantics) {
     EXPECT_TRUE(a.area->jitter);
     EXPECT_TRUE(a.area->circular);
     EXPECT_TRUE(a.area->orient);
-    EXPECT_EQ(a.area->sampling, AreaSampling::PovGrid);
+    EXPECT_EQ(a.area->sampling, AreaSampling::Grid); // POV-Ray's grid points, one per camera sample
     EXPECT_FALSE(a.areaIllumination); // shadow-only averaging by default
     EXPECT_FALSE(a.inverseSquare);
     EXPECT_TRUE(s.lights[1].areaIllumination);
@@ -434,7 +434,7 @@ void expectArealit(const std::string& name, const std::array<double, 3>& axes, c
         EXPECT_EQ(l.area->size2, sizes[size_t(i)]);
         EXPECT_EQ(l.area->adaptive, 0);
         EXPECT_TRUE(l.area->jitter);
-        EXPECT_EQ(l.area->sampling, AreaSampling::PovGrid);
+        EXPECT_EQ(l.area->sampling, AreaSampling::Grid);
         EXPECT_FALSE(l.areaIllumination);
         EXPECT_TRUE(l.spotlight);
         expectNear(l.pointAt, {pointX[i], 0, 0});

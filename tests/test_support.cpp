@@ -22,6 +22,8 @@ Scene withAssets(Scene scene) {
     return scene;
 }
 
+std::string drtExecutable() { return DRT_EXECUTABLE; }
+
 std::string sourcePath(const std::string& relative) { return (fs::path(DRT_SOURCE_DIR) / relative).string(); }
 
 std::string tempDir() {

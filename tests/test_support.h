@@ -25,6 +25,8 @@ struct CommandResult {
     std::string out; // stdout
     std::string err; // stderr
 };
+// The path of the drt executable built with these tests.
+std::string drtExecutable();
 // Runs the drt executable with the given argument string (shell-quoted by the caller).
 CommandResult runDrt(const std::string& arguments);
 
@@ -45,6 +47,12 @@ inline Scene sceneOf(std::vector<Object> objects) {
     Scene s;
     s.objects = std::move(objects);
     return s;
+}
+
+// Builds (and drops) an accelerator for `scene`: for tests of the errors a
+// build throws. The scene outlives the accelerator, as Accelerator requires.
+inline void buildAccelerator(const Scene& scene) {
+    Accelerator accel(scene);
 }
 
 // A uniformly distributed random unit vector.

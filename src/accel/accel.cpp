@@ -9,6 +9,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace drt {
 
@@ -26,16 +27,26 @@ Accelerator::~Accelerator() = default;
 
 namespace {
 
+// The float after / before a finite float, without a library call: for
+// positive floats a larger bit pattern is a larger value, for negative ones a
+// smaller; zero steps to the smallest subnormal.
+float floatUp(float f) {
+    if (f == 0) return std::numeric_limits<float>::denorm_min();
+    const int32_t bits = std::bit_cast<int32_t>(f);
+    return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
+}
+float floatDown(float f) { return -floatUp(-f); }
+
 // Float interval limits that never widen [tMin, tMax].
 float floatAtLeast(double v) {
     if (v >= double(FLT_MAX)) return INFINITY;
     const float f = float(v);
-    return double(f) < v ? std::nextafter(f, INFINITY) : f;
+    return double(f) < v ? floatUp(f) : f;
 }
 float floatAtMost(double v) {
     if (v >= double(FLT_MAX)) return INFINITY;
     const float f = float(v);
-    return double(f) > v ? std::nextafter(f, -INFINITY) : f;
+    return double(f) > v ? floatDown(f) : f;
 }
 
 // The origin is moved into the top level's frame in double, then rounded.
@@ -95,51 +106,60 @@ void resolveTriangleHit(const Vec3& o, const Vec3& d, const Vec3& p0, const Vec3
 } // namespace
 
 bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    RayQuery query(*impl_, ray.origin, ray.direction);
     RTCRayHit rayhit;
     fillRay(ray, *impl_, rayhit.ray, 0xFFFFFFFFu);
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl_->top.scene, &context, &rayhit);
+    rtcIntersect1(impl_->top.scene, &query.context, &rayhit);
     impl_->device.throwIfFailed("tracing a ray");
     if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
     // Find the level the hit geometry lives in and the ray in that level's space.
     const Level* level = &impl_->top;
-    std::optional<Transform> motion; // level space -> world, if the top level's is not world
+    const unsigned instID = rayhit.hit.instID[0];
+    const Transform* motion = nullptr; // level space -> world, if the top level's is not world
     hit.instance = -1;
-    if (rayhit.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-        const size_t index = impl_->top.geometries[rayhit.hit.instID[0]].index;
+    if (instID != RTC_INVALID_GEOMETRY_ID) {
+        const size_t index = impl_->top.geometries[instID].index;
         const Instance& instance = impl_->instances[index];
         level = instance.level.get();
-        motion = instance.toWorld(rayhit.ray.time);
+        Vec3 unusedO, unusedD;
+        query.levelRay(instID, rayhit.ray.time, unusedO, unusedD); // the callback's transform, or solved now
+        motion = &*query.instanceToWorld;
         hit.instance = static_cast<int>(index);
     }
     const bool shiftedTop = !motion && impl_->shifted;
-    const Vec3 o = motion ? motion->inversePoint(ray.origin) : shiftedTop ? ray.origin - impl_->frameOrigin : ray.origin;
-    const Vec3 d = motion ? motion->inverseVector(ray.direction) : ray.direction;
-    const Vec3 towardOrigin = unitOr(-d, {0, 1, 0}); // normal of last resort
+    const Vec3& o = motion ? query.instanceOrigin : query.origin;
+    const Vec3& d = motion ? query.instanceDirection : query.direction;
+    // The normal of last resort, computed only when needed.
+    const auto unitOrTowardOrigin = [&d](const Vec3& v) {
+        const double len = length(v);
+        return len > 0 && std::isfinite(len) ? v / len : unitOr(-d, {0, 1, 0});
+    };
 
     const GeometryRef& ref = level->geometries[rayhit.hit.geomID];
     const double embreeT = rayhit.ray.tfar;
     Vec3 point, geometric, shading;
-    double extent = 0; // of the object hit, in level space; 0 if unbounded
+    double frameUnit = 0; // Hit::frameUnit of the object hit; 0 if unbounded (the scene's)
     if (ref.kind == GeometryKind::Analytic) {
         const Primitive& p = level->primitives[rayhit.hit.primID];
         SurfaceCrossing c;
-        if (!closestCrossingTo(p, o, d, embreeT, c)) {
+        if (query.hasCrossing && query.primID == rayhit.hit.primID && query.instID == instID) {
+            // Solved in double by the callback.
+            c = query.objectSpace ? levelCrossing(p, query.objectCrossing) : query.crossing;
+        } else if (!closestCrossingTo(p, o, d, embreeT, c)) {
             c.t = embreeT;
             c.normal = {rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z};
             c.object = p.object;
         }
         hit.t = c.t;
         point = o + c.t * d;
-        geometric = shading = unitOr(c.normal, towardOrigin);
+        geometric = shading = unitOrTowardOrigin(c.normal);
         hit.object = c.object;
         hit.primitive = 0;
-        extent = p.bounded ? maxComponent(p.upper - p.lower) : 0;
+        frameUnit = p.frameUnit;
     } else {
         const MeshRecord& mesh = level->meshes[ref.index];
         const auto& tri = mesh.triangles[rayhit.hit.primID];
@@ -150,7 +170,7 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         const double w = 1 - u - v;
         point = w * p0 + u * p1 + v * p2;
         // A degenerate triangle has no winding normal: face the ray instead of NaN.
-        geometric = unitOr(cross(p1 - p0, p2 - p0), towardOrigin);
+        geometric = unitOrTowardOrigin(cross(p1 - p0, p2 - p0));
         shading = geometric;
         if (!mesh.normals.empty()) {
             const auto& ni = mesh.normalIndices[rayhit.hit.primID];
@@ -163,12 +183,12 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         }
         hit.object = mesh.object;
         hit.primitive = rayhit.hit.primID;
-        extent = mesh.extent;
+        frameUnit = mesh.extent > 0 ? frameUnitFor(mesh.extent) : 0;
     }
     if (motion) {
         hit.restPoint = impl_->shifted ? point + impl_->frameOrigin : point;
         hit.point = motion->point(point);
-        hit.geometricNormal = unitOr(motion->normal(geometric), towardOrigin);
+        hit.geometricNormal = unitOrTowardOrigin(motion->normal(geometric));
         hit.shadingNormal = unitOr(motion->normal(shading), hit.geometricNormal);
     } else {
         hit.point = shiftedTop ? point + impl_->frameOrigin : point;
@@ -177,7 +197,7 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         hit.shadingNormal = shading;
     }
     hit.frameOrigin = impl_->shifted ? impl_->frameOrigin : Vec3{};
-    hit.frameUnit = extent > 0 ? frameUnitFor(extent) : impl_->sceneUnit;
+    hit.frameUnit = frameUnit > 0 ? frameUnit : impl_->sceneUnit;
     return true;
 }
 

@@ -75,6 +75,11 @@ public:
     // built as static geometry, so the image is the static scene's at that
     // time bit for bit. Rays with another time see the objects at onlyTime.
     Accelerator(const Scene& scene, double onlyTime);
+    // The accelerator keeps pointers into the scene (Hit::object, the shapes'
+    // user data) for its whole life, so the scene must outlive it: building
+    // one from a temporary does not compile.
+    explicit Accelerator(Scene&& scene) = delete;
+    Accelerator(Scene&& scene, double onlyTime) = delete;
     ~Accelerator();
     Accelerator(const Accelerator&) = delete;
     Accelerator& operator=(const Accelerator&) = delete;

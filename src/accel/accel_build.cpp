@@ -127,6 +127,10 @@ struct Builder {
             p.lower = Vec3(-kUnbounded);
             p.upper = Vec3(kUnbounded);
         }
+        p.identity = p.toLevel.isIdentity();
+        p.plain = !p.csg && p.clips.empty();
+        const double extent = p.bounded ? maxComponent(p.upper - p.lower) : 0;
+        p.frameUnit = extent > 0 ? frameUnitFor(extent) : 0;
         level.primitives.push_back(std::move(p));
     }
 

@@ -75,6 +75,10 @@ struct CsgNode {
 struct Primitive {
     AnalyticShape shape;
     Transform toLevel; // object space -> level space
+    // Set by the builder (addPrimitive):
+    bool identity = false; // toLevel is the identity: the ray needs no transforming
+    bool plain = false;    // no csg and no clips: the shape's own first crossing is the primitive's
+    double frameUnit = 0;  // Hit::frameUnit for its level-space size; 0 if unbounded (the scene's then)
     const Object* object = nullptr;
     bool inverse = false;  // normals flipped
     bool noShadow = false;
@@ -126,11 +130,53 @@ struct Instance {
     }
 };
 
+struct AcceleratorState; // accel_impl.h
+
+// One ray query (Accelerator::intersect, occluded). Embree hands the user
+// geometry callbacks a pointer to `context`, its first member, through which
+// they reach the ray in double precision: each analytic shape is solved once,
+// in double, by the callback, and the crossing Embree accepted last (the
+// nearest, once the query ends) is kept here for the hit record.
+struct RayQuery {
+    RTCIntersectContext context; // first, so a context pointer is a query pointer
+    const AcceleratorState* state = nullptr;
+    Vec3 worldOrigin;
+    Vec3 origin; // in the top level's frame (world minus the frame origin)
+    Vec3 direction;
+    // The ray in the space of the moving object's level `instance` (an Embree
+    // geometry id of the top level), solved for on first need.
+    unsigned instance = RTC_INVALID_GEOMETRY_ID;
+    std::optional<Transform> instanceToWorld; // built in place, only for rays that reach a moving object
+    Vec3 instanceOrigin, instanceDirection;
+    // The analytic crossing Embree accepted last: for a plain primitive in its
+    // object space (objectCrossing: turned to level space once, for the hit
+    // that wins), else in level space (crossing).
+    bool hasCrossing = false;
+    bool objectSpace = false;
+    unsigned primID = RTC_INVALID_GEOMETRY_ID, instID = RTC_INVALID_GEOMETRY_ID;
+    Crossing objectCrossing;
+    SurfaceCrossing crossing;
+
+    RayQuery(const AcceleratorState& accelerator, const Vec3& rayOrigin, const Vec3& rayDirection);
+    static RayQuery& of(RTCIntersectContext* context) { return *reinterpret_cast<RayQuery*>(context); }
+    // The ray in the space of the level the callback runs in: the top level's
+    // (instID invalid) or a moving object's at `time` (Instance::toWorld).
+    void levelRay(unsigned instID, double time, Vec3& o, Vec3& d);
+};
+
 // Nearest crossing of a primitive with t in (tMin, tMax); the ray is in
 // level space. Used by the Embree callbacks (float ray) and to refine hits in
 // double precision.
 bool nearestCrossing(const Primitive& primitive, const Vec3& o, const Vec3& d, double tMin, double tMax,
                      SurfaceCrossing& out);
+// The first crossing with t in (tMin, tMax) of a plain primitive
+// (Primitive::plain), in its object space (normal not normalised); the ray is
+// in level space.
+bool firstPlainCrossing(const Primitive& primitive, const Vec3& o, const Vec3& d, double tMin, double tMax,
+                        Crossing& out);
+// A plain primitive's object-space crossing in level space: the same as
+// nearestCrossing reports for it.
+SurfaceCrossing levelCrossing(const Primitive& primitive, const Crossing& crossing);
 // The crossing of a primitive whose t is closest to `tGuess` (hit refinement).
 bool closestCrossingTo(const Primitive& primitive, const Vec3& o, const Vec3& d, double tGuess,
                        SurfaceCrossing& out);

@@ -16,14 +16,10 @@ Vec3 unitOrZero(const Vec3& v) {
     return len > 0 && std::isfinite(len) ? v / len : Vec3{};
 }
 
-SurfaceCrossing toLevel(const Primitive& p, const Crossing& c) {
-    Vec3 n = unitOrZero(p.toLevel.normal(c.normal));
-    if (p.inverse) n = -n;
-    return {c.t, n, p.object};
-}
 
 struct LeafEvent {
     double t;
+    int order; // position in the list before sorting: ties keep it
     int leaf;
     bool entering;
     Vec3 normal; // object space
@@ -95,27 +91,35 @@ bool insideNode(const CsgNode& node, const Vec3& p) {
 
 void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out) {
     out.clear();
-    std::vector<const CsgNode*> leaves;
-    std::vector<char> silent;
+    // Scratch space kept per thread: no allocation per ray once warm.
+    thread_local std::vector<const CsgNode*> leaves;
+    thread_local std::vector<char> silent;
+    thread_local std::vector<LeafEvent> events;
+    thread_local std::vector<char> state;
+    leaves.clear();
+    silent.clear();
+    events.clear();
     collectLeaves(root, false, leaves, silent);
-    std::vector<LeafEvent> events;
-    std::vector<char> state(leaves.size(), 0);
+    state.assign(leaves.size(), 0);
     for (size_t i = 0; i < leaves.size(); ++i) {
         const CsgNode& leaf = *leaves[i];
         const Vec3 lo = leaf.toLevel.inversePoint(o), ld = leaf.toLevel.inverseVector(d);
-        Crossing fixed[kMaxCrossings];
+        thread_local Crossing fixed[kMaxCrossings]; // not zero-initialised per leaf
         thread_local std::vector<Crossing> many;
         const Crossing* c = nullptr;
         const int n = allCrossings(leaf.shape, lo, ld, fixed, many, c);
         const bool solid = isSolidShape(leaf.shape);
         for (int k = 0; solid && k < n; ++k)
-            events.push_back({c[k].t, static_cast<int>(i), dot(c[k].normal, ld) < 0, c[k].normal});
+            events.push_back({c[k].t, static_cast<int>(events.size()), static_cast<int>(i), dot(c[k].normal, ld) < 0,
+                              c[k].normal});
         // State before the first crossing along the whole line.
         bool inside = false;
         if (solid) inside = n > 0 ? dot(c[0].normal, ld) > 0 : insideShape(leaf.shape, lo);
         state[i] = inside != leaf.inverse;
     }
-    std::stable_sort(events.begin(), events.end(), [](const LeafEvent& a, const LeafEvent& b) { return a.t < b.t; });
+    // A stable sort by t without std::stable_sort's temporary buffer.
+    std::sort(events.begin(), events.end(),
+              [](const LeafEvent& a, const LeafEvent& b) { return a.t < b.t || (a.t == b.t && a.order < b.order); });
     int cursor = 0;
     bool inside = evaluate(root, state, cursor);
     for (const LeafEvent& e : events) {
@@ -219,12 +223,23 @@ void primitiveCrossings(const Primitive& p, const Vec3& o, const Vec3& d, std::v
         out.clear();
         Crossing c[kMaxCrossings];
         const int n = intersectShape(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), c);
-        for (int i = 0; i < n; ++i) out.push_back(toLevel(p, c[i]));
+        for (int i = 0; i < n; ++i) out.push_back(levelCrossing(p, c[i]));
     }
     if (!p.clips.empty())
         std::erase_if(out, [&](const SurfaceCrossing& c) { return !insideClips(p, o, d, c.t); });
 }
 } // namespace
+
+SurfaceCrossing levelCrossing(const Primitive& p, const Crossing& c) {
+    Vec3 n = unitOrZero(p.identity ? c.normal : p.toLevel.normal(c.normal));
+    if (p.inverse) n = -n;
+    return {c.t, n, p.object};
+}
+
+bool firstPlainCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tMin, double tMax, Crossing& out) {
+    return p.identity ? firstCrossing(p.shape, o, d, tMin, tMax, out)
+                      : firstCrossing(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), tMin, tMax, out);
+}
 
 bool nearestCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tMin, double tMax,
                      SurfaceCrossing& out) {
@@ -238,16 +253,10 @@ bool nearestCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tM
             }
         return false;
     }
-    Crossing fixed[kMaxCrossings];
-    thread_local std::vector<Crossing> many;
-    const Crossing* c = nullptr;
-    const int n = allCrossings(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), fixed, many, c);
-    for (int i = 0; i < n; ++i)
-        if (c[i].t > tMin && c[i].t < tMax) {
-            out = toLevel(p, c[i]);
-            return true;
-        }
-    return false;
+    Crossing c;
+    const bool found = firstPlainCrossing(p, o, d, tMin, tMax, c);
+    if (found) out = levelCrossing(p, c);
+    return found;
 }
 
 bool closestCrossingTo(const Primitive& p, const Vec3& o, const Vec3& d, double tGuess, SurfaceCrossing& out) {
@@ -264,14 +273,14 @@ bool closestCrossingTo(const Primitive& p, const Vec3& o, const Vec3& d, double 
             }
         return found;
     }
-    Crossing fixed[kMaxCrossings];
+    thread_local Crossing fixed[kMaxCrossings]; // not zero-initialised per call
     thread_local std::vector<Crossing> many;
     const Crossing* c = nullptr;
     const int n = allCrossings(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), fixed, many, c);
     for (int i = 0; i < n; ++i)
         if (std::fabs(c[i].t - tGuess) < best) {
             best = std::fabs(c[i].t - tGuess);
-            out = toLevel(p, c[i]);
+            out = levelCrossing(p, c[i]);
             found = true;
         }
     return found;

@@ -1,6 +1,6 @@
 // The Embree side of the build: the device with its error callback, the user
 // geometry callbacks for analytic primitives, and triangle geometry.
-#include "accel/built_scene.h"
+#include "accel/accel_impl.h"
 #include "core/error.h"
 
 #include <cmath>
@@ -60,8 +60,9 @@ void Level::release() {
 // ---------------------------------------------------------------- user geometry
 // Embree hands the callbacks the ray in the space of the scene the geometry is
 // in: for a moving object's sub-scene, the ray already transformed by the
-// inverse instance transform at the ray's time. Only rtcIntersect1 and
-// rtcOccluded1 are used, so N is always 1.
+// inverse instance transform at the ray's time. The intersect callback solves
+// with the double-precision ray of its RayQuery instead (the same ray, unrounded).
+// Only rtcIntersect1 and rtcOccluded1 are used, so N is always 1.
 
 // Bounds must stay conservative after rounding to float.
 static float roundDown(double v) {
@@ -85,25 +86,63 @@ static void boundsCallback(const RTCBoundsFunctionArguments* args) {
     b->upper_z = roundUp(p.upper.z);
 }
 
+RayQuery::RayQuery(const AcceleratorState& accelerator, const Vec3& rayOrigin, const Vec3& rayDirection)
+    : state(&accelerator), worldOrigin(rayOrigin),
+      origin(accelerator.shifted ? rayOrigin - accelerator.frameOrigin : rayOrigin), direction(rayDirection) {
+    rtcInitIntersectContext(&context);
+}
+
+void RayQuery::levelRay(unsigned instID, double time, Vec3& o, Vec3& d) {
+    if (instID == RTC_INVALID_GEOMETRY_ID) {
+        o = origin;
+        d = direction;
+        return;
+    }
+    if (instance != instID) {
+        instance = instID;
+        instanceToWorld.emplace(state->instances[state->top.geometries[instID].index].toWorld(time));
+        instanceOrigin = instanceToWorld->inversePoint(worldOrigin);
+        instanceDirection = instanceToWorld->inverseVector(direction);
+    }
+    o = instanceOrigin;
+    d = instanceDirection;
+}
+
 static void intersectCallback(const RTCIntersectFunctionNArguments* args) {
     if (!args->valid[0]) return;
     const auto* level = static_cast<const Level*>(args->geometryUserPtr);
     const Primitive& p = level->primitives[args->primID];
     auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
     RTCRay& ray = rayhit->ray;
-    SurfaceCrossing c;
-    if (!nearestCrossing(p, {ray.org_x, ray.org_y, ray.org_z}, {ray.dir_x, ray.dir_y, ray.dir_z}, ray.tnear,
-                         ray.tfar, c))
-        return;
-    ray.tfar = float(c.t);
+    RayQuery& query = RayQuery::of(args->context);
+    const unsigned instID = args->context->instID[0];
+    Vec3 o, d;
+    query.levelRay(instID, ray.time, o, d);
+    Vec3 normal; // level or object space: only for Embree's record, the hit is rebuilt from the query
+    if (p.plain) {
+        Crossing& c = query.objectCrossing; // written only if found
+        if (!firstPlainCrossing(p, o, d, ray.tnear, ray.tfar, c)) return;
+        ray.tfar = float(c.t);
+        normal = c.normal;
+    } else {
+        SurfaceCrossing c;
+        if (!nearestCrossing(p, o, d, ray.tnear, ray.tfar, c)) return;
+        query.crossing = c;
+        ray.tfar = float(c.t);
+        normal = c.normal;
+    }
+    query.hasCrossing = true;
+    query.objectSpace = p.plain;
+    query.primID = args->primID;
+    query.instID = instID;
     RTCHit& hit = rayhit->hit;
-    hit.Ng_x = float(c.normal.x);
-    hit.Ng_y = float(c.normal.y);
-    hit.Ng_z = float(c.normal.z);
+    hit.Ng_x = float(normal.x);
+    hit.Ng_y = float(normal.y);
+    hit.Ng_z = float(normal.z);
     hit.u = hit.v = 0;
     hit.primID = args->primID;
     hit.geomID = args->geomID;
-    hit.instID[0] = args->context->instID[0];
+    hit.instID[0] = instID;
 }
 
 static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
@@ -112,11 +151,14 @@ static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
     const Primitive& p = level->primitives[args->primID];
     if (p.noShadow) return;
     auto* ray = reinterpret_cast<RTCRay*>(args->ray);
+    const Vec3 o{ray->org_x, ray->org_y, ray->org_z}, d{ray->dir_x, ray->dir_y, ray->dir_z};
+    if (p.plain) { // any crossing blocks: no normal needed
+        Crossing c;
+        if (firstPlainCrossing(p, o, d, ray->tnear, ray->tfar, c)) ray->tfar = -INFINITY;
+        return;
+    }
     SurfaceCrossing c;
-    if (nearestCrossing(p, {ray->org_x, ray->org_y, ray->org_z}, {ray->dir_x, ray->dir_y, ray->dir_z}, ray->tnear,
-                        ray->tfar, c) &&
-        !c.object->noShadow)
-        ray->tfar = -INFINITY;
+    if (nearestCrossing(p, o, d, ray->tnear, ray->tfar, c) && !c.object->noShadow) ray->tfar = -INFINITY;
 }
 
 void attachPrimitives(RTCDevice device, Level& level) {

@@ -69,6 +69,11 @@ int intersectShape(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Cro
 int allCrossings(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Crossing fixed[kMaxCrossings],
                  std::vector<Crossing>& many, const Crossing*& first);
 
+// The first crossing of the line o + t d with tMin < t < tMax: the same t
+// and normal as intersectShape's entry, found without listing the others
+// where the shape allows (spheres, planes). `out` is written only if found.
+bool firstCrossing(const AnalyticShape& shape, const Vec3& o, const Vec3& d, double tMin, double tMax, Crossing& out);
+
 // Whether the shape encloses a volume (discs, open cones and open extrusions do not).
 bool isSolidShape(const AnalyticShape& shape);
 

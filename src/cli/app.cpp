@@ -3,6 +3,7 @@
 #include "cli/app.h"
 
 #include "cli/commands.h"
+#include "core/limits.h"
 #include "sampling/sampler.h"
 
 #include <CLI/CLI.hpp>
@@ -65,7 +66,13 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("--spp", a.spp, "Samples per pixel (overrides the scene)")->check(CLI::PositiveNumber);
     render->add_option("--threads", a.threads, "Worker threads (0: all cores)")
         ->check(CLI::NonNegativeNumber);
-    render->add_option("--seed", a.seed, "Random seed (overrides the scene)");
+    render->add_option("--seed", a.seed, "Random seed, 0 to 2^64-1 (overrides the scene)")
+        ->check(CLI::Validator(
+            [](std::string& value) {
+                return value.find('-') == 0 ? std::string("the seed must be a whole number from 0 to 2^64-1")
+                                            : std::string();
+            },
+            "0..2^64-1"));
     render->add_option("--sampler", a.sampler, "Sampler (overrides the scene)")
         ->check(CLI::IsMember(samplerNames()));
     render->add_option("--tile-size", a.tileSize, "Tile edge in pixels (the image does not depend on it)")
@@ -228,6 +235,22 @@ CLI::App* addCompare(CLI::App& app, CompareCommand& c) {
     return compare;
 }
 
+// --limit NAME=VALUE (repeatable): every limit of core/limits.h (docs/limits.md).
+void addLimitOption(CLI::App* command, Limits& limits) {
+    std::string names;
+    for (const LimitInfo& info : limitTable()) names += std::string(names.empty() ? "" : ", ") + info.name;
+    command
+        ->add_option_function<std::vector<std::string>>(
+            "--limit",
+            [&limits](const std::vector<std::string>& assignments) {
+                for (const std::string& assignment : assignments)
+                    if (std::string problem = setLimit(limits, assignment); !problem.empty())
+                        throw CLI::ValidationError(problem);
+            },
+            "Raise or lower a limit, NAME=VALUE (repeatable; docs/limits.md): " + names)
+        ->type_name("NAME=VALUE");
+}
+
 } // namespace
 
 int runCommandLine(int argc, char** argv) {
@@ -261,6 +284,8 @@ int runCommandLine(int argc, char** argv) {
     test->add_flag("--update", testCommand.update, "Rewrite the goldens (and variance images) from fresh renders");
     test->add_option("--report", testCommand.reportDir, "Write an HTML page of the failures to this folder");
     test->add_option("--only", testCommand.only, "Run only the test of this name (repeatable)");
+    Limits limits;
+    for (CLI::App* command : {render, check, bench, convert, test}) addLimitOption(command, limits);
 
     try {
         app.parse(argc, argv);
@@ -268,6 +293,7 @@ int runCommandLine(int argc, char** argv) {
         const int status = app.exit(e, std::cout, std::cerr);
         return status == 0 ? kSuccess : kUsageError;
     }
+    setDefaultLimits(limits);
 
     if (render->parsed()) {
         fillOverrides(*render, renderArguments);

@@ -1,5 +1,6 @@
 // `drt compare CANDIDATE REFERENCE`: read, compare (compare/compare.h), report.
 #include "cli/commands.h"
+#include "cli/paths.h"
 
 #include <fmt/format.h>
 #include <ostream>
@@ -31,6 +32,15 @@ int fileError(const CompareCommand& command, std::string message, std::ostream& 
 } // namespace
 
 int runCompare(const CompareCommand& command, std::ostream& out, std::ostream& err) {
+    if (std::string clash = outputClash({{"the candidate", command.candidate},
+                                         {"the reference", command.reference},
+                                         {"--variance", command.referenceVariance},
+                                         {"--candidate-variance", command.candidateVariance}},
+                                        {{"--diff", command.diffOutput}, {"--zmap", command.zmapOutput}});
+        !clash.empty()) {
+        err << "drt compare: " << clash << "\n";
+        return kUsageError;
+    }
     Image candidate, reference, referenceVariance, candidateVariance;
     VarianceImages variance;
     if (std::string problem = readImage(command.candidate, candidate); !problem.empty())

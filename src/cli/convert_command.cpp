@@ -8,6 +8,8 @@
 // clean when it loads without an unsupported-feature warning, the .drt text
 // expresses all of it and loads back, and the result renders (small, 1 spp).
 #include "cli/commands.h"
+#include "cli/paths.h"
+#include "core/temporary_files.h"
 #include "assets/assets.h"
 
 #include "lang/load.h"
@@ -78,6 +80,7 @@ std::string writeTextFile(const std::string& path, const std::string& text) {
     const fs::path target(path);
     const fs::path temp =
         target.parent_path() / (".~" + target.filename().string() + "." + std::to_string(::getpid()));
+    const TemporaryFile registered(temp.string()); // removed if a signal ends the process
     {
         std::ofstream out(temp, std::ios::binary);
         if (!out)
@@ -108,6 +111,10 @@ int convertOne(const ConvertCommand& command, std::ostream& out, std::ostream& e
     }
     if (command.output.empty()) {
         err << "drt convert: give the output file with -o scene.drt\n";
+        return kUsageError;
+    }
+    if (std::string clash = outputClash({{"the scene", command.scene}}, {{"-o", command.output}}); !clash.empty()) {
+        err << "drt convert: " << clash << "\n";
         return kUsageError;
     }
     Diagnostics diags;

@@ -28,7 +28,7 @@ extern "C" void onSignal(int number) {
                      "checkpoint (interrupt again to quit at once)\n");
         return;
     }
-    removeTemporaryFiles();
+    removeRegisteredTemporaryFiles();
     writeMessage("drt: interrupted twice: quitting at once, nothing saved\n");
     ::_exit(128 + firstSignal.load());
 }

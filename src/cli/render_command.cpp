@@ -4,11 +4,13 @@
 #include "cli/commands.h"
 #include "assets/assets.h"
 
+#include "cli/paths.h"
 #include "cli/progress.h"
 #include "cli/render_parts.h"
 #include "distributed/checkpoint.h"
 #include "lang/load.h"
 #include "pov/load.h"
+#include "render/camera.h"
 #include "sampling/sampler.h"
 
 #include <algorithm>
@@ -81,6 +83,16 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
     }
     Diagnostics diagnostics;
     scene = evaluateFrame(sceneEvaluator(path, pov, overrides), frame, frameOptions, diagnostics, report);
+    if (scene && !diagnostics.hasErrors()) {
+        // The camera's problems (sky or up along the view, ...) are found by
+        // check too, and reported at the camera.
+        const RenderOptions size = resolveRenderOptions(overlaySettings(scene->render, overrides));
+        try {
+            resolveCamera(scene->camera, size.width, size.height);
+        } catch (const RenderError& e) {
+            diagnostics.error(scene->camera.loc, e.what());
+        }
+    }
     err << diagnostics.formatAll();
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),

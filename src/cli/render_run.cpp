@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 
 #include "cli/interrupt.h"
+#include "cli/paths.h"
 #include "cli/progress.h"
 #include "cli/render_parts.h"
 #include "distributed/checkpoint.h"
@@ -40,6 +41,15 @@ struct Prepared {
 };
 
 int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepared& p) {
+    // Refused before anything is read: an output that would replace the scene
+    // or another output, whatever the spelling.
+    if (std::string clash = outputClash({{"the scene", command.scene}}, {{"-o", command.output},
+                                                                        {"--variance", command.varianceOutput},
+                                                                        {"--spp-image", command.sppImageOutput}});
+        !clash.empty()) {
+        err << "drt render: " << clash << "\n";
+        return kUsageError;
+    }
     const auto loadStart = std::chrono::steady_clock::now();
     FrameReport report; // the scene at its frame's clock, moving over the shutter
     if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides, stillFrameClock(command),
@@ -50,6 +60,13 @@ int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepar
     printFrameReport(command, report, err);
     p.options = resolveRenderOptions(overlaySettings(p.scene->render, command.overrides));
     if (command.tileSize) p.options.tileSize = *command.tileSize;
+    // Sizes and thread counts past the limits are refused before the render
+    // allocates anything: a usage error when the command line asked for them.
+    if (std::string problem = renderLimitProblem(p.options); !problem.empty()) {
+        const bool fromCommandLine = command.overrides.width || command.overrides.height || command.overrides.threads;
+        err << fmt::format("drt: {}: {}\n", fromCommandLine ? "render" : command.scene, problem);
+        return fromCommandLine ? kUsageError : kSceneError;
+    }
     if (!command.crop.empty()) {
         PixelWindow window;
         if (std::string problem = parseCropWindow(command.crop, p.options.width, p.options.height, window);

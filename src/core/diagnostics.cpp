@@ -5,8 +5,8 @@
 
 namespace drt {
 
-int SourceFiles::add(std::string path, std::string text) {
-    files_.push_back({std::move(path), std::move(text)});
+int SourceFiles::add(std::string path, std::string text, bool quotable) {
+    files_.push_back({std::move(path), std::move(text), quotable});
     return static_cast<int>(files_.size()) - 1;
 }
 
@@ -26,8 +26,11 @@ std::string SourceFiles::line(int id, int line) const {
 
 void Diagnostics::report(Severity s, SourceLoc loc, std::string message, std::vector<SourceLoc> includedFrom) {
     if (s == Severity::Warning && warningsAsErrors_) s = Severity::Error;
-    if (s == Severity::Error) ++errorCount_;
-    if (s == Severity::Warning) ++warningCount_;
+    // Past the limit only the count is kept; a note goes where the error or
+    // warning it explains went.
+    if (s == Severity::Error) lastDropped_ = ++errorCount_ > limits_.errors && ++droppedErrors_;
+    if (s == Severity::Warning) lastDropped_ = ++warningCount_ > limits_.errors && ++droppedWarnings_;
+    if (lastDropped_) return;
     diagnostics_.push_back({s, loc, std::move(message), std::move(includedFrom)});
 }
 
@@ -47,10 +50,21 @@ std::string Diagnostics::format(const Diagnostic& d) const {
     if (!d.loc.valid()) return out + fmt::format("drt: {}: {}\n", severityName(d.severity), d.message);
     out += fmt::format("{}:{}:{}: {}: {}\n", files_->path(d.loc.file), d.loc.line, d.loc.column,
                        severityName(d.severity), d.message);
+    if (!files_->quotable(d.loc.file)) return out;
     std::string src = files_->line(d.loc.file, d.loc.line);
+    // A long line is quoted as a window of quotedLine characters around the
+    // column, its cut ends marked "...".
+    size_t column = size_t(std::max(d.loc.column, 1)) - 1;
+    const size_t width = size_t(std::max<int64_t>(limits_.quotedLine, 8));
+    if (src.size() > width) {
+        const size_t first = column > width / 2 ? std::min(column - width / 2, src.size() - width) : 0;
+        const bool cutLeft = first > 0, cutRight = first + width < src.size();
+        src = (cutLeft ? "..." : "") + src.substr(first, width) + (cutRight ? "..." : "");
+        column = column - first + (cutLeft ? 3 : 0);
+    }
     // Tabs keep their width in the caret line so the caret sits under the spot.
     std::string caret;
-    for (int i = 0; i + 1 < d.loc.column && i < static_cast<int>(src.size()); ++i)
+    for (size_t i = 0; i < column && i < src.size(); ++i)
         caret += (src[i] == '\t') ? '\t' : ' ';
     out += fmt::format("  {}\n  {}^\n", src, caret);
     return out;
@@ -59,6 +73,13 @@ std::string Diagnostics::format(const Diagnostic& d) const {
 std::string Diagnostics::formatAll() const {
     std::string out;
     for (const auto& d : diagnostics_) out += format(d);
+    const auto more = [&](int count, const char* kind) {
+        if (count > 0)
+            out += fmt::format("drt: {} more {}{} not shown ({})\n", count, kind, count == 1 ? "" : "s",
+                               limitHint(limits_, &Limits::errors));
+    };
+    more(droppedErrors_, "error");
+    more(droppedWarnings_, "warning");
     return out;
 }
 

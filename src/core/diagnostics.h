@@ -5,6 +5,8 @@
 //          ^
 #pragma once
 
+#include "core/limits.h"
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,8 +16,11 @@ namespace drt {
 // Owns the text of every file read, so that diagnostics can quote source lines.
 class SourceFiles {
 public:
-    // Returns a stable id for a file's text.
-    int add(std::string path, std::string text);
+    // Returns a stable id for a file's text. The lines of a file that is not
+    // `quotable` (a file whose name says it is no scene, e.g. an #include of
+    // /etc/passwd) are never printed under its errors.
+    int add(std::string path, std::string text, bool quotable = true);
+    bool quotable(int id) const { return files_.at(id).quotable; }
     const std::string& path(int id) const { return files_.at(id).path; }
     const std::string& text(int id) const { return files_.at(id).text; }
     // The text of 1-based line `line` of file `id`, without its newline.
@@ -26,6 +31,7 @@ private:
     struct File {
         std::string path;
         std::string text;
+        bool quotable = true;
     };
     std::vector<File> files_;
 };
@@ -50,7 +56,7 @@ struct Diagnostic {
 class Diagnostics {
 public:
     explicit Diagnostics(std::shared_ptr<SourceFiles> files = std::make_shared<SourceFiles>())
-        : files_(std::move(files)) {}
+        : files_(std::move(files)), limits_(defaultLimits()) {}
 
     void error(SourceLoc loc, std::string message) { report(Severity::Error, loc, std::move(message)); }
     void warning(SourceLoc loc, std::string message) { report(Severity::Warning, loc, std::move(message)); }
@@ -59,6 +65,12 @@ public:
 
     // Warnings become errors (POV front end's --strict).
     void setWarningsAsErrors(bool on) { warningsAsErrors_ = on; }
+
+    // The limits the front ends work within (core/limits.h). Beyond
+    // Limits::errors errors (or warnings) only the count is kept, and
+    // formatAll says how many more there were.
+    const Limits& limits() const { return limits_; }
+    void setLimits(const Limits& limits) { limits_ = limits; }
 
     bool hasErrors() const { return errorCount_ > 0; }
     int errorCount() const { return errorCount_; }
@@ -69,9 +81,10 @@ public:
     const SourceFiles& files() const { return *files_; }
     std::shared_ptr<SourceFiles> sharedFiles() const { return files_; }
 
-    // Renders one diagnostic with its source line and a caret under the column.
+    // Renders one diagnostic with its source line (at most Limits::quotedLine
+    // characters of it, around the column) and a caret under the column.
     std::string format(const Diagnostic& d) const;
-    // Renders all of them, in order.
+    // Renders all of them, in order, then "N more errors" if some were dropped.
     std::string formatAll() const;
 
 private:
@@ -79,7 +92,11 @@ private:
     std::vector<Diagnostic> diagnostics_;
     int errorCount_ = 0;
     int warningCount_ = 0;
+    int droppedErrors_ = 0;
+    int droppedWarnings_ = 0;
+    bool lastDropped_ = false;
     bool warningsAsErrors_ = false;
+    Limits limits_;
 };
 
 // The known word nearest to `word` by edit distance (or by one swap of

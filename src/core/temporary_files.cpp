@@ -1,7 +1,7 @@
 #include "core/temporary_files.h"
 
-#include <array>
 #include <atomic>
+#include <csignal>
 #include <cstring>
 #include <unistd.h>
 
@@ -9,37 +9,50 @@ namespace drt {
 
 namespace {
 
-// A fixed table, so the signal handler needs no allocation or lock: a slot is
-// free (0), being filled or emptied (1), or holds a path (2).
-constexpr int kSlots = 32;
+constexpr int kSlots = 64;
 constexpr size_t kPathBytes = 4096;
-struct Slot {
-    std::atomic<int> state{0};
-    char path[kPathBytes];
-};
-std::array<Slot, kSlots> slots;
+enum SlotState : int { kFree = 0, kFilling = 1, kRegistered = 2 };
+// Fixed storage: the signal handler may read it at any moment, so nothing here
+// allocates or locks.
+char slotPaths[kSlots][kPathBytes];
+std::atomic<int> slotStates[kSlots];
+
+void onTerminatingSignal(int signal) {
+    removeRegisteredTemporaryFiles();
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+}
 
 } // namespace
 
-TemporaryFile::TemporaryFile(const std::string& path) {
-    if (path.size() >= kPathBytes) return;
+TemporaryFile::TemporaryFile(std::string path) : path_(std::move(path)) {
+    if (path_.size() >= kPathBytes) return;
     for (int i = 0; i < kSlots; ++i) {
-        int expected = 0;
-        if (!slots[size_t(i)].state.compare_exchange_strong(expected, 1)) continue;
-        std::memcpy(slots[size_t(i)].path, path.c_str(), path.size() + 1);
-        slots[size_t(i)].state.store(2);
+        int expected = kFree;
+        if (!slotStates[i].compare_exchange_strong(expected, kFilling)) continue;
+        std::memcpy(slotPaths[i], path_.c_str(), path_.size() + 1);
+        slotStates[i].store(kRegistered);
         slot_ = i;
         return;
     }
 }
 
 TemporaryFile::~TemporaryFile() {
-    if (slot_ >= 0) slots[size_t(slot_)].state.store(0);
+    if (slot_ >= 0) slotStates[slot_].store(kFree);
 }
 
-void removeTemporaryFiles() noexcept {
-    for (Slot& slot : slots)
-        if (slot.state.load() == 2) ::unlink(slot.path);
+void removeRegisteredTemporaryFiles() noexcept {
+    for (int i = 0; i < kSlots; ++i)
+        if (slotStates[i].load() == kRegistered) ::unlink(slotPaths[i]);
+}
+
+void removeTemporaryFilesOnSignal() {
+    static std::atomic<bool> installed{false};
+    if (installed.exchange(true)) return;
+    struct sigaction action {};
+    action.sa_handler = onTerminatingSignal;
+    sigemptyset(&action.sa_mask);
+    for (int signal : {SIGTERM, SIGINT, SIGHUP}) ::sigaction(signal, &action, nullptr);
 }
 
 } // namespace drt

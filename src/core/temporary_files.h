@@ -1,28 +1,34 @@
-// Temporary files being written, so that a process stopped by a signal can
-// remove them before it exits: files are written to a temporary name and
-// renamed over the real one when complete, and a signal in between would
-// otherwise leave the temporary file behind.
+// Temporary files that a writer fills before renaming them over the real
+// output. A signal that ends the process (SIGTERM, SIGINT, SIGHUP) must not
+// leave them behind: while a TemporaryFile is alive its path is registered,
+// and the handler installed by removeTemporaryFilesOnSignal() unlinks every
+// registered path before the process dies of the signal.
 #pragma once
 
 #include <string>
 
 namespace drt {
 
-// Registers `path` while it exists (in scope); at most a few dozen at once
-// (further ones are written all the same, just not registered).
 class TemporaryFile {
 public:
-    explicit TemporaryFile(const std::string& path);
-    ~TemporaryFile();
+    explicit TemporaryFile(std::string path);
+    ~TemporaryFile(); // unregisters (the writer has renamed or removed the file)
     TemporaryFile(const TemporaryFile&) = delete;
     TemporaryFile& operator=(const TemporaryFile&) = delete;
+    const std::string& path() const { return path_; }
 
 private:
-    int slot_ = -1;
+    std::string path_;
+    int slot_ = -1; // -1: more files at once than slots (then not cleaned up on a signal)
 };
 
-// Removes every registered temporary file. Async-signal-safe: for a signal
-// handler that is about to _exit.
-void removeTemporaryFiles() noexcept;
+// Installs the handler for SIGTERM, SIGINT and SIGHUP (once per process):
+// removes the registered temporary files (async-signal-safe), then re-raises
+// the signal with its default action, so the exit status still says which
+// signal ended the process.
+void removeTemporaryFilesOnSignal();
+
+// What the handler does first: unlinks every registered path. Async-signal-safe.
+void removeRegisteredTemporaryFiles() noexcept;
 
 } // namespace drt

@@ -9,6 +9,7 @@
 #include "image/image.h"
 #include "image/image_io_module.h"
 
+#include "core/limits.h"
 #include "core/temporary_files.h"
 
 #include <atomic>
@@ -144,7 +145,7 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
     if (!io.module->hasWriter(path))
         return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) + "'";
     const fs::path temporary = temporaryPath(fs::path(path));
-    const TemporaryFile removedOnSignal(temporary.string());
+    const TemporaryFile registered(temporary.string()); // removed if a signal ends the process
     std::error_code ec;
     auto fail = [&](const std::string& reason) {
         fs::remove(temporary, ec);
@@ -159,14 +160,23 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
     return "";
 }
 
+namespace {
+
+ReadBudget readBudget() {
+    const Limits& limits = defaultLimits();
+    return {uint64_t(limits.imageMemoryMB), limitHint(limits, &Limits::imageMemoryMB)};
+}
+
+} // namespace
+
 std::string readImage(const std::string& path, Image& image, Metadata* metadata) {
     const LoadedModule& io = imageIo();
-    return io.module ? io.module->readImage(path, image, metadata) : io.error;
+    return io.module ? io.module->readImage(path, image, metadata, readBudget()) : io.error;
 }
 
 std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info) {
     const LoadedModule& io = imageIo();
-    return io.module ? io.module->readImageEncoded(path, image, info) : io.error;
+    return io.module ? io.module->readImageEncoded(path, image, info, readBudget()) : io.error;
 }
 
 } // namespace drt

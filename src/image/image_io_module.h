@@ -11,13 +11,21 @@
 #include "image/image.h"
 
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
 namespace drt {
 
 // Bumped whenever this table changes: a module from another build is refused.
-inline constexpr int kImageIoModuleVersion = 1;
+inline constexpr int kImageIoModuleVersion = 2;
+
+// The memory a decoded image may take (core/limits.h's image_memory_mb; the
+// module does not link drt's core library, so image/image.cpp passes it in).
+struct ReadBudget {
+    uint64_t megabytes;
+    std::string hint; // how to raise the limit
+};
 
 // The module does the OpenImageIO work only; the files around it (temporary
 // names, renames, removal on a signal) are handled by image/image.cpp.
@@ -29,9 +37,12 @@ struct ImageIoModule {
     // (integer formats sRGB-encoded). Returns "" or OpenImageIO's reason.
     std::string (*writeFile)(const std::string& file, const std::string& path, const Image& image,
                              const Metadata& metadata);
-    // As image/image.h's readImage and readImageEncoded.
-    std::string (*readImage)(const std::string& path, Image& image, Metadata* metadata);
-    std::string (*readImageEncoded)(const std::string& path, Image& image, ImageFileInfo& info);
+    // As image/image.h's readImage and readImageEncoded. A file whose header
+    // gives an image of more than `budget.megabytes` (as floats) is refused
+    // before anything is allocated, the message ending in `budget.hint`.
+    std::string (*readImage)(const std::string& path, Image& image, Metadata* metadata, const ReadBudget& budget);
+    std::string (*readImageEncoded)(const std::string& path, Image& image, ImageFileInfo& info,
+                                    const ReadBudget& budget);
 };
 
 // The extension of `path`, lower case ("" if none): it names the format.

@@ -3,6 +3,8 @@
 
 #include "lang/load.h"
 
+#include "core/source_file.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -11,9 +13,6 @@
 namespace drt {
 
 namespace fs = std::filesystem;
-
-// Deeper nesting than this is an error, not a stack overflow.
-static constexpr int kMaxDepth = 200;
 
 std::string kindName(const Value& v) {
     switch (v.index()) {
@@ -40,14 +39,6 @@ static const std::vector<std::string>& directiveWords() {
     return words;
 }
 
-static std::optional<std::string> readWholeFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 static std::string identity(const std::string& path) {
     std::error_code ec;
     fs::path p = fs::weakly_canonical(fs::absolute(path), ec);
@@ -55,9 +46,10 @@ static std::string identity(const std::string& path) {
 }
 
 Parser::DepthGuard::DepthGuard(Parser& p, const SourceLoc& loc) : parser(p) {
-    if (++parser.depth_ > kMaxDepth) {
+    if (++parser.depth_ > parser.diags_.limits().nestingDepth) {
         --parser.depth_;
-        parser.fail(loc, "nesting is too deep (more than " + std::to_string(kMaxDepth) + " levels)");
+        parser.fail(loc, limitExceeded(parser.diags_.limits(), &Limits::nestingDepth, "nesting depth",
+                                       double(parser.depth_ + 1)));
     }
 }
 
@@ -69,6 +61,10 @@ void Parser::advance() {
     if (previous_.kind == TokenKind::LeftBrace) ++braceDepth_;
     if (previous_.kind == TokenKind::RightBrace) --braceDepth_;
     for (;;) {
+        if (sources_.size() > 1 && sources_.back().fileId == abandonedFile_) {
+            sources_.pop_back();
+            continue;
+        }
         Token t = sources_.back().lexer->next();
         if (t.kind == TokenKind::Error) {
             error(t.loc, t.text);
@@ -104,21 +100,25 @@ void Parser::include(const Token& directive) {
         error(name.loc, "include cycle: " + chain + fs::path(id).filename().string());
         return;
     }
-    if (sources_.size() > 64) {
-        error(name.loc, "includes nested too deeply");
+    // sources_ holds the scene file and the includes open now; this include
+    // would make sources_.size() includes open at once.
+    if (int64_t(sources_.size()) > diags_.limits().includeDepth) {
+        error(name.loc, limitExceeded(diags_.limits(), &Limits::includeDepth, "include depth",
+                                      double(sources_.size())));
         return;
     }
-    std::optional<std::string> text = readWholeFile(path);
-    if (!text || fs::is_directory(path)) {
-        error(name.loc, "cannot open include file '" + name.text + "' (looked for " + path + ")");
+    std::string text;
+    if (std::string problem = readSourceFile(path, diags_.limits().includeBytes, text); !problem.empty()) {
+        error(name.loc, "cannot include '" + name.text + "': " + problem);
         return;
     }
-    const int fileId = diags_.files().add(path, *text);
+    const int fileId = diags_.files().add(path, text, hasSceneExtension(path));
     std::vector<SourceLoc> chain{directive.loc};
     const std::vector<SourceLoc> outer = includeChain(directive.loc);
     chain.insert(chain.end(), outer.begin(), outer.end());
     includeChains_[fileId] = std::move(chain);
-    sources_.push_back({std::make_unique<Lexer>(*text, fileId), id, fs::path(path).parent_path().string()});
+    sources_.push_back(
+        {std::make_unique<Lexer>(std::move(text), fileId), id, fs::path(path).parent_path().string(), fileId});
 }
 
 bool Parser::match(TokenKind kind) {
@@ -148,6 +148,10 @@ std::vector<SourceLoc> Parser::includeChain(const SourceLoc& loc) const {
 
 void Parser::error(const SourceLoc& loc, const std::string& message) {
     diags_.report(Severity::Error, loc, message, includeChain(loc));
+    // An included file that is no scene (an #include of /etc/passwd) is read
+    // no further after its first error, so its contents do not leak into the
+    // messages token by token.
+    if (loc.valid() && !diags_.files().quotable(loc.file)) abandonedFile_ = loc.file;
 }
 
 void Parser::warning(const SourceLoc& loc, const std::string& message) {
@@ -202,7 +206,7 @@ void Parser::synchronize() {
 // ---------------------------------------------------------------- statements
 
 void Parser::parseFile(int fileId, const std::string& path, const std::string& dir) {
-    sources_.push_back({std::make_unique<Lexer>(diags_.files().text(fileId), fileId), identity(path), dir});
+    sources_.push_back({std::make_unique<Lexer>(diags_.files().text(fileId), fileId), identity(path), dir, fileId});
     advance();
     while (!check(TokenKind::EndOfFile)) {
         const long start = tokensRead_;
@@ -280,7 +284,40 @@ void Parser::declare() {
     } else if (!match(TokenKind::Semicolon)) {
         fail(previous_.loc, "expected ';' after the value of '" + nameToken.text + "'");
     }
+    // What a use of the name will copy: counted against Limits::objects there,
+    // and a large value is a moment to look at the memory the scene takes.
+    const int64_t weight = valueWeight(value, diags_.limits().objects);
+    if (weight > kMemoryCheckWeight)
+        if (std::string problem = checkMemory(diags_.limits()); !problem.empty()) fail(nameToken.loc, problem);
+    symbolWeights_[nameToken.text] = weight;
     symbols_[nameToken.text] = std::move(value);
+}
+
+// An object's nodes: its own (weight.h) and its union children's, which stay
+// ParsedObjects until the union reaches the scene.
+static int64_t objectWeight(const ParsedObject& po, int64_t cap) {
+    int64_t total = weightOf(po.object, cap).total();
+    for (const ParsedObject& child : po.children)
+        if (total <= cap) total += objectWeight(child, cap - total);
+    return total;
+}
+
+int64_t Parser::valueWeight(const Value& value, int64_t cap) {
+    if (const ParsedObject* po = std::get_if<ParsedObject>(&value)) return objectWeight(*po, cap);
+    if (const Pigment* pigment = std::get_if<Pigment>(&value)) return weightOf(*pigment, cap).total();
+    if (const Texture* texture = std::get_if<Texture>(&value)) return weightOf(*texture, cap).total();
+    if (const Interior* interior = std::get_if<Interior>(&value)) return weightOf(*interior, cap).total();
+    return 1;
+}
+
+void Parser::countBuilt(const SourceLoc& loc, int64_t weight) {
+    const int64_t before = built_;
+    built_ += weight;
+    if (built_ > diags_.limits().objects)
+        fail(loc, limitExceeded(diags_.limits(), &Limits::objects, "the scene's objects and patterns number",
+                                double(built_)));
+    if (built_ / kMemoryCheckWeight != before / kMemoryCheckWeight)
+        if (std::string problem = checkMemory(diags_.limits()); !problem.empty()) fail(loc, problem);
 }
 
 const Value* Parser::lookup(const std::string& name) const {
@@ -293,7 +330,9 @@ const Value* Parser::lookup(const std::string& name) const {
 std::optional<Scene> loadSceneText(const std::string& text, const std::string& name, Diagnostics& diags,
                                    const std::string& baseDir, const FrameClock& frame) {
     const int errorsBefore = diags.errorCount();
-    const int fileId = diags.files().add(name, text);
+    std::string withoutMark = text;
+    stripByteOrderMark(withoutMark);
+    const int fileId = diags.files().add(name, std::move(withoutMark));
     Scene scene;
     Parser parser(diags, scene, frame);
     parser.parseFile(fileId, (fs::path(baseDir) / fs::path(name).filename()).string(), baseDir);
@@ -302,15 +341,15 @@ std::optional<Scene> loadSceneText(const std::string& text, const std::string& n
 }
 
 std::optional<Scene> loadSceneFile(const std::string& path, Diagnostics& diags, const FrameClock& frame) {
-    std::optional<std::string> text = readWholeFile(path);
-    if (!text || fs::is_directory(path)) {
-        diags.error({}, "cannot read scene file '" + path + "'");
+    std::string text;
+    if (std::string problem = readSourceFile(path, -1, text); !problem.empty()) {
+        diags.error({}, "cannot read scene file: " + problem);
         return std::nullopt;
     }
     std::string dir = fs::path(path).parent_path().string();
     if (dir.empty()) dir = ".";
     const int errorsBefore = diags.errorCount();
-    const int fileId = diags.files().add(path, *text);
+    const int fileId = diags.files().add(path, std::move(text));
     Scene scene;
     Parser parser(diags, scene, frame);
     parser.parseFile(fileId, path, dir);

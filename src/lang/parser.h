@@ -10,6 +10,7 @@
 #include "lang/lexer.h"
 #include "scene/frame_clock.h"
 #include "scene/scene.h"
+#include "scene/weight.h"
 
 #include <array>
 #include <map>
@@ -59,6 +60,7 @@ private:
         std::unique_ptr<Lexer> lexer;
         std::string canonicalPath;
         std::string dir;
+        int fileId = -1;
     };
     void advance();
     void include(const Token& directive);
@@ -193,6 +195,14 @@ private:
     long tokensRead_ = 0;
     int depth_ = 0;
     std::map<std::string, Value> symbols_;
+    // Limits::objects: nodes built and copied so far, and each declared
+    // name's weight (what a use copies).
+    static constexpr int64_t kMemoryCheckWeight = 4096; // nodes between looks at the memory in use
+    static int64_t valueWeight(const Value& value, int64_t cap);
+    void countBuilt(const SourceLoc& loc, int64_t weight);
+    int64_t built_ = 0;
+    int abandonedFile_ = -1; // an included file that is no scene, read no further after its first error
+    std::map<std::string, int64_t> symbolWeights_;
 };
 
 

@@ -38,8 +38,10 @@ Media Parser::media() {
         else if (w == "scattering") scattering(m);
         else if (w == "intervals" || w == "samples") {
             const int n = intExpr(w == "intervals" ? "the number of intervals" : "the number of samples");
-            if (n < 1 || n > 4096) error(loc, "'" + w + "' must be between 1 and 4096");
-            (w == "intervals" ? m.intervals : m.samples) = std::clamp(n, 1, 4096);
+            const int64_t most = diags_.limits().mediaIntervals;
+            if (n < 1) error(loc, "'" + w + "' must be at least 1");
+            else if (n > most) error(loc, limitExceeded(diags_.limits(), &Limits::mediaIntervals, "'" + w + "'", n));
+            (w == "intervals" ? m.intervals : m.samples) = int(std::clamp<int64_t>(n, 1, most));
             if (w == "samples" && match(TokenKind::Comma)) intExpr("the maximum number of samples");
         } else if (w == "method") {
             const int method = intExpr("the media method");

@@ -70,9 +70,11 @@ ParsedObject Parser::object() {
             }
             if (!std::holds_alternative<ParsedObject>(*v))
                 fail(name.loc, "'" + name.text + "' is " + kindName(*v) + ", not an object");
+            countBuilt(name.loc, symbolWeights_[name.text]);
             po = std::get<ParsedObject>(*v);
         }
     } else {
+        countBuilt(keyword.loc, 1);
         po.object.loc = keyword.loc;
         shapeBody(keyword, po);
     }

@@ -225,6 +225,12 @@ void Parser::lightSource() {
             area.size2 = intExpr("the area_light size");
             if (area.size1 < 1) error(n1Loc, "area_light sizes must be at least 1");
             if (area.size2 < 1) error(n2Loc, "area_light sizes must be at least 1");
+            const double samples = double(area.size1) * double(area.size2);
+            if (samples > double(diags_.limits().areaLightSamples))
+                error(n1Loc, limitExceeded(diags_.limits(), &Limits::areaLightSamples,
+                                           "the area_light's sample count " + std::to_string(area.size1) + " x " +
+                                               std::to_string(area.size2) + " =",
+                                           samples));
         } else if (w == "jitter") area.jitter = booleanOr(true);
         else if (w == "adaptive") {
             area.adaptive = intExpr("'adaptive'");
@@ -240,7 +246,8 @@ void Parser::lightSource() {
             if (name.kind == TokenKind::Identifier && name.text == "stratified") area.sampling = AreaSampling::Stratified;
             else if (name.kind == TokenKind::Identifier && name.text == "solid_angle") area.sampling = AreaSampling::SolidAngle;
             else if (name.kind == TokenKind::Identifier && name.text == "pov_grid") area.sampling = AreaSampling::PovGrid;
-            else failExpected("'stratified', 'solid_angle' or 'pov_grid' after 'area_sampling'");
+            else if (name.kind == TokenKind::Identifier && name.text == "grid") area.sampling = AreaSampling::Grid;
+            else failExpected("'stratified', 'solid_angle', 'grid' or 'pov_grid' after 'area_sampling'");
             advance();
         }
         else failUnknown(word, known);
@@ -344,8 +351,11 @@ void Parser::globalSettings() {
         const SourceLoc loc = current_.loc;
         if (word.text == "max_trace_level") {
             scene_.global.maxTraceLevel = intExpr("'max_trace_level'");
-            if (scene_.global.maxTraceLevel < 1 || scene_.global.maxTraceLevel > 256)
-                error(loc, "'max_trace_level' must be between 1 and 256");
+            if (scene_.global.maxTraceLevel < 1)
+                error(loc, "'max_trace_level' must be at least 1");
+            else if (scene_.global.maxTraceLevel > diags_.limits().traceLevel)
+                error(loc, limitExceeded(diags_.limits(), &Limits::traceLevel, "'max_trace_level'",
+                                         scene_.global.maxTraceLevel));
         } else if (word.text == "ambient_light") {
             scene_.global.ambientLight = rgbExpr();
         } else if (word.text == "assumed_gamma") {

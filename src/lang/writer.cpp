@@ -279,6 +279,7 @@ void SceneWriter::light(const Light& l) {
         line(1, "area_illumination off"); // a no-op without an area
     if (l.area && l.area->sampling != AreaSampling::Stratified)
         line(1, l.area->sampling == AreaSampling::PovGrid ? "area_sampling pov_grid"
+                : l.area->sampling == AreaSampling::Grid  ? "area_sampling grid"
                                                           : "area_sampling solid_angle");
     if (l.inverseSquare)
         line(1, "inverse_square");

@@ -240,8 +240,11 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
                         std::set<std::string>& problems) {
     if (t.map.empty()) { // one plain layer
         std::string text = " pigment {" + pigmentBody(t.pigment, suffix, exact, problems) + " }";
-        if (t.normal)
+        if (t.normal) {
             text += " normal {" + normalBody(*t.normal, suffix, exact) + " }";
+            if (!noiseKeyword(t.normal->pattern)) problems.insert("a normal pattern other than the noise patterns");
+            if (t.normal->accuracy != Normal{}.accuracy) problems.insert("a normal's accuracy");
+        }
         if (!isDefaultFinish(t.finish))
             text += " finish {" + finishBody(t.finish) + " }";
         return text;

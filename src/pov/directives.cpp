@@ -13,7 +13,6 @@ namespace fs = std::filesystem;
 namespace drt::pov {
 
 namespace {
-constexpr long kMaxLoopIterations = 10000000; // per #while / #for
 } // namespace
 
 // ------------------------------------------------------------ skipping
@@ -151,12 +150,9 @@ Cell* PovParser::arrayElementForAssignment(const Tok& name, Cell cell) {
         PovArray& a = *cell->array;
         size_t index = 0;
         for (size_t d = 0; d < a.sizes.size(); ++d) {
-            const Tok open = expectSymbol("[", "for an array index");
-            const double i = floatExpr();
+            expectSymbol("[", "for an array index");
+            const int ii = countExpr("array index", 0, a.sizes[d] - 1);
             expectSymbol("]", "after an array index");
-            const int ii = static_cast<int>(i);
-            if (ii < 0 || ii >= a.sizes[d])
-                fail(open.loc, fmt::format("array index {} out of range 0..{}", ii, a.sizes[d] - 1));
             index = index * size_t(a.sizes[d]) + size_t(ii);
         }
         target = &a.items[index];
@@ -197,6 +193,11 @@ void PovParser::declareDirective(const Tok& t, bool local) {
     }
     pending_ = outer;
     value.warnings = pending.empty() ? nullptr : std::make_shared<const std::vector<PendingWarning>>(std::move(pending));
+    // A declared scene item may be a copy of copies (a doubling "billion
+    // laughs"): look at the memory the scene takes before keeping it.
+    if (value.kind != PovValue::Kind::Float && value.kind != PovValue::Kind::Vector &&
+        value.kind != PovValue::Kind::Color)
+        checkMemoryAt(name.loc);
     if (element) **element = value;
     else declare(name.text, value, local);
     if (peekOperator().is(";")) next();
@@ -221,9 +222,8 @@ void PovParser::ifDirective(const Tok& t, int kind) {
             size_t index = 0;
             for (size_t d = 0; d < c->array->sizes.size(); ++d) {
                 expectSymbol("[", "");
-                const int i = static_cast<int>(floatExpr());
+                const int i = countExpr("array index", 0, c->array->sizes[d] - 1);
                 expectSymbol("]", "");
-                if (i < 0 || i >= c->array->sizes[d]) fail(name.loc, "array index out of range");
                 index = index * size_t(c->array->sizes[d]) + size_t(i);
             }
             defined = c->array->items[index] != nullptr;
@@ -370,8 +370,7 @@ void PovParser::endDirective(const Tok& t) {
     }
     Cond& c = conds_.back();
     if (c.type == Cond::Type::While) {
-        if (++c.iterations > kMaxLoopIterations)
-            fail(c.loc, fmt::format("#while loop ran more than {} times; stopping", kMaxLoopIterations));
+        countIteration(c, "#while");
         const long iterations = c.iterations;
         const Cond saved = c;
         conds_.pop_back();
@@ -389,8 +388,7 @@ void PovParser::endDirective(const Tok& t) {
         return;
     }
     if (c.type == Cond::Type::For) {
-        if (++c.iterations > kMaxLoopIterations)
-            fail(c.loc, fmt::format("#for loop ran more than {} times; stopping", kMaxLoopIterations));
+        countIteration(c, "#for");
         const Cell v = lookup(c.forName);
         if (!v || v->kind != PovValue::Kind::Float) fail(c.loc, "#for loop identifier '" + c.forName + "' is no longer a float");
         const double value = v->number + c.forStep;
@@ -469,7 +467,11 @@ void PovParser::invokeMacro(const Tok& t) {
     if (count != m->params.size())
         fail(t.loc, fmt::format("macro '{}' takes {} parameter{}, given {}", m->name, m->params.size(),
                                 m->params.size() == 1 ? "" : "s", count));
-    if (frames_.size() >= kMaxFrames) fail(t.loc, "macro calls nested too deep (runaway recursion?)");
+    if (int64_t(frames_.size()) >= diags_.limits().callDepth)
+        fail(t.loc, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
+                                  double(frames_.size() + 1)) +
+                        " (runaway recursion?)");
+    if (++macroCalls_ % kMemoryCheckInterval == 0) checkMemoryAt(t.loc);
     Frame f;
     f.tokens = m->tokens;
     f.pos = m->bodyStart;
@@ -493,6 +495,18 @@ void PovParser::defaultBlock() {
         else if (item.isWord("normal")) normalBlock(item.loc);
         else failExpected(item, "'texture', 'pigment', 'finish', 'normal' or '}' in #default");
     }
+}
+
+void PovParser::countIteration(Cond& c, const char* directive) {
+    const Limits& limits = diags_.limits();
+    if (++c.iterations > limits.loopIterations)
+        fail(c.loc, limitExceeded(limits, &Limits::loopIterations, fmt::format("this {} loop's pass", directive),
+                                  double(c.iterations)));
+    if (c.iterations % kMemoryCheckInterval == 0) checkMemoryAt(c.loc);
+}
+
+void PovParser::checkMemoryAt(SourceLoc loc) {
+    if (std::string problem = checkMemory(diags_.limits()); !problem.empty()) fail(loc, problem);
 }
 
 } // namespace drt::pov

@@ -78,6 +78,16 @@ double PovParser::floatExpr() {
     return toFloat(expression(), loc);
 }
 
+int PovParser::countExpr(const char* what, double lowest, double highest) {
+    const SourceLoc loc = peek().loc;
+    return countValue(floatExpr(), loc, what, lowest, highest);
+}
+
+int PovParser::countValue(double value, SourceLoc loc, const char* what, double lowest, double highest) {
+    if (std::string problem = checkCount(what, value, lowest, highest); !problem.empty()) fail(loc, problem);
+    return static_cast<int>(std::trunc(value));
+}
+
 Vec3 PovParser::vectorExpr() {
     const SourceLoc loc = peek().loc;
     return toVector(expression(), loc);

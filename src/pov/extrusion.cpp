@@ -49,10 +49,11 @@ Extrusion PovParser::prismShape(SourceLoc keyword) {
         FlagFor flag(countBeforeVector_);
         return floatExpr();
     }();
-    if (!(count >= minimumPrismPoints(source.spline)) || count > 1e7)
+    if (!(count >= minimumPrismPoints(source.spline)))
         fail(countLoc, "this prism spline needs at least " + std::to_string(minimumPrismPoints(source.spline)) +
                            " points");
-    for (int i = 0; i < int(count); ++i) {
+    const int points = countValue(count, countLoc, "prism point count", 0, double(diags_.limits().meshTriangles));
+    for (int i = 0; i < points; ++i) {
         acceptSymbol(",");
         const Vec3 p = vectorExpr();
         source.points.push_back({p.x, p.y});

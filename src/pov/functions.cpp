@@ -139,6 +139,16 @@ bool PovParser::builtin(const Tok& name, PovValue& out) {
                                     : fmt::format("'{}' takes {} to {} arguments, given {}", w, lo, hi, args.size()));
     };
     auto f = [&](size_t i) { return toFloat(args[i], locs[i]); };
+    // An argument that becomes an int (a count, a width, a code, an index).
+    auto count = [&](size_t i, const char* what, double lowest, double highest) {
+        return countValue(f(i), locs[i], what, lowest, highest);
+    };
+    const double maxLength = double(diags_.limits().stringLength);
+    auto checkLength = [&](const std::string& s) {
+        if (double(s.size()) > maxLength)
+            fail(name.loc, limitExceeded(diags_.limits(), &Limits::stringLength, "the string's length",
+                                         double(s.size())));
+    };
     auto vec = [&](size_t i) { return toVector(args[i], locs[i]); };
     auto str = [&](size_t i) -> const std::string& {
         if (args[i].kind != Kind::String) fail(locs[i], std::string("expected a string, found a ") + kindName(args[i].kind));
@@ -207,9 +217,15 @@ bool PovParser::builtin(const Tok& name, PovValue& out) {
     }
     if (w == "bitwise_and" || w == "bitwise_or" || w == "bitwise_xor") {
         if (args.size() < 2) need(2, 2);
-        long r = long(f(0));
+        const auto operand = [&](size_t i) {
+            const double v = f(i);
+            if (std::string problem = checkCount("bitwise operand", v, -9.2e18, 9.2e18); !problem.empty())
+                fail(locs[i], problem);
+            return long(v);
+        };
+        long r = operand(0);
         for (size_t i = 1; i < args.size(); ++i) {
-            const long b = long(f(i));
+            const long b = operand(i);
             r = w == "bitwise_and" ? (r & b) : w == "bitwise_or" ? (r | b) : (r ^ b);
         }
         setFloat(double(r));
@@ -217,7 +233,10 @@ bool PovParser::builtin(const Tok& name, PovValue& out) {
     }
     if (w == "seed") {
         need(1, 1);
-        randomStreams_.push_back(static_cast<uint32_t>(static_cast<int64_t>(f(0))));
+        // POV-Ray takes the seed modulo 2^32.
+        const double seed = f(0);
+        if (std::string problem = checkCount("seed", seed, -9.2e18, 9.2e18); !problem.empty()) fail(locs[0], problem);
+        randomStreams_.push_back(static_cast<uint32_t>(static_cast<int64_t>(seed)));
         setFloat(double(randomStreams_.size() - 1));
         return true;
     }
@@ -267,32 +286,37 @@ bool PovParser::builtin(const Tok& name, PovValue& out) {
     // ---- strings
     if (w == "concat") {
         std::string s;
-        for (size_t i = 0; i < args.size(); ++i) s += str(i);
+        for (size_t i = 0; i < args.size(); ++i) {
+            s += str(i);
+            checkLength(s);
+        }
         out = PovValue::makeString(s);
         return true;
     }
     if (w == "str") {
         need(3, 3);
-        out = PovValue::makeString(formatNumber(f(0), int(f(1)), int(f(2))));
+        out = PovValue::makeString(formatNumber(f(0), count(1, "str() width", -maxLength, maxLength),
+                                                count(2, "str() precision", -1e9, 100)));
         return true;
     }
     if (w == "vstr") {
         need(5, 5);
-        const int n = int(f(0));
+        const int n = count(0, "vstr() component count", -1e9, 1e9);
         const auto c = args[1].isNumeric() ? toColor(args[1], locs[1]) : std::array<double, 5>{};
         if (!args[1].isNumeric()) fail(locs[1], "vstr() needs a vector");
         std::string s;
         for (int i = 0; i < std::clamp(n, 1, 5); ++i) {
             if (i) s += str(2);
-            s += formatNumber(c[size_t(i)], int(f(3)), int(f(4)));
+            s += formatNumber(c[size_t(i)], count(3, "vstr() width", -maxLength, maxLength),
+                              count(4, "vstr() precision", -1e9, 100));
+            checkLength(s);
         }
         out = PovValue::makeString(s);
         return true;
     }
     if (w == "chr") {
         need(1, 1);
-        const int c = int(f(0));
-        if (c < 0 || c > 255) fail(locs[0], "chr() takes a code in 0..255");
+        const int c = count(0, "chr() code", 0, 255);
         out = PovValue::makeString(std::string(1, char(c)));
         return true;
     }
@@ -315,10 +339,11 @@ bool PovParser::builtin(const Tok& name, PovValue& out) {
     if (w == "substr") {
         need(3, 3);
         const std::string& s = str(0);
-        const int start = int(f(1)), count = int(f(2)); // start is 1-based
-        if (start < 1 || count < 0 || size_t(start - 1 + count) > s.size())
-            fail(name.loc, fmt::format("substr({}, {}) is outside the {}-character string", start, count, s.size()));
-        out = PovValue::makeString(s.substr(size_t(start - 1), size_t(count)));
+        const int start = count(1, "substr() start", 1, double(s.size()) + 1); // 1-based
+        const int length = count(2, "substr() length", 0, double(s.size()));
+        if (size_t(start - 1 + length) > s.size())
+            fail(name.loc, fmt::format("substr({}, {}) is outside the {}-character string", start, length, s.size()));
+        out = PovValue::makeString(s.substr(size_t(start - 1), size_t(length)));
         return true;
     }
     if (w == "strupr" || w == "strlwr") {
@@ -350,8 +375,8 @@ bool PovParser::builtin(const Tok& name, PovValue& out) {
         if (w == "dimensions") {
             setFloat(double(sizes.size()));
         } else {
-            const int d = int(f(1));
-            setFloat(d >= 1 && size_t(d) <= sizes.size() ? double(sizes[size_t(d - 1)]) : 0);
+            const int d = count(1, "dimension", 1, double(sizes.size()));
+            setFloat(double(sizes[size_t(d - 1)]));
         }
         return true;
     }

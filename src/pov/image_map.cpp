@@ -26,14 +26,14 @@ std::optional<Pigment> PovParser::imageMapPigment(SourceLoc keyword) {
         if (t.is("}")) break;
         if (t.isWord("map_type")) {
             const SourceLoc at = peek().loc;
-            const int type = static_cast<int>(floatExpr());
+            const int type = countExpr("map_type", -1e9, 1e9);
             if (type == 0 || type == 1 || type == 2 || type == 5) map->projection = ImageMap::Projection(type);
             else warnOnce("map_type", at, "map_type " + std::to_string(type) + " is not supported; planar mapping is used");
         } else if (t.isWord("once")) {
             map->once = true;
         } else if (t.isWord("interpolate")) {
             const SourceLoc at = peek().loc;
-            const int type = static_cast<int>(floatExpr());
+            const int type = countExpr("interpolate", -1e9, 1e9);
             if (type == 2) map->interpolation = ImageMap::Interpolation::Bilinear;
             else if (type == 3) map->interpolation = ImageMap::Interpolation::Bicubic;
             else if (type == 4) map->interpolation = ImageMap::Interpolation::NormalizedDistance;

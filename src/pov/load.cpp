@@ -2,6 +2,8 @@
 
 #include "pov/parser.h"
 
+#include "core/source_file.h"
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -14,7 +16,9 @@ std::optional<Scene> loadPovSceneText(const std::string& text, const std::string
                                       const PovOptions& options, const std::string& baseDir) {
     PovOptions effective = options;
     if (effective.includePaths.empty()) effective.includePaths = {baseDir, kPovStandardIncludeDir};
-    const int id = diags.files().add(name, text);
+    std::string withoutMark = text;
+    stripByteOrderMark(withoutMark);
+    const int id = diags.files().add(name, std::move(withoutMark));
     pov::PovParser parser(diags, effective);
     // POV-Ray's default camera: right <1.33,0,0> whatever the image size.
     parser.scene_.camera.right = Vec3(1.33, 0, 0);
@@ -24,15 +28,13 @@ std::optional<Scene> loadPovSceneText(const std::string& text, const std::string
 }
 
 std::optional<Scene> loadPovSceneFile(const std::string& path, Diagnostics& diags, const PovOptions& options) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        diags.error(SourceLoc{}, "cannot read scene '" + path + "'");
+    std::string text;
+    if (std::string problem = readSourceFile(path, -1, text); !problem.empty()) {
+        diags.error(SourceLoc{}, "cannot read scene: " + problem);
         return std::nullopt;
     }
-    std::stringstream buffer;
-    buffer << in.rdbuf();
     std::string dir = fs::path(path).parent_path().string();
-    return loadPovSceneText(buffer.str(), path, diags, options, dir.empty() ? "." : dir);
+    return loadPovSceneText(text, path, diags, options, dir.empty() ? "." : dir);
 }
 
 } // namespace drt

@@ -30,7 +30,7 @@ void PovParser::scattering(Media& m) {
     expectSymbol("{", "after 'scattering'");
     const Tok typeTok = peek();
     const double type = floatExpr();
-    if (type < 1 || type > 5 || type != double(int(type)))
+    if (!(type >= 1 && type <= 5) || type != std::floor(type))
         fail(typeTok.loc, "scattering type must be 1, 2, 3, 4 or 5");
     m.scatteringType = int(type);
     acceptSymbol(",");
@@ -69,9 +69,10 @@ Media PovParser::media(const Media& base) {
         else if (w == "emission") m.emission = toColorFT(colorExpr()).rgb;
         else if (w == "scattering") scattering(m);
         else if (w == "density") m.densities.push_back(density());
-        else if (w == "intervals") m.intervals = std::clamp(int(floatExpr()), 1, 4096);
+        else if (w == "intervals")
+            m.intervals = countExpr("media intervals", 1, double(diags_.limits().mediaIntervals));
         else if (w == "samples") {
-            m.samples = std::clamp(int(floatExpr()), 1, 4096);
+            m.samples = countExpr("media samples", 1, double(diags_.limits().mediaIntervals));
             if (acceptSymbol(",")) floatExpr(); // the maximum of methods 1 and 2
         } else if (w == "method" || w == "confidence" || w == "variance" || w == "ratio" || w == "jitter" ||
                    w == "aa_threshold" || w == "aa_level") {

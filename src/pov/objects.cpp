@@ -212,7 +212,7 @@ PovObject PovParser::object(const Tok& keyword) {
     } else if (w == "polygon") {
         // polygon { n, p1, ..., pn }: a closed outline; drt triangulates it as a fan,
         // which is right for convex polygons.
-        const int n = static_cast<int>(floatExpr());
+        const int n = countExpr("polygon point count", 0, double(diags_.limits().meshTriangles));
         std::vector<Vec3> pts;
         for (int i = 0; i < n; ++i) {
             comma();
@@ -279,7 +279,7 @@ PovObject PovParser::object(const Tok& keyword) {
         Mesh m;
         auto vectorList = [&](std::vector<Vec3>& out) {
             expectSymbol("{", "");
-            const int n = static_cast<int>(floatExpr());
+            const int n = countExpr("mesh2 vector count", 0, double(diags_.limits().meshTriangles));
             for (int i = 0; i < n; ++i) {
                 comma();
                 out.push_back(vectorExpr());
@@ -289,14 +289,15 @@ PovObject PovParser::object(const Tok& keyword) {
         };
         auto indexList = [&](std::vector<std::array<int, 3>>& out, int maxIndex, const char* what) {
             expectSymbol("{", "");
-            const int n = static_cast<int>(floatExpr());
+            const int n = countExpr("mesh2 index count", 0, double(diags_.limits().meshTriangles));
             for (int i = 0; i < n; ++i) {
                 comma();
                 const SourceLoc at = peek().loc;
                 const Vec3 v = vectorExpr();
-                std::array<int, 3> tri{int(v.x), int(v.y), int(v.z)};
-                for (int k : tri)
-                    if (k < 0 || k >= maxIndex) fail(at, fmt::format("{} index {} out of range 0..{}", what, k, maxIndex - 1));
+                const std::string indexName = std::string(what) + " index";
+                std::array<int, 3> tri{};
+                for (int k = 0; k < 3; ++k)
+                    tri[size_t(k)] = countValue(v[k], at, indexName.c_str(), 0, double(maxIndex) - 1);
                 out.push_back(tri);
                 // Optional texture indices after a face.
                 while (peekOperator().is(",")) {

@@ -8,14 +8,16 @@
 #include "pov/lexer.h"
 #include "pov/load.h"
 #include "pov/value.h"
+#include "scene/weight.h"
 
 #include <map>
 #include <set>
 
 namespace drt::pov {
 
-// Includes plus macro calls nested at once: stops runaway recursion.
-inline constexpr size_t kMaxFrames = 400;
+// Loop passes and macro calls between two looks at the memory in use
+// (Limits::memoryMB).
+inline constexpr long kMemoryCheckInterval = 1024;
 
 // Thrown after an error has been reported: POV-Ray stops at the first error.
 struct PovAbort {};
@@ -61,6 +63,11 @@ public:
     // ------------------------------------------------------------ expressions (expr.cpp)
     PovValue expression();
     double floatExpr();
+    // A float that becomes a count or an index: it must be finite and in
+    // [lowest, highest] (a located error names `what` otherwise); truncated
+    // toward zero as POV-Ray does.
+    int countExpr(const char* what, double lowest, double highest);
+    int countValue(double value, SourceLoc loc, const char* what, double lowest, double highest);
     Vec3 vectorExpr(); // a float promotes to <f,f,f>
     std::array<double, 5> colorExpr(); // colour keywords and expressions
     std::string stringExpr();
@@ -211,6 +218,11 @@ private:
     void messageDirective(const Tok& t);
     void fileDirective(const Tok& t);
     void versionDirective(const Tok& t);
+    // Limits (core/limits.h): a loop's passes, the memory a scene takes.
+    void countIteration(Cond& c, const char* directive);
+    void checkMemoryAt(SourceLoc loc);
+    long macroCalls_ = 0;
+    int64_t objectsBuilt_ = 0;
     // Skips raw tokens until a directive in `stops` at nesting depth 0; returns it.
     Tok skipTo(const std::set<std::string>& stops, const Tok& start);
     std::vector<SourceLoc> includeChain() const;

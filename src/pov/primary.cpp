@@ -136,11 +136,9 @@ Cell PovParser::indexArray(Cell cell, const Tok& t) {
         const PovArray& a = *cell->array;
         size_t index = 0;
         for (size_t d = 0; d < a.sizes.size(); ++d) {
-            const Tok open = expectSymbol("[", "for an array index");
-            const int i = static_cast<int>(floatExpr());
+            expectSymbol("[", "for an array index");
+            const int i = countExpr("array index", 0, a.sizes[d] - 1);
             expectSymbol("]", "after an array index");
-            if (i < 0 || i >= a.sizes[d])
-                fail(open.loc, fmt::format("array index {} out of range 0..{} for '{}'", i, a.sizes[d] - 1, t.text));
             index = index * size_t(a.sizes[d]) + size_t(i);
         }
         if (!a.items[index]) fail(t.loc, "array element of '" + t.text + "' used before it was given a value");
@@ -161,12 +159,13 @@ PovValue PovParser::arrayLiteral(SourceLoc loc) {
     while (peekOperator().is("[")) {
         next();
         const SourceLoc at = peek().loc;
-        const double n = floatExpr();
+        const Limits& limits = diags_.limits();
+        const int n = countExpr("array size", 1, double(limits.arrayElements));
         expectSymbol("]", "after the array size");
-        if (!(n >= 1) || n > 1e7) fail(at, fmt::format("array size {} out of range", n));
-        a->sizes.push_back(static_cast<int>(n));
+        a->sizes.push_back(n);
         total *= size_t(n);
-        if (total > 10000000) fail(at, "array too large");
+        if (total > size_t(limits.arrayElements))
+            fail(at, limitExceeded(limits, &Limits::arrayElements, "the array's element count", double(total)));
     }
     if (a->sizes.empty()) fail(loc, "array needs a size: array[n]");
     a->items.resize(total);

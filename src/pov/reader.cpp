@@ -4,6 +4,8 @@
 // call opens a new scope for #local.
 #include "pov/parser.h"
 
+#include "core/source_file.h"
+
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -13,14 +15,10 @@ namespace fs = std::filesystem;
 
 namespace drt::pov {
 
-namespace {
-constexpr int kMaxExpressionDepth = 400;
-} // namespace
-
 DepthGuard::DepthGuard(PovParser& p, SourceLoc loc) : depth(p.expressionDepth_) {
-    if (++depth > kMaxExpressionDepth) {
+    if (++depth > p.diags_.limits().nestingDepth) {
         --depth;
-        p.fail(loc, "nesting too deep (more than " + std::to_string(kMaxExpressionDepth) + " levels)");
+        p.fail(loc, limitExceeded(p.diags_.limits(), &Limits::nestingDepth, "nesting depth", double(depth + 1)));
     }
 }
 DepthGuard::~DepthGuard() { --depth; }
@@ -115,7 +113,9 @@ void PovParser::declare(const std::string& name, const PovValue& value, bool loc
 // ------------------------------------------------------------ files
 
 void PovParser::pushFile(int fileId, SourceLoc includedFrom, const std::string& dir) {
-    if (frames_.size() >= kMaxFrames) fail(includedFrom, "includes or macro calls nested too deep");
+    if (int64_t(frames_.size()) >= diags_.limits().callDepth)
+        fail(includedFrom, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
+                                         double(frames_.size() + 1)));
     const std::string& path = diags_.files().path(fileId);
     auto& tokens = lexedFiles_[path + "#" + std::to_string(fileId)];
     tokens = std::make_shared<const std::vector<Tok>>(lexPov(diags_.files().text(fileId), fileId));
@@ -171,11 +171,10 @@ void PovParser::includeDirective(const Tok& t) {
         }
     const std::string path = findInclude(name, fromDir);
     if (path.empty()) fail(at.loc, "cannot find include file \"" + name + "\" (searched the scene's folder and the -L paths)");
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    if (!in && !in.eof()) fail(at.loc, "cannot read include file \"" + path + "\"");
-    const int id = diags_.files().add(path, buffer.str());
+    std::string text;
+    if (std::string problem = readSourceFile(path, diags_.limits().includeBytes, text); !problem.empty())
+        fail(at.loc, "cannot include \"" + name + "\": " + problem);
+    const int id = diags_.files().add(path, std::move(text), hasSceneExtension(path));
     std::string dir = fs::path(path).parent_path().string();
     pushFile(id, t.loc, dir.empty() ? "." : dir);
 }

@@ -33,10 +33,10 @@ Revolution PovParser::revolutionShape(const Tok& keyword) {
         }
     }();
     const int minimum = minimumRevolutionPoints(rev.kind, rev.spline);
-    if (!(count >= minimum) || count > 1e7)
+    if (!(count >= minimum))
         fail(countLoc, std::string(rev.kind == Revolution::Kind::Sor ? "a sor" : "this lathe spline") +
                            " needs at least " + std::to_string(minimum) + " points");
-    const int n = int(count);
+    const int n = countValue(count, countLoc, "point count", 0, double(diags_.limits().meshTriangles));
     if (rev.spline == S::Bezier && n % 4 != 0)
         fail(countLoc, "a bezier_spline lathe needs 4 points per segment (a multiple of 4)");
     for (int i = 0; i < n; ++i) {

@@ -132,8 +132,10 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
             c.mapping = *m;
             if (w == "cylinder") {
                 const SourceLoc at = peek().loc;
-                const int n = static_cast<int>(floatExpr()); // POV-Ray truncates
-                if (n < 1 || n > 4) fail(at, "invalid cylinder camera type: valid are types 1 to 4");
+                const double type = floatExpr(); // POV-Ray truncates
+                if (!(std::trunc(type) >= 1 && std::trunc(type) <= 4))
+                    fail(at, "invalid cylinder camera type: valid are types 1 to 4");
+                const int n = int(type);
                 c.mapping = static_cast<CameraMapping>(static_cast<int>(CameraMapping::Cylinder1) + n - 1);
             }
         } else if (w == "omnimax" || w == "mesh_camera") {
@@ -175,8 +177,8 @@ CameraSpec PovParser::camera(const CameraSpec& base, SourceLoc loc) {
             apertureLoc = t.loc;
             aperture = floatExpr();
         } else if (w == "blur_samples") {
-            blurSamples = static_cast<int>(floatExpr());
-            if (acceptSymbol(",")) blurSamples = std::max(blurSamples, static_cast<int>(floatExpr()));
+            blurSamples = countExpr("blur_samples", -1e9, 1e9);
+            if (acceptSymbol(",")) blurSamples = std::max(blurSamples, countExpr("blur_samples", -1e9, 1e9));
         } else if (w == "focal_point") c.focalPoint = vectorExpr();
         else if (w == "confidence" || w == "variance") {
             floatExpr();
@@ -301,17 +303,23 @@ Light PovParser::lightSource(SourceLoc loc, std::optional<PovObject>* looksLike)
             a.axis2 = vectorExpr();
             acceptSymbol(",");
             const SourceLoc at = peek().loc;
-            a.size1 = static_cast<int>(floatExpr());
+            const Limits& limits = diags_.limits();
+            a.size1 = countExpr("area_light size", 1, double(limits.areaLightSamples));
             acceptSymbol(",");
-            a.size2 = static_cast<int>(floatExpr());
-            if (a.size1 < 1 || a.size2 < 1) fail(at, "area_light sizes must be at least 1");
-            if (a.size1 * double(a.size2) > 1e6) fail(at, "area_light grid is too large");
+            a.size2 = countExpr("area_light size", 1, double(limits.areaLightSamples));
+            const double samples = double(a.size1) * double(a.size2);
+            if (samples > double(limits.areaLightSamples))
+                fail(at, limitExceeded(limits, &Limits::areaLightSamples,
+                                       fmt::format("the area_light's sample count {} x {} =", a.size1, a.size2),
+                                       samples));
             // POV-Ray's semantics: edge-to-edge grid, shadow-only averaging unless area_illumination.
-            a.sampling = AreaSampling::PovGrid;
+            // The grid's points are shared out over the pixel's samples (Cook's association,
+            // render/lighting.h), which converges to POV-Ray's sum over the grid.
+            a.sampling = AreaSampling::Grid;
             l.area = a;
         } else if (w == "adaptive" || w == "jitter" || w == "circular" || w == "orient") {
             AreaLight& target = l.area ? *l.area : early;
-            if (w == "adaptive") target.adaptive = static_cast<int>(floatExpr());
+            if (w == "adaptive") target.adaptive = countExpr("area_light adaptive", -1e9, 1e9);
             else if (w == "jitter") target.jitter = true;
             else if (w == "circular") target.circular = true;
             else target.orient = true;
@@ -351,7 +359,17 @@ void PovParser::globalSettings() {
             assumedGamma_ = floatExpr();
             if (!(*assumedGamma_ > 0)) fail(at, "'assumed_gamma' must be positive");
         } else if (w == "max_trace_level") {
-            scene_.global.maxTraceLevel = std::max(1, static_cast<int>(floatExpr()));
+            const SourceLoc at = peek().loc;
+            // Any finite level is accepted (POV-Ray caps it too); above drt's
+            // limit the limit is used, with a warning.
+            const double value = floatExpr();
+            if (!std::isfinite(value)) fail(at, "max_trace_level must be a finite number");
+            const double level = std::max(1.0, std::trunc(value));
+            const int64_t limit = diags_.limits().traceLevel;
+            if (level > double(limit))
+                warn(at, fmt::format("max_trace_level {:.0f} is above drt's {}; {} is used ({})", level, limit, limit,
+                                     limitHint(diags_.limits(), &Limits::traceLevel)));
+            scene_.global.maxTraceLevel = int(std::min(level, double(limit)));
         } else if (w == "ambient_light") {
             scene_.global.ambientLight = toColorFT(colorExpr()).rgb;
         } else if (w == "adc_bailout") {
@@ -380,6 +398,13 @@ void PovParser::addToScene(PovObject o) {
     if (o.lightOnly) return;
     o.lights.clear();
     scene_.objects.push_back(toObject(o));
+    const Limits& limits = diags_.limits();
+    const int64_t before = objectsBuilt_;
+    objectsBuilt_ += weightOf(scene_.objects.back(), limits.objects).total();
+    if (objectsBuilt_ > limits.objects)
+        fail(scene_.objects.back().loc, limitExceeded(limits, &Limits::objects,
+                                                      "the scene's objects and patterns number", double(objectsBuilt_)));
+    if (objectsBuilt_ / 4096 != before / 4096) checkMemoryAt(scene_.objects.back().loc);
 }
 
 void PovParser::statement(const Tok& t) {
@@ -500,10 +525,11 @@ void PovParser::fog(const Tok& keyword) {
             f.turbDepth = floatExpr();
         } else if (s.isWord("omega") || s.isWord("lambda") || s.isWord("octaves")) {
             if (!f.turbulence) f.turbulence = Turbulence{};
+            const SourceLoc at = peek().loc;
             const double v = floatExpr();
             if (s.isWord("omega")) f.turbulence->omega = v;
             else if (s.isWord("lambda")) f.turbulence->lambda = v;
-            else f.turbulence->octaves = std::clamp(static_cast<int>(v), 1, 10);
+            else f.turbulence->octaves = std::clamp(countValue(v, at, "octaves", -1e9, 1e9), 1, 10);
         } else if (s.isWord("color") || s.isWord("colour") || s.isWord("rgb") || s.isWord("rgbf") ||
                    s.isWord("rgbt") || s.isWord("rgbft") || s.isWord("srgb") || s.isWord("srgbf") ||
                    s.isWord("srgbt") || s.isWord("srgbft") || s.isWord("red") || s.isWord("green") ||

@@ -527,6 +527,7 @@ Interior PovParser::interior(const Interior& base) {
 }
 
 void PovParser::noiseNote(const std::string& kind, SourceLoc loc) {
+    if (kind == "leopard" || kind == "waves" || kind == "ripples") return; // POV-Ray's formulas, no noise
     if (!warned_.insert("note-" + kind).second) return;
     note(loc, "'" + kind + "' is approximated: drt's noise has POV-Ray's shapes but not its exact values");
 }
@@ -539,7 +540,7 @@ bool PovParser::patternModifier(const Tok& t, Turbulence& turbulence) {
     if (w != "turbulence" && w != "octaves" && w != "omega" && w != "lambda") return false;
     next();
     if (w == "turbulence") turbulence.amount = vectorExpr();
-    else if (w == "octaves") turbulence.octaves = std::clamp(int(floatExpr()), 1, 10);
+    else if (w == "octaves") turbulence.octaves = std::clamp(countExpr("octaves", -1e9, 1e9), 1, 10);
     else if (w == "omega") turbulence.omega = floatExpr();
     else turbulence.lambda = floatExpr();
     noiseNote("turbulence", t.loc);
@@ -562,18 +563,24 @@ std::optional<Normal> PovParser::normalBlock(SourceLoc keyword) {
             continue;
         }
         if (t.kind == TokKind::Word) {
-            if (const std::optional<PatternKind> kind = noiseKind(t.text)) {
+            std::optional<PatternKind> kind = noiseKind(t.text);
+            if (kind) noiseNote(t.text, t.loc);
+            else if (t.text == "gradient") kind = PatternKind::Gradient;
+            else if (t.text == "radial") kind = PatternKind::Radial;
+            else if (t.text == "onion") kind = PatternKind::Onion;
+            else if (t.text == "spherical") kind = PatternKind::Spherical;
+            if (kind) { // a pattern, then its own parameters, then the amount
                 next();
                 n.pattern = *kind;
                 known = true;
-                noiseNote(t.text, t.loc);
+                if (*kind == PatternKind::Gradient) n.gradientAxis = vectorExpr(), acceptSymbol(",");
                 if (peek().kind == TokKind::Number || peek().is("(") || peek().is("-")) n.amount = floatExpr();
                 continue;
             }
             if (patternModifier(t, n.turbulence) || waveModifier(t, n.wave)) continue;
-            if (t.text == "accuracy") { // the finite-difference step: drt chooses its own
+            if (t.text == "accuracy") { // the slope's sample spacing
                 next();
-                floatExpr();
+                n.accuracy = floatExpr();
                 continue;
             }
             if (t.text == "bump_size") {

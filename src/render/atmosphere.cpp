@@ -13,8 +13,8 @@ namespace {
 // Antiderivative of the ground-fog density over the height h above the offset.
 double groundFogIntegral(double h, double altitude) { return h <= 0 ? h : altitude * std::atan(h / altitude); }
 
-// Scalar turbulence: octaves of |noise| in [-1, 1], weight omega^i at frequency lambda^i.
-double scalarTurbulence(const Turbulence& t, const Vec3& p) {
+// The fog's turbulence: octaves of |noise| in [-1, 1], weight omega^i at frequency lambda^i.
+double fogTurbulence(const Turbulence& t, const Vec3& p) {
     double sum = 0, weight = 1, frequency = 1;
     for (int i = 0; i < std::clamp(t.octaves, 1, 10); ++i) {
         sum += weight * std::abs(2 * noise01(p * frequency) - 1);
@@ -33,7 +33,7 @@ double fogDepth(const Fog& fog, const Vec3& origin, const Vec3& direction, doubl
     if (!fog.turbulence) return depth;
     const Vec3 mid = (origin + direction * (length / 2)) * fog.turbulence->amount;
     const double k = std::exp(-length / (fog.distance > 0 ? fog.distance : 1e-9)); // by the path length (POV-Ray)
-    return depth * (1 - k * std::min(1.0, scalarTurbulence(*fog.turbulence, mid) * fog.turbDepth));
+    return depth * (1 - k * std::min(1.0, fogTurbulence(*fog.turbulence, mid) * fog.turbDepth));
 }
 
 namespace {

@@ -89,6 +89,9 @@ ResolvedCamera resolveCamera(const CameraSpec& spec, int width, int height) {
         cam.verticalAngle = vertical * kPi / 180;
     }
 
+    if (planar && length(cross(cam.up, cam.direction)) <= 1e-12 * length(cam.up) * length(cam.direction))
+        throw RenderError(spec.lookAt ? "camera: up is parallel to the look_at direction"
+                                      : "camera: up is parallel to the direction");
     cam.viewAxis = normalize(cam.direction);
     cam.lensU = normalize(cam.right);
     cam.lensV = normalize(cam.up);

@@ -17,7 +17,7 @@ namespace drt {
 static_assert(kTraceLevelLimit < kMaxLightDepth, "extra lights' sampler dimensions must lie past every bounce's");
 
 Integrator::Integrator(const Scene& scene, const Accelerator& accel)
-    : scene_(scene), accel_(accel),
+    : scene_(scene), accel_(accel), lighting_(scene, accel),
       maxTraceLevel_(std::clamp(scene.global.maxTraceLevel, 1, kTraceLevelLimit)),
       adcBailout_(std::isfinite(scene.global.adcBailout) ? std::max(0.0, scene.global.adcBailout) : 0.0),
       hasMedia_(sceneHasMedia(scene)) {
@@ -107,7 +107,9 @@ Vec3 Integrator::bumpNormal(const Normal& bumps, const Hit& hit, double time, co
 void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
                        std::vector<PendingRay>& stack) const {
     const Object& object = *hit.object;
-    SurfaceHit surface{pending, hit, Vec3(), true, Vec3(), 1.0};
+    thread_local PointLightSamples lights;
+    lights.clear();
+    SurfaceHit surface{pending, hit, Vec3(), true, Vec3(), 1.0, &lights};
     surface.incoming = normalize(pending.ray.direction);
     surface.entering = dot(surface.incoming, hit.geometricNormal) < 0;
     Vec3 normal = surface.entering ? hit.shadingNormal : -hit.shadingNormal;
@@ -185,7 +187,7 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         sp.depth = pending.depth;
 
         const Color local = ambientTerm(finish, sp.pigment, scene_.global.ambientLight) +
-                            directLighting(scene_, accel_, sp, sampler, counts);
+                            lighting_.shade(sp, *surface.lights, sampler, counts);
         result += weight * filter * local;
 
         const double cosIncident = std::clamp(-dot(incoming, normal), 0.0, 1.0);

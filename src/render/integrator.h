@@ -59,6 +59,7 @@ private:
         bool entering = true;
         Vec3 normal;       // facing the incoming ray
         double eta = 1;    // n_incident / n_transmitted
+        PointLightSamples* lights = nullptr; // the point's light samples, shared by its layers
     };
     void shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
                std::vector<PendingRay>& stack) const;
@@ -72,6 +73,7 @@ private:
 
     const Scene& scene_;
     const Accelerator& accel_;
+    DirectLighting lighting_;
     int maxTraceLevel_;
     double adcBailout_;
     bool hasMedia_; // render/media.h; misses see atmospheric media inside this box:

@@ -9,12 +9,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace drt {
 
 Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
-                          RayCounts& counts, const Scene* mediaScene) {
+                          RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {
     Ray ray;
     ray.origin = Accelerator::offsetOrigin(from, target - from.point);
     ray.direction = target - ray.origin; // the light sits at t = 1
@@ -32,6 +33,7 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
         return mediaTransmittance(media, ray.origin, ray.direction / speed, t * speed);
     };
     if (!accel.occluded(ray)) return mediaScene && !mediaScene->media.empty() ? throughMedia(nullptr, 1) : Color(1);
+    if (opaqueCasters && !mediaScene) return Color(0); // the blocker lets nothing through: no need to find it
 
     // Something is in the way: walk through it, filtering by each surface.
     Color transmittance(1);
@@ -41,6 +43,9 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
         if (!accel.intersect(ray, blocker)) return mediaScene ? transmittance * throughMedia(nullptr, 1) : transmittance;
         if (mediaScene) transmittance *= throughMedia(&blocker, blocker.t);
         if (!blocker.object->noShadow) {
+            // Leaving an object: the segment before this hit ran inside it (POV-Ray fades shadows too).
+            if (dot(ray.direction, blocker.geometricNormal) > 0)
+                transmittance *= interiorAttenuation(blocker.object->interior, blocker.t * length(ray.direction));
             transmittance *= textureFilter(blocker.object->texture, blocker.restPoint);
             if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
@@ -51,6 +56,43 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
     }
     return Color(0);
 }
+
+namespace {
+
+bool mayLetLightThrough(const ColorFT& c) { return c.filter != 0 || c.transmit != 0; }
+
+bool mayLetLightThrough(const Pigment& p) {
+    if (p.imageMap || mayLetLightThrough(p.color)) return true;
+    for (const Pigment& child : p.children)
+        if (mayLetLightThrough(child)) return true;
+    for (const ColorMapEntry& entry : p.colorMap)
+        if (mayLetLightThrough(entry.color)) return true;
+    for (const Pigment::MapEntry& entry : p.pigmentMap)
+        if (mayLetLightThrough(entry.pigment)) return true;
+    return false;
+}
+
+bool mayLetLightThrough(const Texture& t) {
+    if (mayLetLightThrough(t.pigment)) return true;
+    for (const Texture::MapEntry& entry : t.map)
+        if (mayLetLightThrough(entry.texture)) return true;
+    for (const Texture& layer : t.layersAbove)
+        if (mayLetLightThrough(layer)) return true;
+    return false;
+}
+
+bool anyFilteringCaster(const std::vector<Object>& objects) {
+    for (const Object& object : objects) {
+        if (object.noShadow) continue;
+        if (mayLetLightThrough(object.texture)) return true;
+        if (const auto* csg = std::get_if<Csg>(&object.shape); csg && anyFilteringCaster(csg->children)) return true;
+    }
+    return false;
+}
+
+} // namespace
+
+bool shadowsAreOpaque(const Scene& scene) { return !anyFilteringCaster(scene.objects); }
 
 int lightDimension(int depth, int lightIndex) {
     if (lightIndex <= 0) return bounceDimension(depth, kOffsetLight);
@@ -96,49 +138,39 @@ Vec3 areaOffset(const AreaLight& area, const AreaFrame& frame, double u, double 
 }
 
 Color lightIntensityAt(const Light& light, const Vec3& lightPosition, const Vec3& point) {
+    // The distance only for a fading light (fadeAttenuation is 1 otherwise).
+    const bool fades = light.fadeDistance > 0 && light.fadePower > 0;
     return light.color * (spotlightAttenuation(light, lightPosition, point) *
-                          fadeAttenuation(light, length(lightPosition - point)));
-}
-
-// Diffuse and highlights from a point light at `lightPosition` whose colour is
-// scaled by `scale` (and by 1/r^2 when `inverseSquare`), shadowed unless shadowless.
-Color shadePointLight(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
-                      const Vec3& lightPosition, double scale, bool inverseSquare, double crandU, RayCounts& counts,
-                      const Scene* mediaScene) {
-    const Vec3 toLight = lightPosition - sp.hit.point;
-    const double distance = length(toLight);
-    if (!(distance > 0)) return Color(0);
-    const Vec3 l = toLight / distance;
-    if (!(dot(sp.normal, l) > 0)) return Color(0);
-    if (inverseSquare) scale /= distance * distance;
-    Color intensity = lightIntensityAt(light, lightPosition, sp.hit.point) * scale;
-    if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return Color(0);
-    if (!light.shadowless) {
-        intensity *= shadowTransmittance(accel, sp.hit, lightPosition, sp.time, counts, mediaScene);
-        if (isBlack(intensity)) return Color(0);
-    }
-    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity, crandU);
+                          (fades ? fadeAttenuation(light, length(lightPosition - point)) : 1.0));
 }
 
 // One sample point of an area light and the weight of its point light
-// (lighting.h: 1/N, or the solid-angle and inverse-square factors).
+// (lighting.h: 1/K, or the solid-angle and inverse-square factors).
 struct AreaSample {
     Vec3 position;
     double weight = 0;
 };
 
-// The N sample points of an area light seen from `point`.
+// The K sample points of an area light seen from `point` at one camera sample.
 class AreaSampler {
 public:
-    AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex)
+    AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex, int samplesPerPixel)
         : light_(light), area_(*light.area), point_(point),
           frame_(areaFrame(area_, light.position, point)), n1_(std::max(1, area_.size1)),
-          n2_(std::max(1, area_.size2)), count_(n1_ * n2_), dimension_(lightDimension(depth, lightIndex)) {
+          n2_(std::max(1, area_.size2)), dimension_(lightDimension(depth, lightIndex)) {
+        const int64_t points = int64_t(n1_) * n2_;
+        sampling_ = area_.sampling;
+        // POV-Ray's own method takes every grid point at every hit; the others
+        // share the n1 n2 points out over the pixel's samples (lighting.h).
+        const int64_t spp = std::max(1, samplesPerPixel);
+        // The front ends keep n1 n2 within Limits::areaLightSamples; a scene
+        // built in code is clamped rather than overflow.
+        count_ = static_cast<int>(std::min<int64_t>(sampling_ == AreaSampling::PovGrid ? points : (points + spp - 1) / spp,
+                                                    std::numeric_limits<int>::max()));
         const Vec3 normal = cross(frame_.axis1, frame_.axis2);
         areaMeasure_ = length(normal);
         if (area_.circular) areaMeasure_ *= kPi / 4;
         if (areaMeasure_ > 0 && std::isfinite(areaMeasure_)) normal_ = normal / length(normal);
-        sampling_ = area_.sampling;
         if (sampling_ == AreaSampling::SolidAngle) {
             const double l1 = length(frame_.axis1), l2 = length(frame_.axis2);
             const bool perpendicular = std::fabs(dot(frame_.axis1, frame_.axis2)) <= 1e-9 * l1 * l2;
@@ -157,28 +189,31 @@ public:
     AreaSample sample(Sampler& sampler, int k) const {
         const bool inverseSquare = light_.inverseSquare;
         AreaSample s;
-        if (sampling_ == AreaSampling::PovGrid) {
-            const int i = k % n1_, j = k / n1_;
+        if (sampling_ == AreaSampling::PovGrid || sampling_ == AreaSampling::Grid) {
+            int point = k;
+            if (sampling_ == AreaSampling::Grid)
+                point = static_cast<int>(sampler.stratifiedChoice(dimension_, k, count_, uint32_t(n1_) * uint32_t(n2_)));
+            const int i = point % n1_, j = point / n1_;
             // Edge to edge: i / (n1 - 1); a single row sits on the centre line.
             double u = n1_ > 1 ? double(i) / (n1_ - 1) : 0.5;
             double v = n2_ > 1 ? double(j) / (n2_ - 1) : 0.5;
             if (area_.jitter) {
-                const Vec2 jitter = sampler.get2DStratified(dimension_, k, count_);
+                const Vec2 jitter = uniform(sampler, k);
                 if (n1_ > 1) u += (jitter.x - 0.5) / (n1_ - 1);
                 if (n2_ > 1) v += (jitter.y - 0.5) / (n2_ - 1);
             }
             s.position = light_.position + areaOffset(area_, frame_, u, v);
         } else if (sampling_ == AreaSampling::Stratified) {
-            const Vec2 u = sampler.get2DStratified(dimension_, k, count_);
+            const Vec2 u = uniform(sampler, k);
             s.position = light_.position + areaOffset(area_, frame_, u.x, u.y);
         } else {
-            s.position = rectangle_->sample(sampler.get2DStratified(dimension_, k, count_));
+            s.position = rectangle_->sample(uniform(sampler, k));
             const double omega = rectangle_->solidAngle();
             if (inverseSquare) {
-                // L Omega / N with L = C / A (the colour C is applied later).
+                // L Omega / K with L = C / A (the colour C is applied later).
                 s.weight = omega / (count_ * areaMeasure_);
             } else {
-                // Omega r^2 / (N A |cos theta_e|): area density over solid-angle density.
+                // Omega r^2 / (K A |cos theta_e|): area density over solid-angle density.
                 const Vec3 d = point_ - s.position;
                 const double r2 = dot(d, d);
                 const double cosEmitter = std::fabs(dot(normal_, d)) / std::sqrt(r2);
@@ -188,7 +223,7 @@ public:
         }
         s.weight = 1.0 / count_;
         if (inverseSquare) {
-            // C |cos theta_e| / (N r^2): the area-sampled estimate of int L cos dOmega.
+            // C |cos theta_e| / (K r^2): the area-sampled estimate of int L cos dOmega.
             const Vec3 d = point_ - s.position;
             const double r2 = dot(d, d);
             s.weight = r2 > 0 ? s.weight * emitterCosine(s.position) / r2 : 0.0;
@@ -197,8 +232,14 @@ public:
     }
 
 private:
+    // The k-th of the K uniform values of this camera sample: with K = 1 the
+    // pixel's own stratified sequence in the light's dimension.
+    Vec2 uniform(Sampler& sampler, int k) const {
+        return count_ == 1 ? sampler.get2D(dimension_) : sampler.get2DStratified(dimension_, k, count_);
+    }
+
     double emitterCosine(const Vec3& position) const {
-        if (!(areaMeasure_ > 0)) return 1; // a segment or a point: N point lights
+        if (!(areaMeasure_ > 0)) return 1; // a segment or a point: K point lights
         const Vec3 d = point_ - position;
         const double len = length(d);
         return len > 0 ? std::fabs(dot(normal_, d)) / len : 0.0;
@@ -208,73 +249,100 @@ private:
     const AreaLight& area_;
     Vec3 point_;
     AreaFrame frame_;
-    int n1_, n2_, count_, dimension_;
+    int n1_, n2_, count_ = 1, dimension_;
     double areaMeasure_ = 0;
     Vec3 normal_{0, 0, 0};
     AreaSampling sampling_;
     std::optional<SphericalRectangle> rectangle_;
 };
 
-// areaIllumination off: a point light at the centre times the mean visibility.
-Color shadeAreaLightShadowOnly(const Accelerator& accel, const ShadingPoint& sp, const Light& light,
-                               int lightIndex, Sampler& sampler, RayCounts& counts, const Scene* mediaScene) {
-    const Vec3 toCenter = light.position - sp.hit.point;
-    const double distance = length(toCenter);
-    if (!(distance > 0)) return Color(0);
-    const Vec3 l = toCenter / distance;
-    if (!(dot(sp.normal, l) > 0)) return Color(0);
-    Color intensity = lightIntensityAt(light, light.position, sp.hit.point);
-    if (light.inverseSquare) intensity = intensity / (distance * distance);
-    if (isBlack(intensity)) return Color(0);
-    Color visibility(1);
-    if (!light.shadowless) {
-        const AreaSampler points(light, sp.hit.point, sp.depth, lightIndex);
-        visibility = Color(0);
-        for (int k = 0; k < points.count(); ++k)
-            visibility += shadowTransmittance(accel, sp.hit, points.sample(sampler, k).position, sp.time, counts,
-                                              mediaScene);
-        visibility = visibility / points.count();
-        if (isBlack(visibility)) return Color(0);
-    }
-    return lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity * visibility,
-                     crandNoise(sp, lightIndex, sampler));
-}
-
-// areaIllumination on: each sample point shades as a weighted point light.
-Color shadeAreaLightFull(const Accelerator& accel, const ShadingPoint& sp, const Light& light, int lightIndex,
-                         Sampler& sampler, RayCounts& counts, const Scene* mediaScene) {
-    const AreaSampler points(light, sp.hit.point, sp.depth, lightIndex);
-    Color sum(0);
-    for (int k = 0; k < points.count(); ++k) {
-        const AreaSample s = points.sample(sampler, k);
-        if (s.weight > 0)
-            sum += shadePointLight(accel, sp, light, s.position, s.weight, false, crandNoise(sp, lightIndex, sampler),
-                                   counts, mediaScene);
-    }
-    return sum;
-}
-
 } // namespace
 
-Color directLighting(const Scene& scene, const Accelerator& accel, const ShadingPoint& point, Sampler& sampler,
-                     RayCounts& counts) {
+DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel)
+    : scene_(scene), accel_(accel), opaqueCasters_(shadowsAreOpaque(scene)), hasMedia_(sceneHasMedia(scene)) {}
+
+Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sampler& sampler,
+                            RayCounts& counts) const {
+    if (cache.lights_.size() != scene_.lights.size()) cache.lights_.assign(scene_.lights.size(), {});
     Color sum(0);
-    for (size_t i = 0; i < scene.lights.size(); ++i) {
+    for (size_t i = 0; i < scene_.lights.size(); ++i) {
         // A moving light as it is at this point's time (render/light_path.h).
         std::optional<Light> moved;
-        if (lightMoves(scene.lights[i])) moved = lightAt(scene.lights[i], point.time);
-        const Light& light = moved ? *moved : scene.lights[i];
+        if (lightMoves(scene_.lights[i])) moved = lightAt(scene_.lights[i], sp.time);
+        const Light& light = moved ? *moved : scene_.lights[i];
         if (isBlack(light.color)) continue;
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
+        PointLightSamples::Range& range = cache.lights_[i];
+        if (range.generation != cache.generation_) { // the first layer at this point: draw the light's samples
+            range.generation = cache.generation_;
+            range.begin = static_cast<int>(cache.samples_.size());
+            if (!light.area) {
+                cache.samples_.push_back({light.position, 1.0, false, Color(0)});
+            } else {
+                const AreaSampler points(light, sp.hit.point, sp.depth, index, sampler.samplesPerPixel());
+                for (int k = 0; k < points.count(); ++k) {
+                    const AreaSample a = points.sample(sampler, k);
+                    cache.samples_.push_back({a.position, a.weight, false, Color(0)});
+                }
+            }
+            range.count = static_cast<int>(cache.samples_.size()) - range.begin;
+        }
+        PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
         // Shadow rays through media: only for lights that interact with media (POV-Ray).
-        const Scene* media = light.mediaAttenuation && light.mediaInteraction ? &scene : nullptr;
-        if (!light.area)
-            sum += shadePointLight(accel, point, light, light.position, 1.0, light.inverseSquare,
-                                   crandNoise(point, index, sampler), counts, media);
-        else if (light.areaIllumination)
-            sum += shadeAreaLightFull(accel, point, light, index, sampler, counts, media);
-        else
-            sum += shadeAreaLightShadowOnly(accel, point, light, index, sampler, counts, media);
+        const Scene* media = hasMedia_ && light.mediaAttenuation && light.mediaInteraction ? &scene_ : nullptr;
+        const auto visibility = [&](PointLightSamples::Sample& s) -> const Color& {
+            if (!s.tested) {
+                s.visibility = light.shadowless ? Color(1)
+                                                : shadowTransmittance(accel_, sp.hit, s.position, sp.time, counts,
+                                                                      media, opaqueCasters_);
+                s.tested = true;
+            }
+            return s.visibility;
+        };
+        // Diffuse and highlights from a point light at `position` whose colour
+        // is scaled by `scale` (and by 1/r^2 when `inverseSquare`), times `visible`.
+        const auto pointLight = [&](const Vec3& position, double scale, bool inverseSquare,
+                                    PointLightSamples::Sample* shadow) {
+            const Vec3 toLight = position - sp.hit.point;
+            const double distance = length(toLight);
+            if (!(distance > 0)) return;
+            const Vec3 l = toLight / distance;
+            if (!(dot(sp.normal, l) > 0)) return;
+            if (inverseSquare) scale /= distance * distance;
+            Color intensity = lightIntensityAt(light, position, sp.hit.point) * scale;
+            if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
+            if (shadow) {
+                intensity *= visibility(*shadow);
+                if (isBlack(intensity)) return;
+            }
+            sum += lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity,
+                             crandNoise(sp, index, sampler));
+        };
+        if (!light.area) {
+            pointLight(light.position, 1.0, light.inverseSquare, samples);
+        } else if (light.areaIllumination) {
+            // Each sample point shades as a weighted point light.
+            for (int k = 0; k < range.count; ++k)
+                if (samples[k].weight > 0) pointLight(samples[k].position, samples[k].weight, false, samples + k);
+        } else {
+            // A point light at the centre times the mean visibility of the samples.
+            const Vec3 toCenter = light.position - sp.hit.point;
+            const double distance = length(toCenter);
+            if (!(distance > 0)) continue;
+            const Vec3 l = toCenter / distance;
+            if (!(dot(sp.normal, l) > 0)) continue;
+            Color intensity = lightIntensityAt(light, light.position, sp.hit.point);
+            if (light.inverseSquare) intensity = intensity / (distance * distance);
+            if (isBlack(intensity)) continue;
+            if (!light.shadowless) {
+                Color visible(0);
+                for (int k = 0; k < range.count; ++k) visible += visibility(samples[k]);
+                intensity *= visible / range.count;
+                if (isBlack(intensity)) continue;
+            }
+            sum += lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity,
+                             crandNoise(sp, index, sampler));
+        }
     }
     return sum;
 }

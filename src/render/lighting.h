@@ -2,45 +2,61 @@
 // and shadow rays filtered by transparent blockers.
 //
 // Area lights (`area_light <axis1>, <axis2>, n1, n2`): a rectangle centred on
-// the light's position with edges axis1, axis2 (area A = |axis1 x axis2|), and
-// N = n1 n2 sample points per shading point. Where the points go
-// (AreaLight::sampling):
-//   PovGrid     POV-Ray's edge-to-edge grid, centre + axis1 (i/(n1-1) - 1/2) +
-//               axis2 (j/(n2-1) - 1/2); `jitter` moves each point by up to half
-//               a grid step. Deterministic without jitter (and so biased).
-//   Stratified  Cook: the N points of Sampler::get2DStratified mapped onto the
-//               rectangle, one jittered point per cell (a (0,m,2)-net with the
-//               sobol sampler: one point in each n1 x n2 cell when both are
-//               powers of two). Always jittered, so unbiased.
-//   SolidAngle  Urena, Fajardo & King (2013): the same N stratified values
-//               mapped through SphericalRectangle, uniform in the solid angle
-//               Omega the rectangle subtends. Falls back to Stratified for
-//               `circular` lights, non-perpendicular axes and points in the
-//               light's plane.
+// the light's position with edges axis1, axis2 (area A = |axis1 x axis2|).
+// Cook's association: a shading point sends K shadow rays to the light per
+// camera sample, K = ceil(n1 n2 / spp) (one ray once spp >= n1 n2), their
+// positions taken from the light's own sampler dimension, so that the pixel's
+// spp samples stratify the light jointly with pixel, lens and time; n1 x n2
+// sets how finely the pixel's light samples stratify the light (at least
+// n1 n2 of them per pixel), not how many rays each hit sends. Where the points
+// go (AreaLight::sampling):
+//   Stratified  the pixel's spp K light samples are one scrambled (0,2)-sequence
+//               over the rectangle (Sampler::get2D for K = 1, else
+//               get2DStratified): stratified in every power-of-two grid of
+//               cells the count allows. Unbiased.
+//   SolidAngle  Urena, Fajardo & King (2013): the same values mapped through
+//               SphericalRectangle, uniform in the solid angle Omega the
+//               rectangle subtends. Falls back to Stratified for `circular`
+//               lights, non-perpendicular axes and points in the light's plane.
+//   Grid        POV-Ray's point set: the edge-to-edge grid centre +
+//               axis1 (i/(n1-1) - 1/2) + axis2 (j/(n2-1) - 1/2), each point moved
+//               by up to half a grid step with `jitter`. The pixel's light
+//               samples run through random permutations of the n1 n2 points
+//               (Sampler::stratifiedChoice), so every n1 n2 samples in a row
+//               visit each point once and the pixel converges to POV-Ray's sum
+//               over the grid. The POV-Ray front end's default.
+//   PovGrid     POV-Ray's own method: every one of the n1 n2 grid points at
+//               every shading point and camera sample (K = n1 n2), for
+//               comparisons with POV-Ray at equal settings.
 // What the points do (Light::areaIllumination):
 //   off  POV-Ray's shadow-only averaging: the light shades as a point light at
-//        its centre, times the visibility averaged over the N points.
+//        its centre, times the visibility averaged over the K points.
 //   on   full area illumination: each point shades as a point light, weighted
 //        so that the sum estimates the light's integral over its area:
 //          without inverse_square (POV-Ray's lights, no falloff): the mean over
-//            the area of a point light of colour C, i.e. weight 1/N per area
-//            sample and Omega r^2 / (N A |cos theta_e|) per solid-angle sample;
+//            the area of a point light of colour C, i.e. weight 1/K per area
+//            sample and Omega r^2 / (K A |cos theta_e|) per solid-angle sample;
 //          with inverse_square: a two-sided Lambertian emitter of radiance
 //            L = C / A, irradiance E = int L cos theta_r dOmega, so weight
-//            A L |cos theta_e| / (N r^2) = C |cos theta_e| / (N r^2) per area
-//            sample (Cook's "each sample a point light carrying 1/N of the
-//            power", with the emitter cosine) and L Omega / N per solid-angle
+//            A L |cos theta_e| / (K r^2) = C |cos theta_e| / (K r^2) per area
+//            sample (Cook's "each sample a point light carrying 1/K of the
+//            power", with the emitter cosine) and L Omega / K per solid-angle
 //            sample (r^2 and cos theta_e cancel exactly).
 //        theta_e is the angle at the emitter between its normal axis1 x axis2
 //        and the direction to the shaded point; a degenerate (zero-area) light
-//        uses |cos theta_e| = 1, i.e. N point lights of colour C/N.
+//        uses |cos theta_e| = 1, i.e. K point lights of colour C/K.
 //   `circular` maps the unit square onto the inscribed ellipse (concentric map,
 //   area pi A / 4); `orient` turns the axes to face the shaded point, keeping
-//   their lengths; `adaptive` is ignored (the full set of N points is used).
+//   their lengths; `adaptive` is ignored.
 // Sampler dimensions: light i of the scene at trace depth d uses
 // lightDimension(d, i): the bounce's kOffsetLight pair for light 0, and
 // dimensions past every bounce's for the others, so two area lights never
 // share sample points.
+//
+// Shadow rays: in a scene where no shadow-casting surface can let light
+// through (no filter or transmit in any of their pigments), a shadow ray is
+// one occlusion query; otherwise a blocked ray walks through its blockers,
+// filtering by each.
 #pragma once
 
 #include "accel/accel.h"
@@ -49,6 +65,7 @@
 #include "scene/scene.h"
 
 #include <cstdint>
+#include <vector>
 
 namespace drt {
 
@@ -66,8 +83,14 @@ inline constexpr int kMaxShadowBlockers = 64;
 // shadow in between, else the product of P*filter + transmit over every
 // shadow-casting surface crossed (0 at the first opaque one). With `mediaScene`,
 // also the transmittance of the media along the way (render/media.h).
+// `opaqueCasters` promises that no shadow-casting surface lets light through
+// (shadowsAreOpaque): a blocked ray is then black without finding its blocker.
 Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
-                          RayCounts& counts, const Scene* mediaScene = nullptr);
+                          RayCounts& counts, const Scene* mediaScene = nullptr, bool opaqueCasters = false);
+
+// True if no shadow-casting object of the scene has a pigment that can let
+// light through (filter or transmit anywhere, image maps counted as able to).
+bool shadowsAreOpaque(const Scene& scene);
 
 struct ShadingPoint {
     Hit hit;
@@ -91,8 +114,49 @@ int lightDimension(int depth, int lightIndex);
 // `depth`: past every lightDimension (which span 2^30 from kFirstExtraLightDimension).
 int crandDimension(int depth, int lightIndex);
 
-// Sum over the scene's lights of the diffuse and highlight terms at `point`.
-Color directLighting(const Scene& scene, const Accelerator& accel, const ShadingPoint& point, Sampler& sampler,
-                     RayCounts& counts);
+// The light samples of one surface point and their shadows, shared by every
+// layer and pattern entry of its texture: all of them shade the same point at
+// the same camera sample, so they draw the same light samples (the same
+// sampler dimensions) and would trace the same shadow rays.
+class PointLightSamples {
+public:
+    // Forget the samples: the next shading point is another one.
+    void clear() { ++generation_, samples_.clear(); }
+
+private:
+    friend class DirectLighting;
+    struct Sample {
+        Vec3 position;
+        double weight = 0;
+        bool tested = false; // visibility is known
+        Color visibility;
+    };
+    struct Range {
+        uint64_t generation = 0; // the samples are drawn for this point if it equals generation_
+        int begin = 0;           // the light's first sample in samples_
+        int count = 0;
+    };
+    uint64_t generation_ = 1;
+    std::vector<Range> lights_; // by light
+    std::vector<Sample> samples_;
+};
+
+// The scene's lights as one render sees them: what is known before tracing
+// (whether shadows can be filtered) and the direct lighting at a shading point.
+class DirectLighting {
+public:
+    DirectLighting(const Scene& scene, const Accelerator& accel);
+
+    // Sum over the scene's lights of the diffuse and highlight terms at
+    // `point`. `samples` holds the point's light samples: cleared for each new
+    // surface point, kept while its layers are shaded.
+    Color shade(const ShadingPoint& point, PointLightSamples& samples, Sampler& sampler, RayCounts& counts) const;
+
+private:
+    const Scene& scene_;
+    const Accelerator& accel_;
+    bool opaqueCasters_;
+    bool hasMedia_; // media anywhere: shadow rays of lights that interact with them look for them
+};
 
 } // namespace drt

@@ -3,8 +3,10 @@
 #include "render/pattern_wave.h"
 
 #include "core/hash.h"
+#include "core/limits.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace drt {
@@ -41,7 +43,7 @@ double gradientDot(long long i, long long j, long long k, uint64_t seed, double 
 double signedNoise(const Vec3& p, uint64_t seed) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return 0;
     const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
-    const long long i = static_cast<long long>(fx), j = static_cast<long long>(fy), k = static_cast<long long>(fz);
+    const long long i = saturatingInteger(fx), j = saturatingInteger(fy), k = saturatingInteger(fz);
     const double x = p.x - fx, y = p.y - fy, z = p.z - fz;
     const double u = fade(x), v = fade(y), w = fade(z);
     auto g = [&](int a, int b, int c) { return gradientDot(i + a, j + b, k + c, seed, x - a, y - b, z - c); };
@@ -52,12 +54,6 @@ double signedNoise(const Vec3& p, uint64_t seed) {
 
 double clamp01(double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.0; }
 
-// POV-Ray's triangle_wave: 0 -> 1 -> 0 over each period of 1.
-double triangleWave(double v) {
-    const double f = v - std::floor(v);
-    return clamp01(f < 0.5 ? 2 * f : 2 - 2 * f);
-}
-
 // Cellular (Worley) F2 - F1 distance with one jittered feature point per unit cell.
 double crackleValue(const Vec3& p) {
     const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
@@ -66,9 +62,9 @@ double crackleValue(const Vec3& p) {
         for (int b = -1; b <= 1; ++b)
             for (int c = -1; c <= 1; ++c) {
                 const Vec3 cell(fx + a, fy + b, fz + c);
-                const uint64_t h = hashValues({static_cast<uint64_t>(static_cast<long long>(cell.x)),
-                                               static_cast<uint64_t>(static_cast<long long>(cell.y)),
-                                               static_cast<uint64_t>(static_cast<long long>(cell.z)), 77});
+                const uint64_t h = hashValues({static_cast<uint64_t>(saturatingInteger(cell.x)),
+                                               static_cast<uint64_t>(saturatingInteger(cell.y)),
+                                               static_cast<uint64_t>(saturatingInteger(cell.z)), 77});
                 const Vec3 feature = cell + Vec3(unitFromHash(mix64(h)), unitFromHash(mix64(h + 1)),
                                                  unitFromHash(mix64(h + 2)));
                 const double d = length(feature - p);
@@ -78,33 +74,51 @@ double crackleValue(const Vec3& p) {
     return clamp01(f2 - f1);
 }
 
-// Ten fixed wave sources inside the unit cube, the same for every scene.
-Vec3 waveCentre(int i) {
-    const uint64_t h = hashValues({uint64_t(i), 991});
-    return Vec3(unitFromHash(mix64(h)), unitFromHash(mix64(h + 1)), unitFromHash(mix64(h + 2))) * 2.0 - Vec3(1.0);
-}
-
-double wavesValue(const Vec3& p, bool damped) {
+// POV-Ray's waves and ripples, with the pattern's frequency F and phase
+// phi (used here and again by the general frequency step): with d_i the
+// distance to source i (1 when 0),
+//   ripples 0.5 (1 + sum sin(2 pi (d_i F + phi)) / 10),
+//   waves   0.2 (2.5 + sum sin(2 pi (d_i F f_i + phi)) / f_i / 10).
+double wavesValue(const Vec3& p, bool waves, double frequency, double phase) {
     double sum = 0;
-    for (int i = 0; i < 10; ++i) {
-        const double d = length(p - waveCentre(i));
-        const double weight = damped ? 1.0 / (1.0 + d) : 1.0;
-        sum += weight * (0.5 + 0.5 * std::cos(2 * kPi * d));
+    for (const WaveSource& s : povWaveSources()) {
+        double d = length(p - s.centre);
+        if (d == 0) d = 1;
+        const double f = waves ? s.frequency : 1.0;
+        sum += std::sin(2 * kPi * (d * frequency * f + phase)) / f;
     }
-    return clamp01(damped ? sum / 10.0 * 1.6 : sum / 10.0);
-}
-
-// Sum of |signed noise| octaves at doubling frequency, amplitude halving.
-double absOctaves(const Vec3& p, int octaves) {
-    double sum = 0, frequency = 1;
-    for (int i = 0; i < octaves; ++i) {
-        sum += std::fabs(signedNoise(p * frequency, 0)) / frequency;
-        frequency *= 2;
-    }
-    return sum;
+    return waves ? 0.2 * (2.5 + sum / kWaveCount) : 0.5 * (1 + sum / kWaveCount);
 }
 
 } // namespace
+
+// POV-Ray's ten wave sources for waves and ripples: unit vectors in the
+// directions of its vector noise at (i, 0, 0), i = 0..9 (measured with
+// POV-Ray 3.7's vturbulence(2, 0.5, 1, <i, 0, 0>), which is that noise).
+namespace {
+constexpr double kWaveNoise[kWaveCount][3] = {
+    {-0.4434195, 0.3610055, -0.459716},  {-0.301068, -0.1340735, -0.4338675}, {-0.33151, 0.464828, 0.479721},
+    {0.31178, 0.419997, 0.347257},       {-0.0367056, -0.4595635, -0.3355535}, {0.1271155, -0.4722135, -0.16569},
+    {-0.4418325, -0.392607, -0.301068},  {-0.1168915, -0.086694, -0.171046},  {0.0881745, -0.450393, -0.4448845},
+    {0.3295565, 0.421233, -0.233028}};
+} // namespace
+
+// The frequencies come from POV-Ray's linear congruential generator
+// x' = 1812433253 x + 12345 (32 bits), started at -560851967: each source
+// takes ((x' >> 16) & 0x7FFF) / 32767 + 0.01.
+const std::array<WaveSource, kWaveCount>& povWaveSources() {
+    static const std::array<WaveSource, kWaveCount> sources = [] {
+        std::array<WaveSource, kWaveCount> s{};
+        uint32_t next = static_cast<uint32_t>(-560851967);
+        for (int i = 0; i < kWaveCount; ++i) {
+            s[i].centre = normalize(Vec3(kWaveNoise[i][0], kWaveNoise[i][1], kWaveNoise[i][2]));
+            next = next * 1812433253u + 12345u;
+            s[i].frequency = double((next >> 16) & 0x7FFF) * 0.000030518509476 + 0.01;
+        }
+        return s;
+    }();
+    return sources;
+}
 
 double noise01(const Vec3& p) { return clamp01(0.5 + 0.5 * signedNoise(p, 0)); }
 
@@ -144,70 +158,93 @@ bool isNoisePattern(PatternKind kind) {
     }
 }
 
-namespace {
-
-// Marble's and wood's value before their built-in triangle wave: x, and the
-// distance from the z axis.
-double bandCoordinate(PatternKind kind, const Vec3& p) {
-    return kind == PatternKind::Marble ? p.x : std::sqrt(p.x * p.x + p.y * p.y);
+Vec3 warpPatternPoint(PatternKind kind, const Turbulence& turbulence, const Vec3& p) {
+    // Marble and wood take the turbulence into their formulas instead.
+    if (kind == PatternKind::Marble || kind == PatternKind::Wood) return p;
+    return p + turbulenceOffset(turbulence, p);
 }
 
-} // namespace
+double scalarTurbulence(const Turbulence& t, const Vec3& p) {
+    // POV-Ray's range-corrected noise generator: each octave is 2 N - 0.5,
+    // the first one clipped to [0, 1].
+    double value = std::clamp(2 * noise01(p) - 0.5, 0.0, 1.0);
+    double l = t.lambda, o = t.omega;
+    const int octaves = std::clamp(t.octaves, 1, 10);
+    for (int i = 2; i <= octaves; ++i) {
+        value += o * (2 * noise01(p * l) - 0.5);
+        l *= t.lambda;
+        o *= t.omega;
+    }
+    return value;
+}
 
-double noisePatternValue(PatternKind kind, const Turbulence& turbulence, const Vec3& point) {
-    const Vec3 p = point + turbulenceOffset(turbulence, point);
+namespace {
+
+// POV-Ray's patterns before the frequency, phase and wave step, at the
+// already warped pattern-space point q (POV-Ray 3.7's formulas; N is noise01).
+double rawNoisePattern(PatternKind kind, const Turbulence& turbulence, const PatternWave& wave, const Vec3& q) {
     switch (kind) {
     case PatternKind::Bozo:
-    case PatternKind::Bumps: return noise01(p);
-    case PatternKind::Dents: { // POV-Ray: noise cubed, sharp dents among flat areas
-        const double n = noise01(p);
+    case PatternKind::Bumps: return noise01(q);
+    case PatternKind::Dents: { // noise cubed: sharp dents among flat areas
+        const double n = noise01(q);
         return n * n * n;
     }
-    case PatternKind::Granite: return clamp01(absOctaves(p * 4.0, 6));
-    case PatternKind::Wrinkles: return clamp01(absOctaves(p, 10));
-    case PatternKind::Marble:
-    case PatternKind::Wood: return triangleWave(bandCoordinate(kind, p));
-    case PatternKind::Agate: { // sine bands along z, warped by built-in turbulence (agate_turb 1)
-        const double bands = 0.5 + 0.5 * std::sin(2 * kPi * (p.z + absOctaves(p, 6)));
-        return clamp01(std::pow(bands, 0.77));
+    case PatternKind::Granite: { // sum over 6 octaves of min(|1 - 2 N(4 q 2^i)|, 0.5) / 2^i
+        double sum = 0, frequency = 1;
+        for (int i = 0; i < 6; ++i, frequency *= 2)
+            sum += std::min(std::fabs(1 - 2 * noise01(q * (4 * frequency))), 0.5) / frequency;
+        return sum;
     }
-    case PatternKind::Leopard: { // POV-Ray: ((sin x + sin y + sin z) / 3)^2
-        const double s = (std::sin(p.x) + std::sin(p.y) + std::sin(p.z)) / 3.0;
-        return clamp01(s * s);
+    case PatternKind::Wrinkles: { // (c(N(q)) + sum_{i=1..9} c(N(2^i q)) / 2^i) / 2, c(n) = clip(2n - 0.5)
+        auto octave = [](double n) { return std::clamp(2 * n - 0.5, 0.0, 1.0); };
+        double value = octave(noise01(q)), lambda = 2, omega = 0.5;
+        for (int i = 1; i < 10; ++i, lambda *= 2, omega *= 0.5) value += omega * octave(noise01(q * lambda));
+        return value / 2;
     }
-    case PatternKind::Crackle: return crackleValue(p);
-    case PatternKind::Ripples: return wavesValue(p, false);
-    case PatternKind::Waves: return wavesValue(p, true);
+    case PatternKind::Marble: // x + turbulence.x T(q), triangle wave by default
+        return turbulence.amount.x == 0 ? q.x : q.x + turbulence.amount.x * scalarTurbulence(turbulence, q);
+    case PatternKind::Wood: { // distance from the z axis, turbulence bending the rings
+        double x = q.x, y = q.y;
+        if (!(turbulence.amount == Vec3(0.0))) {
+            Turbulence unit = turbulence;
+            unit.amount = Vec3(1.0);
+            const Vec3 t = turbulenceOffset(unit, q);
+            x += std::sin(2 * kPi * (q.x + t.x) * turbulence.amount.x);
+            y += std::sin(2 * kPi * (q.y + t.y) * turbulence.amount.y);
+        }
+        return std::sqrt(x * x + y * y);
+    }
+    case PatternKind::Agate: { // (sin(2 pi (1.3 T(q) + 1.1 z)) + 1) / 2, to the power 0.77
+        const double bands = 0.5 * (std::sin(2 * kPi * (1.3 * scalarTurbulence(turbulence, q) + 1.1 * q.z)) + 1);
+        return std::pow(std::clamp(bands, 0.0, 1.0), 0.77);
+    }
+    case PatternKind::Leopard: { // ((sin x + sin y + sin z) / 3)^2
+        const double s = (std::sin(q.x) + std::sin(q.y) + std::sin(q.z)) / 3.0;
+        return s * s;
+    }
+    case PatternKind::Crackle: return crackleValue(q);
+    case PatternKind::Ripples: return wavesValue(q, false, wave.frequency, wave.phase);
+    case PatternKind::Waves: return wavesValue(q, true, wave.frequency, wave.phase);
     default: return 0;
     }
 }
 
-double wavedNoisePatternValue(PatternKind kind, const Turbulence& turbulence, const PatternWave& wave,
-                              const Vec3& point) {
-    if (wave.isIdentity()) return noisePatternValue(kind, turbulence, point);
-    if (kind == PatternKind::Marble || kind == PatternKind::Wood)
-        return applyPatternWave(wave, bandCoordinate(kind, point + turbulenceOffset(turbulence, point)),
-                                WaveKind::Triangle);
-    return applyPatternWave(wave, noisePatternValue(kind, turbulence, point));
+} // namespace
+
+double noisePatternAtWarped(PatternKind kind, const Turbulence& turbulence, const PatternWave& wave, const Vec3& q) {
+    const bool bands = kind == PatternKind::Marble || kind == PatternKind::Wood;
+    return applyPatternWave(wave, rawNoisePattern(kind, turbulence, wave, q),
+                            bands ? WaveKind::Triangle : WaveKind::Ramp);
 }
 
-Vec3 perturbNormal(const Normal& bump, const Vec3& worldPoint, const Vec3& normal) {
-    if (!(bump.amount != 0) || !std::isfinite(bump.amount)) return normal;
-    const Vec3 p = bump.toWorld.inversePoint(worldPoint);
-    constexpr double h = 1e-3; // pattern-space step; the patterns vary over about 1 unit
-    auto f = [&](const Vec3& q) { return wavedNoisePatternValue(bump.pattern, bump.turbulence, bump.wave, q); };
-    const Vec3 gradient((f(p + Vec3(h, 0, 0)) - f(p - Vec3(h, 0, 0))) / (2 * h),
-                        (f(p + Vec3(0, h, 0)) - f(p - Vec3(0, h, 0))) / (2 * h),
-                        (f(p + Vec3(0, 0, h)) - f(p - Vec3(0, 0, h))) / (2 * h));
-    const Vec3 world = bump.toWorld.normal(gradient); // gradients map by the inverse transpose
-    Vec3 tangential = bump.amount * (world - dot(world, normal) * normal);
-    if (!std::isfinite(tangential.x) || !std::isfinite(tangential.y) || !std::isfinite(tangential.z))
-        return normal;
-    // Bound the tilt to about 76 degrees so the bumped normal stays well on n's side.
-    constexpr double maxTilt = 4.0;
-    const double len = length(tangential);
-    if (len > maxTilt) tangential = tangential * (maxTilt / len);
-    return normalize(normal - tangential);
+double wavedNoisePatternValue(PatternKind kind, const Turbulence& turbulence, const PatternWave& wave,
+                              const Vec3& point) {
+    return noisePatternAtWarped(kind, turbulence, wave, warpPatternPoint(kind, turbulence, point));
+}
+
+double noisePatternValue(PatternKind kind, const Turbulence& turbulence, const Vec3& point) {
+    return wavedNoisePatternValue(kind, turbulence, PatternWave{}, point);
 }
 
 } // namespace drt

@@ -1,5 +1,7 @@
 #include "render/pigment.h"
 
+#include "core/limits.h"
+
 #include "render/image_pattern.h"
 #include "render/noise.h"
 #include "render/pattern_wave.h"
@@ -10,9 +12,10 @@ namespace drt {
 
 namespace {
 
-// POV-Ray nudges block patterns by a small tolerance so that surfaces lying
-// exactly on a cell boundary (a plane at y = 0) pick one side consistently.
-constexpr double kBlockTolerance = 1e-3;
+// POV-Ray nudges block patterns by its EPSILON (1e-10) so that surfaces lying
+// exactly on a cell boundary (a plane at y = 0) pick the cell above; a point
+// a millionth below the boundary is in the cell below.
+constexpr double kBlockTolerance = 1e-10;
 
 // POV-Ray's ramp_wave: the fractional part, in [0, 1).
 double rampWave(double v) {
@@ -39,9 +42,10 @@ ColorFT mix(const ColorFT& a, const ColorFT& b, double t) {
 } // namespace
 
 int checkerIndex(const Vec3& p) {
-    const long long sum = static_cast<long long>(std::floor(p.x + kBlockTolerance)) +
-                          static_cast<long long>(std::floor(p.y + kBlockTolerance)) +
-                          static_cast<long long>(std::floor(p.z + kBlockTolerance));
+    // Parity of the cell coordinates' sum, added modulo 2 so that no sum overflows.
+    const long long sum = (saturatingInteger(std::floor(p.x + kBlockTolerance)) & 1) +
+                          (saturatingInteger(std::floor(p.y + kBlockTolerance)) & 1) +
+                          (saturatingInteger(std::floor(p.z + kBlockTolerance)) & 1);
     return static_cast<int>(sum & 1);
 }
 
@@ -60,7 +64,7 @@ int hexagonIndex(const Vec3& p) {
         rq = -rr - rs;
     else if (dr > ds)
         rr = -rq - rs;
-    const long long k = (static_cast<long long>(rr) - static_cast<long long>(rq)) % 3;
+    const long long k = (saturatingInteger(rr) % 3 - saturatingInteger(rq) % 3) % 3;
     return static_cast<int>(k < 0 ? k + 3 : k);
 }
 
@@ -82,7 +86,8 @@ int brickIndex(const Vec3& p, const Vec3& brickSize, double mortar) {
 double gradientValue(const Vec3& p, const Vec3& axis) {
     const double len = length(axis);
     if (!(len > 0) || !std::isfinite(len)) return 0;
-    return rampWave(dot(p, axis / len));
+    const double v = dot(p, axis / len); // POV-Ray normalises the axis
+    return v > 1 ? std::fmod(v, 1.0) : v < 0 ? rampWave(v) : v; // 1 stays 1, as in POV-Ray
 }
 
 double radialValue(const Vec3& p) {
@@ -108,27 +113,38 @@ ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value) {
     return map.back().color;
 }
 
-PatternSample samplePattern(const Pigment& pigment, const Vec3& worldPoint) {
+Vec3 patternPoint(const Pigment& pattern, const Vec3& worldPoint) {
+    return warpPatternPoint(pattern.pattern, pattern.turbulence, pattern.toWorld.inversePoint(worldPoint));
+}
+
+PatternSample samplePatternAt(const Pigment& pigment, const Vec3& p) {
     PatternSample s;
-    if (pigment.pattern == PatternKind::Solid || pigment.pattern == PatternKind::Average) return s;
-    const Vec3 unwarped = pigment.toWorld.inversePoint(worldPoint);
     if (isNoisePattern(pigment.pattern)) {
-        s.value = wavedNoisePatternValue(pigment.pattern, pigment.turbulence, pigment.wave, unwarped);
+        s.value = noisePatternAtWarped(pigment.pattern, pigment.turbulence, pigment.wave, p);
         return s;
     }
-    const Vec3 p = unwarped + turbulenceOffset(pigment.turbulence, unwarped);
+    double value = 0;
     switch (pigment.pattern) {
-    case PatternKind::Checker: s.block = true, s.index = checkerIndex(p); break;
-    case PatternKind::Hexagon: s.block = true, s.index = hexagonIndex(p); break;
-    case PatternKind::Brick: s.block = true, s.index = brickIndex(p, pigment.brickSize, pigment.mortar); break;
-    case PatternKind::Gradient: s.value = gradientValue(p, pigment.gradientAxis); break;
-    case PatternKind::Radial: s.value = radialValue(p); break;
-    case PatternKind::Onion: s.value = onionValue(p); break;
-    case PatternKind::Spherical: s.value = sphericalValue(p); break;
+    case PatternKind::Solid:
+    case PatternKind::Average:
+    case PatternKind::ImageMap: return s;
+    case PatternKind::Checker: s.block = true, s.index = checkerIndex(p); return s;
+    case PatternKind::Hexagon: s.block = true, s.index = hexagonIndex(p); return s;
+    case PatternKind::Brick: s.block = true, s.index = brickIndex(p, pigment.brickSize, pigment.mortar); return s;
+    case PatternKind::Gradient: value = gradientValue(p, pigment.gradientAxis); break;
+    case PatternKind::Radial: value = radialValue(p); break;
+    case PatternKind::Onion: value = onionValue(p); break;
+    case PatternKind::Spherical: value = sphericalValue(p); break;
     default: break;
     }
-    if (!s.block && !pigment.wave.isIdentity()) s.value = applyPatternWave(pigment.wave, s.value);
+    // POV-Ray's pattern step: fmod(v frequency + phase, 1.00001), then the wave.
+    s.value = applyPatternWave(pigment.wave, value);
     return s;
+}
+
+PatternSample samplePattern(const Pigment& pigment, const Vec3& worldPoint) {
+    if (pigment.pattern == PatternKind::Solid || pigment.pattern == PatternKind::Average) return PatternSample{};
+    return samplePatternAt(pigment, patternPoint(pigment, worldPoint));
 }
 
 namespace {
@@ -163,8 +179,7 @@ ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
     if (pigment.pattern == PatternKind::Average) return averagePigmentMap(pigment.pigmentMap, worldPoint);
     if (pigment.pattern == PatternKind::ImageMap) { // a colour of its own, not a pattern value
         if (!pigment.imageMap) return ColorFT{};
-        const Vec3 unwarped = pigment.toWorld.inversePoint(worldPoint);
-        return imageMapColor(*pigment.imageMap, unwarped + turbulenceOffset(pigment.turbulence, unwarped));
+        return imageMapColor(*pigment.imageMap, patternPoint(pigment, worldPoint));
     }
     const PatternSample s = samplePattern(pigment, worldPoint);
     if (s.block) return child(pigment, size_t(s.index), worldPoint);

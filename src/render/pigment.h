@@ -17,7 +17,7 @@ ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint);
 int checkerIndex(const Vec3& p);            // 0 or 1
 int hexagonIndex(const Vec3& p);            // 0, 1 or 2
 int brickIndex(const Vec3& p, const Vec3& brickSize, double mortar); // 0 mortar, 1 brick
-double gradientValue(const Vec3& p, const Vec3& axis); // in [0, 1)
+double gradientValue(const Vec3& p, const Vec3& axis); // in [0, 1]
 double radialValue(const Vec3& p);          // in [0, 1)
 double onionValue(const Vec3& p);           // in [0, 1)
 double sphericalValue(const Vec3& p);       // max(0, 1 - |p|), in [0, 1]
@@ -33,6 +33,11 @@ struct PatternSample {
     double value = 0;
 };
 PatternSample samplePattern(const Pigment& pattern, const Vec3& worldPoint);
+// The same in two steps: where the pattern is evaluated (pattern space, after
+// the turbulence warp), and the pattern there (also used for the slopes of
+// normal patterns, render/normal_pattern.h).
+Vec3 patternPoint(const Pigment& pattern, const Vec3& worldPoint);
+PatternSample samplePatternAt(const Pigment& pattern, const Vec3& patternSpacePoint);
 
 // A map lookup as colour maps do it: the result is (1 - t) entry[lower] +
 // t entry[upper]; values outside the map take its end entries (t = 0, lower ==

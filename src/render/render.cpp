@@ -34,6 +34,7 @@
 #include "assets/assets.h"
 
 #include "accel/accel.h"
+#include "core/limits.h"
 #include "render/camera.h"
 #include "render/camera_path.h"
 #include "render/light_path.h"
@@ -53,6 +54,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 #include <memory>
 #include <variant>
@@ -186,6 +188,26 @@ private:
 };
 
 } // namespace
+
+uint64_t renderImageBytes(const RenderOptions& options) {
+    // colour and variance (3 floats each), the sample count (1 float), the
+    // file's copy (up to 4 floats), and the adaptive state of every pixel.
+    const uint64_t perPixel = 4 * (3 + 3 + 1 + 4) + (options.adaptive ? sizeof(PixelAccumulator) + 8 : 0);
+    const uint64_t pixels = saturatingBytes(uint64_t(std::max(options.width, 0)), uint64_t(std::max(options.height, 0)));
+    return saturatingBytes(pixels, perPixel);
+}
+
+std::string renderLimitProblem(const RenderOptions& options) {
+    const Limits& limits = defaultLimits();
+    if (options.threads > limits.threads)
+        return limitExceeded(limits, &Limits::threads, "the thread count", options.threads);
+    const uint64_t megabytes = (renderImageBytes(options) + (1 << 20) - 1) >> 20;
+    if (megabytes > uint64_t(limits.imageMemoryMB))
+        return fmt::format("a {} x {} image needs {} MB for its buffers, over the limit of {} MB ({})", options.width,
+                           options.height, megabytes, limits.imageMemoryMB,
+                           limitHint(limits, &Limits::imageMemoryMB));
+    return "";
+}
 
 TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, RenderState& state,
                            TileScheduler& scheduler) {

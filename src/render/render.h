@@ -105,6 +105,13 @@ public:
     RenderInterrupted() : RenderError("the render was interrupted") {}
 };
 
+// The memory a render's image buffers take (colour, variance, sample counts,
+// adaptive state, the copy an image file is written from), computed without
+// overflow; and "" or why `options` are refused before anything is allocated
+// (core/limits.h: image_memory_mb, threads).
+uint64_t renderImageBytes(const RenderOptions& options);
+std::string renderLimitProblem(const RenderOptions& options);
+
 // Throws RenderError on failure. render/tile_state.h splits it into steps for
 // other schedulers (other processes, resumed renders).
 RenderResult render(const Scene& scene, const RenderOptions& options);

@@ -35,8 +35,9 @@ Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal
     if (!(cosNL > 0)) return Color(0);
     Color result(0);
     if (finish.diffuse != 0) {
-        const double d =
-            (finish.diffuse * std::pow(cosNL, finish.brilliance) - crandU * finish.crand) * pigment.opacity();
+        // pow(x, 1) is x exactly: brilliance 1, the default, needs no pow.
+        const double shaped = finish.brilliance == 1 ? cosNL : std::pow(cosNL, finish.brilliance);
+        const double d = (finish.diffuse * shaped - crandU * finish.crand) * pigment.opacity();
         result += d * pigment.rgb * lightIntensity;
     }
     double highlight = 0;
@@ -94,9 +95,13 @@ double fadeAttenuation(const Light& light, double distance) {
 }
 
 Color interiorAttenuation(const Interior& interior, double distance) {
-    if (!(interior.fadeDistance > 0) || !(interior.fadePower > 0)) return Color(1);
-    const double a = 1.0 / (1.0 + std::pow(distance / interior.fadeDistance, interior.fadePower));
-    return interior.fadeColor + a * (Color(1) - interior.fadeColor);
+    if (!(interior.fadeDistance > 0) || !std::isfinite(interior.fadePower) || !(distance >= 0)) return Color(1);
+    const double x = distance / interior.fadeDistance;
+    const Color& c = interior.fadeColor;
+    if (interior.fadePower >= 1000)
+        return Color(std::exp(-(1 - c.r) * x), std::exp(-(1 - c.g) * x), std::exp(-(1 - c.b) * x));
+    const double a = 1.0 / (1.0 + std::pow(x, interior.fadePower));
+    return c + a * (Color(1) - c);
 }
 
 } // namespace drt

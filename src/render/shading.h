@@ -42,8 +42,11 @@ double spotlightAttenuation(const Light& light, const Vec3& lightPosition, const
 // POV-Ray's fade: 2 / (1 + (distance/fade_distance)^fade_power); 1 without fade.
 double fadeAttenuation(const Light& light, double distance);
 
-// Interior fade over a path of `distance` inside a medium (POV-Ray):
-// per channel fade_colour + (1 - fade_colour) / (1 + (distance/fade_distance)^fade_power).
+// Interior fade over a path of `distance` inside an object (POV-Ray 3.7), per
+// channel, with x = distance / fade_distance (no fade when fade_distance <= 0):
+//   fade_power >= 1000:  exp(-(1 - fade_colour) x)
+//   otherwise:           fade_colour + (1 - fade_colour) / (1 + x^fade_power)
+// (so fade_power 0 halves what is not fade_colour, as in POV-Ray).
 Color interiorAttenuation(const Interior& interior, double distance);
 
 } // namespace drt

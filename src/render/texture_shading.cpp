@@ -6,28 +6,6 @@
 
 namespace drt {
 
-void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint,
-                        const std::function<void(const Texture&, double)>& visit) {
-    const std::vector<Texture::MapEntry>& map = patterned.map;
-    if (map.empty()) return;
-    if (patterned.pigment.pattern == PatternKind::Average) {
-        double total = 0;
-        for (const Texture::MapEntry& entry : map) total += entry.value;
-        if (!(total != 0)) return;
-        for (const Texture::MapEntry& entry : map)
-            if (entry.value != 0) visit(entry.texture, entry.value / total);
-        return;
-    }
-    const PatternSample s = samplePattern(patterned.pigment, worldPoint);
-    if (s.block) {
-        if (s.index >= 0 && size_t(s.index) < map.size()) visit(map[size_t(s.index)].texture, 1.0);
-        return;
-    }
-    const MapBlend b = blendMapEntries(map.size(), [&](size_t i) { return map[i].value; }, s.value);
-    if (b.t != 1) visit(map[b.lower].texture, 1 - b.t);
-    if (b.t != 0) visit(map[b.upper].texture, b.t);
-}
-
 namespace {
 
 void collectBottomFirst(const Texture& texture, std::vector<const Texture*>& out) {

@@ -15,6 +15,7 @@
 
 #include "core/color.h"
 #include "core/vec.h"
+#include "render/pigment.h"
 #include "scene/scene.h"
 
 #include <functional>
@@ -25,9 +26,30 @@ namespace drt {
 inline double greyValue(const Color& c) { return 0.297 * c.r + 0.589 * c.g + 0.114 * c.b; }
 
 // Calls visit(entry, weight) for the entries of a patterned texture (!map.empty())
-// that the pattern picks at worldPoint, skipping weight-0 entries.
-void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint,
-                        const std::function<void(const Texture&, double)>& visit);
+// that the pattern picks at worldPoint, skipping weight-0 entries. A template:
+// it runs for every shaded point of a patterned texture, and a std::function
+// would add an indirect call (and possibly an allocation) each time.
+template <class Visit>
+void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint, Visit&& visit) {
+    const std::vector<Texture::MapEntry>& map = patterned.map;
+    if (map.empty()) return;
+    if (patterned.pigment.pattern == PatternKind::Average) {
+        double total = 0;
+        for (const Texture::MapEntry& entry : map) total += entry.value;
+        if (!(total != 0)) return;
+        for (const Texture::MapEntry& entry : map)
+            if (entry.value != 0) visit(entry.texture, entry.value / total);
+        return;
+    }
+    const PatternSample s = samplePattern(patterned.pigment, worldPoint);
+    if (s.block) {
+        if (s.index >= 0 && size_t(s.index) < map.size()) visit(map[size_t(s.index)].texture, 1.0);
+        return;
+    }
+    const MapBlend b = blendMapEntries(map.size(), [&](size_t i) { return map[i].value; }, s.value);
+    if (b.t != 1) visit(map[b.lower].texture, 1 - b.t);
+    if (b.t != 0) visit(map[b.upper].texture, b.t);
+}
 
 // The layers of a layered texture, top first, appended to `out`. A patterned
 // layer (the front ends refuse them, as POV-Ray does; the model allows them)

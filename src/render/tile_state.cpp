@@ -16,6 +16,7 @@ constexpr int kMaxImageSide = 1 << 16;
 constexpr int kMaxAdaptiveSamples = 1 << 24;
 
 void validate(const RenderOptions& options) {
+    if (std::string problem = renderLimitProblem(options); !problem.empty()) throw RenderError(problem);
     if (options.width < 1 || options.height < 1 || options.width > kMaxImageSide || options.height > kMaxImageSide)
         throw RenderError("image size must be between 1 and " + std::to_string(kMaxImageSide) + " pixels a side");
     if (options.samplesPerPixel < 1) throw RenderError("samples per pixel must be at least 1");

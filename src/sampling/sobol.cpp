@@ -64,21 +64,27 @@ constexpr uint32_t reverseBits(uint32_t x) {
 } // namespace
 
 uint32_t sobolValue(uint32_t index, int dimension) {
+    // Dimension 0 is van der Corput's (v_k = 2^(31-k)): the index with its bits reversed.
+    if (dimension == 0) return reverseBits(index);
     const auto& v = kDirections[static_cast<size_t>(dimension)];
     uint32_t result = 0;
-    for (int j = 0; index != 0; ++j, index >>= 1)
-        if (index & 1u) result ^= v[static_cast<size_t>(j)];
+    // No branch per bit: index bits are random, such a branch mispredicts half the time.
+    for (int j = 0; index != 0; ++j, index >>= 1) result ^= v[static_cast<size_t>(j)] & (0u - (index & 1u));
     return result;
 }
 
-uint32_t owenScramble(uint32_t value, uint32_t seed) {
+OwenSeed::OwenSeed(uint32_t s) : seed(s), seed2(static_cast<uint32_t>(mix64(s))) {}
+
+uint32_t owenScramble(uint32_t value, uint32_t seed) { return owenScramble(value, OwenSeed(seed)); }
+
+uint32_t owenScramble(uint32_t value, const OwenSeed& key) {
+    const uint32_t seed = key.seed, seed2 = key.seed2;
     // In the bit-reversed word the first digit is bit 0. Each step below changes
     // bit j by a function of bits 0..j-1 only (adding: carries travel upward;
     // x ^= x * even: bit j of the product sees bits below j; x *= odd: x plus an
     // even multiple), so digit j is flipped by a function of the digits before
     // it: a nested uniform scramble. The seed enters three times so that the
     // flip functions of deep digits also vary with it.
-    const uint32_t seed2 = static_cast<uint32_t>(mix64(seed));
     uint32_t x = reverseBits(value);
     x += seed;
     x ^= x * 0x9e3779b8u;

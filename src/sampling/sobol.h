@@ -33,6 +33,15 @@ uint32_t sobolValue(uint32_t index, int dimension);
 // the first digit. A bijection for every seed.
 uint32_t owenScramble(uint32_t value, uint32_t seed);
 
+// A scramble seed with the second seed owenScramble derives from it, for
+// callers that scramble many values with one seed.
+struct OwenSeed {
+    uint32_t seed = 0, seed2 = 0;
+    OwenSeed() = default;
+    explicit OwenSeed(uint32_t s);
+};
+uint32_t owenScramble(uint32_t value, const OwenSeed& seed); // == owenScramble(value, seed.seed)
+
 // A double in [0, 1) from a 32-bit fraction.
 inline double fractionToUnit(uint32_t v) { return v * 0x1.0p-32; }
 

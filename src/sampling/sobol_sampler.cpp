@@ -28,26 +28,36 @@ public:
         while (bits < 31 && (1u << bits) < static_cast<uint32_t>(spp)) ++bits;
         mask_ = (1u << bits) - 1u;
     }
-    std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(*this); }
+    // A fresh sampler: the per-pixel cache is not copied.
+    std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(samplesPerPixel_, seed_); }
 
     void startPixelSample(int x, int y, int index) override {
-        x_ = x;
-        y_ = y;
+        if (!havePixel_ || x != x_ || y != y_) {
+            // Everything below that depends on the pixel alone is computed
+            // once per pixel, not once per sample.
+            x_ = x;
+            y_ = y;
+            havePixel_ = true;
+            pixelKey_ = hashValues({seed_, uint64_t(int64_t(x)), uint64_t(int64_t(y)), 0x50b01ULL});
+            jointShuffle_ = OwenSeed(static_cast<uint32_t>(key(kTagJoint, 0) >> 32));
+            for (int d = 0; d < kSobolDimensions; ++d) jointSeeds_[d] = OwenSeed(seed32(kTagJoint, d, 0));
+            ++generation_;
+        }
         index_ = index;
-        pixelKey_ = hashValues({seed_, uint64_t(int64_t(x)), uint64_t(int64_t(y)), 0x50b01ULL});
-        jointIndex_ = shuffledIndex(key(kTagJoint, 0));
+        jointIndex_ = shuffledIndex(jointShuffle_);
     }
 
     double get1D(int dimension) override {
         if (dimension < kSobolDimensions) return joint(dimension);
-        const uint32_t i = shuffledIndex(key(kTagPadded1D, dimension));
-        return fractionToUnit(owenScramble(sobolValue(i, 0), seed32(kTagPadded1D, dimension, 0)));
+        const Seeds& s = seeds(kTagPadded1D, dimension);
+        return fractionToUnit(owenScramble(sobolValue(shuffledIndex(s.shuffle), 0), s.seed[0]));
     }
 
     Vec2 get2D(int dimension) override {
         if (dimension + 1 < kSobolDimensions) return {joint(dimension), joint(dimension + 1)};
         if (dimension < kSobolDimensions) return {joint(dimension), get1D(dimension + 1)};
-        return padded2D(shuffledIndex(key(kTagPadded2D, dimension)), kTagPadded2D, dimension);
+        const Seeds& s = seeds(kTagPadded2D, dimension);
+        return padded2D(shuffledIndex(s.shuffle), s);
     }
 
     // The k-th of `count` points: sequence index shuffled(pixel sample) * count + k
@@ -55,32 +65,62 @@ public:
     // form a (0,m,2)-net when count is a power of two, and all spp * count
     // points of the pixel do too when spp is a power of two as well.
     Vec2 get2DStratified(int dimension, int k, int count) override {
-        const uint64_t base = shuffledIndex(key(kTagStratified, dimension));
+        const Seeds& s = seeds(kTagStratified, dimension);
+        const uint64_t base = shuffledIndex(s.shuffle);
         const auto i = static_cast<uint32_t>(base * static_cast<uint64_t>(std::max(count, 1)) + uint64_t(k));
-        return padded2D(i, kTagStratified, dimension);
+        return padded2D(i, s);
     }
 
     std::string name() const override { return "sobol"; }
 
 private:
     static constexpr uint64_t kTagJoint = 1, kTagPadded1D = 2, kTagPadded2D = 3, kTagStratified = 4;
+    static constexpr int kTags = 5;
+
+    // The per-(pixel, tag, dimension) scramble seeds: the sample-order shuffle
+    // and the Owen scramble of each component.
+    struct Seeds {
+        uint64_t generation = 0; // the pixel they were computed for
+        int dimension = -1;
+        OwenSeed shuffle;
+        OwenSeed seed[2];
+    };
+    // A direct-mapped cache by dimension: a pixel's samples ask for the same
+    // dimensions over and over.
+    static constexpr int kCacheSlots = 64;
+    const Seeds& seeds(uint64_t tag, int dimension) {
+        Seeds& s = cache_[tag][static_cast<unsigned>(dimension) % kCacheSlots];
+        if (s.generation != generation_ || s.dimension != dimension) {
+            s.generation = generation_;
+            s.dimension = dimension;
+            s.shuffle = OwenSeed(static_cast<uint32_t>(key(tag, dimension) >> 32));
+            s.seed[0] = OwenSeed(seed32(tag, dimension, 0));
+            s.seed[1] = tag == kTagPadded1D ? OwenSeed() : OwenSeed(seed32(tag, dimension, 1));
+        }
+        return s;
+    }
 
     uint64_t key(uint64_t tag, int dimension) const { return hashValues({pixelKey_, tag, uint64_t(dimension)}); }
     uint32_t seed32(uint64_t tag, int dimension, int component) const {
         return static_cast<uint32_t>(hashValues({pixelKey_, tag, uint64_t(dimension), uint64_t(component) + 17}) >> 32);
     }
-    uint32_t shuffledIndex(uint64_t shuffleKey) const {
+    uint32_t shuffledIndex(const OwenSeed& shuffleSeed) const {
         const auto i = static_cast<uint32_t>(index_);
-        return (i & ~mask_) | (owenScramble(i, static_cast<uint32_t>(shuffleKey >> 32)) & mask_);
+        return (i & ~mask_) | (owenScramble(i, shuffleSeed) & mask_);
     }
     double joint(int dimension) const {
-        return fractionToUnit(owenScramble(sobolValue(jointIndex_, dimension), seed32(kTagJoint, dimension, 0)));
+        return fractionToUnit(owenScramble(sobolValue(jointIndex_, dimension), jointSeeds_[dimension]));
     }
-    Vec2 padded2D(uint32_t i, uint64_t tag, int dimension) const {
-        return {fractionToUnit(owenScramble(sobolValue(i, 0), seed32(tag, dimension, 0))),
-                fractionToUnit(owenScramble(sobolValue(i, 1), seed32(tag, dimension, 1)))};
+    static Vec2 padded2D(uint32_t i, const Seeds& s) {
+        return {fractionToUnit(owenScramble(sobolValue(i, 0), s.seed[0])),
+                fractionToUnit(owenScramble(sobolValue(i, 1), s.seed[1]))};
     }
 
+    bool havePixel_ = false;
+    uint64_t generation_ = 0;
+    OwenSeed jointShuffle_;
+    OwenSeed jointSeeds_[kSobolDimensions];
+    Seeds cache_[kTags][kCacheSlots];
     uint32_t mask_ = 0;
     uint64_t pixelKey_ = 0;
     uint32_t jointIndex_ = 0;

@@ -4,6 +4,7 @@
 // writer can write it back the same way (src/outline builds the outlines).
 #pragma once
 
+#include "core/heap_optional.h"
 #include "core/vec.h"
 
 #include <optional>
@@ -50,8 +51,9 @@ struct Extrusion {
     bool conic = false;
     bool open = false; // no end caps
     // The source the outline was built from, if any (for the writer).
-    std::optional<PrismSource> prism;
-    std::optional<TextSource> text;
+    // (On the heap: they are large, and most shapes in a scene are not extrusions.)
+    HeapOptional<PrismSource> prism;
+    HeapOptional<TextSource> text;
 };
 
 } // namespace drt

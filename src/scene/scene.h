@@ -5,6 +5,7 @@
 
 #include "core/color.h"
 #include "core/diagnostics.h"
+#include "core/heap_optional.h"
 #include "core/transform.h"
 #include "core/vec.h"
 #include "scene/algebraic.h"
@@ -126,14 +127,18 @@ struct Finish {
     double crand = 0;
 };
 
-// A bump pattern (POV-Ray `normal { bumps 0.4 scale 0.2 }`): the shading
-// normal is tilted by `amount` times the gradient of the pattern's scalar field.
+// A normal pattern (POV-Ray `normal { bumps 0.4 scale 0.2 }`), with
+// POV-Ray's rules (render/normal_pattern.cpp): bumps, dents, wrinkles,
+// ripples and waves have formulas of their own; every other pattern tilts the
+// normal down its slope, sampled `accuracy` apart in pattern space.
 struct Normal {
     PatternKind pattern = PatternKind::Bumps;
     double amount = 0.5;
     Turbulence turbulence;
-    PatternWave wave; // shapes the bump pattern's scalar field
+    PatternWave wave; // shapes the pattern's value (not for the five with formulas of their own)
     Transform toWorld; // as Pigment::toWorld
+    Vec3 gradientAxis{0, 1, 0}; // Gradient
+    double accuracy = 0.02;     // POV-Ray's `accuracy`: the slope's sample spacing
 };
 
 // A plain texture is one layer: pigment, finish, normal. Two extensions, both
@@ -148,7 +153,7 @@ struct Normal {
 struct Texture {
     Pigment pigment;
     Finish finish;
-    std::optional<Normal> normal; // none: the surface's own normal
+    HeapOptional<Normal> normal; // none: the surface's own normal (on the heap: most textures have none)
     struct MapEntry;
     std::vector<MapEntry> map;
     std::vector<Texture> layersAbove;
@@ -327,9 +332,10 @@ struct Object {
 // Where an area light's n1 x n2 sample points go (issue 3; the estimators are
 // in render/lighting.h).
 enum class AreaSampling {
-    PovGrid,    // POV-Ray: edge-to-edge n1 x n2 grid, jittered only with `jitter`
-    Stratified, // Cook: one jittered point in each of n1 x n2 cells of the rectangle
-    SolidAngle, // Urena, Fajardo & King 2013: n1 n2 stratified points uniform in solid angle
+    PovGrid,    // POV-Ray's method: every point of the edge-to-edge n1 x n2 grid at every hit
+    Stratified, // Cook: the pixel's samples stratified over the rectangle, one shadow ray per sample once spp >= n1 n2
+    SolidAngle, // Urena, Fajardo & King 2013: the same, uniform in solid angle
+    Grid,       // POV-Ray's grid points (jittered with `jitter`), shared out over the pixel's samples like Stratified
 };
 
 struct AreaLight {
@@ -341,9 +347,10 @@ struct AreaLight {
     int adaptive = -1; // POV-Ray `adaptive`; -1: not given (full grid)
     bool circular = false;
     bool orient = false;
-    // The scene model's default is POV-Ray's grid; the .drt parser sets
-    // Stratified (Cook's full area illumination is drt's documented default).
-    AreaSampling sampling = AreaSampling::PovGrid;
+    // The scene model's default is POV-Ray's grid points, one per camera
+    // sample (the POV-Ray front end's choice); the .drt parser sets Stratified
+    // (Cook's full area illumination is drt's documented default).
+    AreaSampling sampling = AreaSampling::Grid;
 };
 
 struct LightMotion;

@@ -9,6 +9,7 @@
 #include "image/srgb.h"
 
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <filesystem>
@@ -102,7 +103,22 @@ std::string writeFile(const std::string& file, const std::string& path, const Im
     return "";
 }
 
-std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info) {
+// "" or why the header's image is refused: no pixels, or more memory than the budget.
+std::string headerSizeProblem(const std::string& path, const OIIO::ImageSpec& spec, const ReadBudget& budget) {
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1 || spec.depth > 1)
+        return fmt::format("cannot read '{}': its header gives a {} x {} image with {} channels", path, spec.width,
+                           spec.height, spec.nchannels);
+    // In double: no overflow for any header (ints up to 2^31 each).
+    const double megabytes = std::ceil(double(spec.width) * double(spec.height) * double(spec.nchannels) *
+                                       double(sizeof(float)) / double(1 << 20));
+    if (megabytes > double(budget.megabytes))
+        return fmt::format("cannot read '{}': its header gives a {} x {} image, which needs {:.0f} MB, over the limit "
+                           "of {} MB ({})",
+                           path, spec.width, spec.height, megabytes, budget.megabytes, budget.hint);
+    return "";
+}
+
+std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info, const ReadBudget& budget) {
     std::error_code ec;
     if (!fs::exists(path, ec))
         return "cannot read '" + path + "': no such file";
@@ -115,6 +131,7 @@ std::string readImageEncoded(const std::string& path, Image& image, ImageFileInf
         return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
     }
     const OIIO::ImageSpec& spec = input->spec();
+    if (std::string problem = headerSizeProblem(path, spec, budget); !problem.empty()) return problem;
     Image result(spec.width, spec.height, spec.nchannels);
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
         const std::string reason = input->geterror();
@@ -134,7 +151,7 @@ std::string readImageEncoded(const std::string& path, Image& image, ImageFileInf
     return "";
 }
 
-std::string readImage(const std::string& path, Image& image, Metadata* metadata) {
+std::string readImage(const std::string& path, Image& image, Metadata* metadata, const ReadBudget& budget) {
     std::error_code ec;
     if (!fs::exists(path, ec))
         return "cannot read '" + path + "': no such file";
@@ -144,6 +161,7 @@ std::string readImage(const std::string& path, Image& image, Metadata* metadata)
         return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
     }
     const OIIO::ImageSpec& spec = input->spec();
+    if (std::string problem = headerSizeProblem(path, spec, budget); !problem.empty()) return problem;
     Image result(spec.width, spec.height, spec.nchannels);
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
         const std::string reason = input->geterror();

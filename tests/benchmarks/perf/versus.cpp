@@ -226,7 +226,9 @@ SceneResult runScene(const Context& c, const VersusScene& scene) {
     // A drt binary stops climbing its spp list (for every repetition) once a
     // render in the first repetition is well below the smallest target (the
     // curve already brackets every target) or took longer than the budget
-    // (the next count would take about twice as long).
+    // (the next count would take about twice as long): CPU time, a budget per
+    // thread, since on a shared machine the wall time of a render says more
+    // about the other programs than about it.
     const double enough = *std::min_element(c.options.targets.begin(), c.options.targets.end()) / 3;
     const double budgetSeconds = quick ? 20 : 60;
     std::vector<size_t> sppLimit(c.options.drt.size(), spps.size());
@@ -280,7 +282,7 @@ SceneResult runScene(const Context& c, const VersusScene& scene) {
                 scene.name, rep, repetitions, row.renderer, row.setting, row.process.wallSeconds,
                 row.process.cpuSeconds(), row.relMse);
             if (!job.povray && rep == 1 &&
-                (row.relMse < enough || row.process.wallSeconds > budgetSeconds ||
+                (row.relMse < enough || row.process.cpuSeconds() > budgetSeconds * c.options.threads ||
                  !row.process.succeeded())) {
                 sppLimit[job.drtIndex] = job.setting + 1;
                 c.log << fmt::format("versus: {}: {} stops at {} (relMSE {:.2e}, {:.1f} s)\n", scene.name,

@@ -1,0 +1,41 @@
+// Helpers shared by the libFuzzer harnesses. Each harness is a function that
+// the fuzzer binaries call through LLVMFuzzerTestOneInput (DRT_FUZZ_ENTRY_POINT,
+// only in the DRT_FUZZ build) and that the unit tests call on every saved
+// reproducer (tests/fuzz_regressions_test.cpp), in every build.
+#pragma once
+
+#include "core/diagnostics.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace drt::fuzz {
+
+int fuzzDrtFrontEnd(const uint8_t* data, size_t size);
+int fuzzPovFrontEnd(const uint8_t* data, size_t size);
+int fuzzRender(const uint8_t* data, size_t size);
+
+inline std::string text(const uint8_t* data, size_t size) {
+    return std::string(reinterpret_cast<const char*>(data), size);
+}
+
+// The folder #include resolves against: the working directory, as for a scene
+// named on the command line in the current folder.
+inline const char* includeDir() { return "."; }
+
+// Formats every diagnostic (quoting source lines, placing carets) so that the
+// diagnostics code is fuzzed too.
+inline void formatEveryDiagnostic(const Diagnostics& diagnostics) {
+    volatile size_t length = diagnostics.formatAll().size();
+    (void)length;
+}
+
+} // namespace drt::fuzz
+
+#ifdef DRT_FUZZ_MAIN
+#define DRT_FUZZ_ENTRY_POINT(function)                                                                          \
+    extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return drt::fuzz::function(data, size); }
+#else
+#define DRT_FUZZ_ENTRY_POINT(function)
+#endif

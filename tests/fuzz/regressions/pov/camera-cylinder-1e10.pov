@@ -1,0 +1,1 @@
+camera { cylinder 1e10 }
