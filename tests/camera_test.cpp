@@ -1,4 +1,4 @@
-// POV-Ray camera conventions (../shared/POVRAY-NOTES.md) and the thin lens.
+// POV-Ray camera conventions (docs/pov.md) and the thin lens.
 #include "render/camera.h"
 #include "render/render.h"
 

@@ -34,7 +34,7 @@ TEST(HardeningCli, ConvertRefusesToOverwriteItsInputHoweverSpelt) {
     const std::string original = "sphere { 0, 1 }\n";
     const std::string scene = test::writeFile(dir + "/a.pov", original);
     fs::create_symlink(scene, dir + "/link.pov");
-    for (const std::string output : {scene, dir + "/./a.pov", dir + "/../" + fs::path(dir).filename().string() +
+    for (const std::string& output : {scene, dir + "/./a.pov", dir + "/../" + fs::path(dir).filename().string() +
                                                                   "/a.pov",
                                      dir + "/link.pov"}) {
         const test::CommandResult r = runDrt("convert " + quoted(scene) + " -o " + quoted(output));

@@ -240,7 +240,8 @@ Scene stillAt(const Scene& moving, double time) {
 // normal), but for rays grazing a silhouette within Embree's float precision
 // (or, for paths Embree's steps only approximate, within their 1e-4 of the size).
 void expectTracesAsStillAt(const Scene& moving, double time, int seed, double tolerance = 1e-5) {
-    const Accelerator interpolated(moving), still(stillAt(moving, time));
+    const Scene stillScene = stillAt(moving, time);
+    const Accelerator interpolated(moving), still(stillScene);
     Vec3 lower, upper; // where the objects are at `time`
     still.bounds(lower, upper);
     std::mt19937_64 rng(seed);

@@ -9,8 +9,8 @@
 // Label "crosscheck" (runs in the drt_crosscheck_tests executable).
 #include "image/image.h"
 #include "pov/load.h"
+#include "pov_crosscheck/run_renderers.h"
 #include "pov_crosscheck/wide_figure.h"
-#include "render/render.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -45,37 +45,13 @@ const FidelityScene kScenes[] = {
     {"waves", 0.025},
 };
 
-bool povrayInstalled() { return std::system("command -v povray >/dev/null 2>&1") == 0; }
-
-// POV-Ray's render of the scene, in a fresh folder.
-bool renderPovRay(const std::string& povPath, const std::string& dir, Image& out) {
-    const std::string command = "cd '" + dir + "' && povray +I" + fs::path(povPath).filename().string() +
-                                " +Opov.png +W" + std::to_string(kWidth) + " +H" + std::to_string(kHeight) +
-                                " -D +A0.3 +FN >povray.log 2>&1";
-    if (std::system(command.c_str()) != 0) {
-        ADD_FAILURE() << "povray failed:\n" << test::readFile(dir + "/povray.log");
-        return false;
-    }
-    const std::string problem = readImage(dir + "/pov.png", out);
-    EXPECT_EQ(problem, "");
-    return problem.empty();
-}
-
 bool renderDrt(const std::string& povPath, Image& out) {
     Diagnostics diags;
     std::optional<Scene> scene = loadPovSceneFile(povPath, diags);
     EXPECT_TRUE(scene) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
     if (!scene) return false;
-    const Scene withImages = test::withAssets(std::move(*scene));
-    RenderOptions options = resolveRenderOptions(withImages.render);
-    options.width = kWidth;
-    options.height = kHeight;
-    options.samplesPerPixel = kSamples;
-    options.adaptive = false;
-    options.seed = 1;
-    out = render(withImages, options).color;
-    for (float& v : out.pixels) v = std::clamp(v, 0.0f, 1.0f); // as POV-Ray's 8-bit PNG holds them
+    out = crosscheck::renderDrtClipped(test::withAssets(std::move(*scene)), kWidth, kHeight, kSamples);
     return true;
 }
 
@@ -83,12 +59,12 @@ class PovFidelity : public ::testing::TestWithParam<FidelityScene> {};
 
 TEST_P(PovFidelity, AgreesWithPovRay) {
     const FidelityScene& s = GetParam();
-    ASSERT_TRUE(povrayInstalled()) << "`povray` is not installed (the set-up script installs Debian's povray)";
+    ASSERT_TRUE(crosscheck::povrayInstalled()) << "`povray` is not installed (the set-up script installs Debian's povray)";
     const std::string dir = test::tempDir();
     const std::string povPath = dir + "/" + s.name + ".pov";
     fs::copy_file(test::sourcePath(std::string("tests/pov_crosscheck/fidelity/") + s.name + ".pov"), povPath);
     Image pov, drt;
-    ASSERT_TRUE(renderPovRay(povPath, dir, pov));
+    ASSERT_TRUE(crosscheck::renderPovRay(dir, fs::path(povPath).filename().string(), kWidth, kHeight, pov));
     ASSERT_TRUE(renderDrt(povPath, drt));
     const double figure = wide::meanAbsoluteSrgbDifference(drt, pov);
     std::printf("[ fidelity ] %s: %.5f (threshold %.3f)\n", s.name, figure, s.threshold);

@@ -14,6 +14,7 @@
 #include "lang/writer.h"
 #include "pov/load.h"
 #include "render/render.h"
+#include "pov_crosscheck/run_renderers.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -90,9 +91,7 @@ Figures measure(const Image& drt, const Image& pov) {
 
 // ------------------------------------------------------------ running the renderers
 
-bool povrayInstalled() {
-    return std::system("command -v povray >/dev/null 2>&1") == 0;
-}
+using crosscheck::povrayInstalled;
 
 struct CrossCheckScene {
     std::string name;                // e.g. "focalblur"
@@ -156,14 +155,7 @@ Prepared prepare(const CrossCheckScene& s) {
     fs::copy_file(source, p.povPath);
     for (const std::string& extra : s.extras)
         fs::copy_file(fs::path(kExamples) / extra, fs::path(p.dir) / fs::path(extra).filename());
-    // +A0.3: POV-Ray's adaptive anti-aliasing; -D: no display; +FN: PNG.
-    const std::string command = "cd '" + p.dir + "' && povray +I" + source.filename().string() +
-                                " +Opov.png +W" + std::to_string(kWidth) + " +H" + std::to_string(kHeight) +
-                                " -D +A0.3 +FN >povray.log 2>&1";
-    const int status = std::system(command.c_str());
-    EXPECT_EQ(status, 0) << "povray failed:\n" << test::readFile(p.dir + "/povray.log");
-    const std::string problem = readImage(p.dir + "/pov.png", p.pov);
-    EXPECT_EQ(problem, "");
+    crosscheck::renderPovRay(p.dir, source.filename().string(), kWidth, kHeight, p.pov);
     return p;
 }
 
@@ -185,17 +177,7 @@ std::optional<Scene> convertedScene(const std::string& povPath) {
 }
 
 Image renderDrt(const Scene& scene, int samples) {
-    RenderOptions options = resolveRenderOptions(scene.render);
-    options.width = kWidth;
-    options.height = kHeight;
-    options.samplesPerPixel = samples;
-    options.adaptive = false;
-    options.seed = 1;
-    // POV-Ray's image is an 8-bit PNG, so values above 1 are clipped; drt's
-    // linear floats are clipped the same way, as drt's own PNG would hold them.
-    Image image = render(scene, options).color;
-    for (float& v : image.pixels) v = std::clamp(v, 0.0f, 1.0f);
-    return image;
+    return crosscheck::renderDrtClipped(scene, kWidth, kHeight, samples);
 }
 
 // Writes the images and a figures line when DRT_CROSSCHECK_OUTPUT is set.
@@ -318,11 +300,8 @@ Figures outlineFigures(double textShift) {
     }
     const std::string dir = test::tempDir();
     test::writeFile(dir + "/outlines.pov", kOutlineScene);
-    const std::string command = "cd '" + dir + "' && povray +Ioutlines.pov +Opov.png +W" + std::to_string(kWidth) +
-                                " +H" + std::to_string(kHeight) + " -D +A0.3 +FN >povray.log 2>&1";
-    EXPECT_EQ(std::system(command.c_str()), 0) << test::readFile(dir + "/povray.log");
     Image pov;
-    EXPECT_EQ(readImage(dir + "/pov.png", pov), "");
+    crosscheck::renderPovRay(dir, "outlines.pov", kWidth, kHeight, pov);
     std::optional<Scene> scene = convertedScene(dir + "/outlines.pov");
     if (!scene || pov.pixels.empty())
         return {};

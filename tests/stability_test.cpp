@@ -212,7 +212,7 @@ TEST(Stability, SpawnedRaysNeverRehitTheirOwnSurfaceAtAnyScale) {
 // ---------------------------------------------------------------- glass
 
 // A lossless dielectric in a uniform environment renders exactly the
-// environment (the white furnace, ACCURACY-NOTES.md): whatever the Fresnel
+// environment (the white furnace test): whatever the Fresnel
 // split, total internal reflection included, no energy appears or vanishes
 // beyond what the depth limit and the per-sample ray budget cut off.
 Scene furnace(Shape shape, Texture texture) {

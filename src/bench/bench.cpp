@@ -72,8 +72,8 @@ std::string referenceKey(const Scene& scene, const Scene& tweaked) {
     return filterOf(tweaked) == filterOf(scene) ? "" : "filter-" + filterOf(tweaked);
 }
 
-// The reference's share of E[relMSE] (ACCURACY-NOTES.md: a noisy reference
-// inflates every error).
+// The reference's share of E[relMSE] (a noisy reference inflates every
+// error: docs/accuracy.md).
 double referenceNoise(const Reference& reference) {
     return reference.hasVariance ? bench::referenceNoise(reference.color, reference.variance) : 0;
 }

@@ -3,7 +3,7 @@
 // against a high-sample reference, and writes results.csv, the charts
 // (error-vs-time, error-vs-spp; bench/chart.h) and summary.md into a folder.
 //
-// Error metrics (../shared/ACCURACY-NOTES.md "Metrics"), on linear RGB:
+// Error metrics (docs/accuracy.md), on linear RGB:
 //   relmse_raw  compareImages' relMSE, mean (x - r)^2 / (r^2 + 0.01)
 //   relmse      relmse_raw minus the reference's own noise, mean Var(r) / (r^2
 //               + 0.01), since E[(x - r_noisy)^2] = (x - r_true)^2 + Var(r); this

@@ -18,7 +18,7 @@ inline double median(std::vector<double> values) { return quantile(std::move(val
 // Least-squares fit of log10 y = intercept + slope * log10 x over the points
 // where both are positive and finite. For relMSE against samples per pixel the
 // slope is twice the RMSE rate: -1 for independent samples, -2 for jittered
-// samples of a smooth integrand, -1.5 at edges (ACCURACY-NOTES.md).
+// samples of a smooth integrand, -1.5 at edges.
 struct SlopeFit {
     double slope = 0;
     double intercept = 0;

@@ -44,7 +44,7 @@ std::string sizeOf(const Image& image) {
     return fmt::format("{}x{}", image.width, image.height);
 }
 
-// The error metrics of ACCURACY-NOTES.md over the finite pixels.
+// The error metrics of docs/accuracy.md over the finite pixels.
 void measureErrors(const Image& candidate, const Image& reference, const CompareOptions& options,
                    const VarianceImages& variance, CompareResult& r) {
     const int nc = r.channels;

@@ -1,6 +1,6 @@
 // Image comparison for golden-image tests: error metrics, idiff-style
 // thresholds, and a statistical test against per-pixel variance images.
-// See ../shared/ACCURACY-NOTES.md for why each figure is here.
+// docs/accuracy.md says why each figure is here.
 //
 // Conventions: `candidate` is the image under test, `reference` the golden
 // one; errors are candidate - reference, on linear values, per channel, over

@@ -1,6 +1,6 @@
-// Statistical comparison against per-pixel variance images (ACCURACY-NOTES.md,
-// tier 2). For independent pixel errors e_i with variances v_i, the mean error
-// of a region has variance sum(v_i) / n^2, so under "no bias"
+// Statistical comparison against per-pixel variance images (the
+// "statistical" policy of docs/golden-tests.md). For independent pixel errors
+// e_i with variances v_i, the mean error of a region has variance sum(v_i) / n^2, so under "no bias"
 //   z = sum(e_i) / sqrt(sum(v_i))
 // is close to standard normal. A global z per channel catches a small bias
 // everywhere; z per 8x8 tile and channel catches a larger bias in one place.

@@ -47,7 +47,7 @@ struct GoldenSettings {
     double failPercent = 0;
     // Statistical policy: compare's family-wise false-alarm rate and tile edge;
     // the reference is rendered at referenceSamplesPerPixel (default 64x the
-    // test's, see ACCURACY-NOTES) with referenceSeed (default seed + 1, so the
+    // test's, see docs/accuracy.md) with referenceSeed (default seed + 1, so the
     // two estimates are independent).
     double alpha = 0.01;
     int tileSize = 8;

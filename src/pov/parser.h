@@ -165,7 +165,7 @@ public:
     bool cameraSeen_ = false;
     std::optional<double> assumedGamma_;
     // The gamma of the working colour space so far: assumed_gamma, else 2.2
-    // under a #version below 3.7, else 1 (POVRAY-NOTES.md).
+    // under a #version below 3.7, else 1 (docs/pov.md, "Gamma").
     double workingGamma() const { return assumedGamma_ ? *assumedGamma_ : (version_ < 3.7 ? 2.2 : 1.0); }
     double version_ = 3.7;
     bool versionSeen_ = false;

@@ -552,7 +552,7 @@ void PovParser::fog(const Tok& keyword) {
     scene_.fogs.push_back(f);
 }
 
-// POV-Ray's gamma rule (../shared/POVRAY-NOTES.md): assumed_gamma 1.0, or
+// POV-Ray's gamma rule (docs/pov.md): assumed_gamma 1.0, or
 // #version 3.7+ without assumed_gamma, means linear colours. Otherwise the
 // scene's colours are encoded with gamma g (2.2 when only an older #version
 // says so) and POV-Ray shades them as they are, decoding only the result; the

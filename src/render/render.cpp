@@ -14,7 +14,7 @@
 //     sqrt(var_c / n) <= E * sqrt(mean_c^2 + f^2),
 // var_c the unbiased sample variance, E the adaptive error and f the dark
 // floor: E^2 bounds the pixel's expected contribution var/(r^2 + f^2) to
-// relMSE (ACCURACY-NOTES.md; f = 0.1 matches its 0.01). It stops once it and
+// relMSE (docs/accuracy.md; f = 0.1 matches relMSE's 0.01). It stops once it and
 // its 8 neighbours pass (a stopped pixel takes no more samples).
 // Why the neighbours: a pixel whose first min_spp samples all miss a sliver of
 // an edge sees zero variance and would stop with the sliver lost; that bias

@@ -1,5 +1,5 @@
 // POV-Ray 3.7's classic finish model and light attenuation, as pure functions
-// (../shared/POVRAY-NOTES.md, "Classic shading"). With P the pigment colour,
+// (docs/language.md, finishes; docs/pov.md). With P the pigment colour,
 // alpha = 1 - filter - transmit, N the normal facing the viewer, I the unit
 // incoming ray direction, L the unit direction to the light and I_L the light's
 // colour x visibility x attenuation:

@@ -3,8 +3,8 @@
 // Dimensions 0-4 (pixel, time, lens) are the five coordinates of ONE Sobol
 // point per pixel sample, so pixel x time and pixel x lens stay stratified
 // jointly: a motion-blurred or defocused edge converges like a still one
-// (ACCURACY-NOTES.md, "Padding"). Dimensions 5 and up (per bounce) are padded:
-// each 2D request is its own scrambled (0,2)-sequence (Sobol dimensions 0 and 1)
+// (docs/effects.md, "Association of ray ids"). Dimensions 5 and up (per
+// bounce) are padded: each 2D request is its own scrambled (0,2)-sequence (Sobol dimensions 0 and 1)
 // and each 1D request its own scrambled van der Corput sequence, with the
 // sample order shuffled independently per dimension so the pairs are
 // decorrelated from each other and from the camera dimensions.

@@ -1,6 +1,6 @@
 // The scene model: what every front end (.drt, .pov) builds and what the
 // renderer consumes. It knows nothing of text or of Embree. Defaults follow
-// POV-Ray 3.7 (../shared/POVRAY-NOTES.md) unless stated.
+// POV-Ray 3.7 (docs/pov.md) unless stated.
 #pragma once
 
 #include "core/color.h"

@@ -1,7 +1,7 @@
 // Adaptive sampling must not bias the image (render/render.cpp, "Adaptive
 // sampling"): an adaptive render is compared with a fixed-sample render of an
 // independent seed by compare/compare.h's statistical tests, using both
-// variance images (ACCURACY-NOTES.md, tier 2).
+// variance images.
 //
 // Stated tolerance: at the default error and min_samples 16, on a scene with
 // edges, shadows, a highlight and a checkered floor,

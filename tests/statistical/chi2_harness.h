@@ -1,6 +1,6 @@
 // A reusable chi-square goodness-of-fit harness for sampling routines.
 //
-// Recipe (ACCURACY-NOTES.md): draw 1e6 samples, histogram them over ~100 x 100
+// Recipe: draw 1e6 samples, histogram them over ~100 x 100
 // bins of a 2D parametrisation of the domain, compute each bin's expected count
 // by numerically integrating the routine's own density over the bin, pool bins
 // expecting fewer than 5 samples, and compare with the chi-square distribution

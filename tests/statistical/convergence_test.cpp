@@ -1,5 +1,5 @@
 // Convergence-rate tests of the samplers on closed-form pixel integrals
-// (ACCURACY-NOTES.md, "Convergence rates" and "Padding"):
+// (docs/accuracy.md; padding: docs/effects.md):
 //   - anti-aliasing: the area of a pixel covered by a straight edge (dims 0-1);
 //   - motion blur: an edge sweeping across the pixel during the shutter, whose
 //     time-averaged coverage couples pixel and time (dims 0, 1, 2);

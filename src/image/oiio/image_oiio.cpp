@@ -118,25 +118,36 @@ std::string headerSizeProblem(const std::string& path, const OIIO::ImageSpec& sp
     return "";
 }
 
-std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info, const ReadBudget& budget) {
+// Opens `path` (with `config`, if any), checks its header against `budget` and
+// reads every channel as float into `pixels`; `spec` is the file's. Returns ""
+// or why not.
+std::string readPixels(const std::string& path, const OIIO::ImageSpec* config, const ReadBudget& budget,
+                       Image& pixels, OIIO::ImageSpec& spec) {
     std::error_code ec;
     if (!fs::exists(path, ec))
         return "cannot read '" + path + "': no such file";
-    // Colour as stored, not multiplied by alpha (OpenImageIO's default for PNG).
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto input = OIIO::ImageInput::open(path, &config);
+    auto input = OIIO::ImageInput::open(path, config);
     if (!input) {
         std::string reason = OIIO::geterror();
         return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
     }
-    const OIIO::ImageSpec& spec = input->spec();
+    spec = input->spec();
     if (std::string problem = headerSizeProblem(path, spec, budget); !problem.empty()) return problem;
     Image result(spec.width, spec.height, spec.nchannels);
-    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
-        const std::string reason = input->geterror();
-        return "cannot read '" + path + "': " + reason;
-    }
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data()))
+        return "cannot read '" + path + "': " + input->geterror();
+    input->close();
+    pixels = std::move(result);
+    return "";
+}
+
+std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info, const ReadBudget& budget) {
+    // Colour as stored, not multiplied by alpha (OpenImageIO's default for PNG).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    OIIO::ImageSpec spec;
+    Image result;
+    if (std::string problem = readPixels(path, &config, budget, result, spec); !problem.empty()) return problem;
     info.isFloat = !isIntegerType(spec.format);
     const int bits = spec.get_int_attribute("oiio:BitsPerSample", 0);
     info.bitsPerChannel = info.isFloat ? 32 : (bits > 0 ? bits : int(spec.format.size()) * 8);
@@ -146,27 +157,14 @@ std::string readImageEncoded(const std::string& path, Image& image, ImageFileInf
         info.fileGamma = 1;
     else if (colorSpace.rfind("Gamma", 0) == 0)
         info.fileGamma = spec.get_float_attribute("oiio:Gamma", 0);
-    input->close();
     image = std::move(result);
     return "";
 }
 
 std::string readImage(const std::string& path, Image& image, Metadata* metadata, const ReadBudget& budget) {
-    std::error_code ec;
-    if (!fs::exists(path, ec))
-        return "cannot read '" + path + "': no such file";
-    auto input = OIIO::ImageInput::open(path);
-    if (!input) {
-        std::string reason = OIIO::geterror();
-        return "cannot read '" + path + "': " + (reason.empty() ? "unknown image format" : reason);
-    }
-    const OIIO::ImageSpec& spec = input->spec();
-    if (std::string problem = headerSizeProblem(path, spec, budget); !problem.empty()) return problem;
-    Image result(spec.width, spec.height, spec.nchannels);
-    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, result.pixels.data())) {
-        const std::string reason = input->geterror();
-        return "cannot read '" + path + "': " + reason;
-    }
+    OIIO::ImageSpec spec;
+    Image result;
+    if (std::string problem = readPixels(path, nullptr, budget, result, spec); !problem.empty()) return problem;
     // Integer files hold sRGB-encoded colour (the inverse of writeImage); alpha stays linear.
     const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
     if (isIntegerType(spec.format) && colorSpace != "Linear") {
@@ -180,7 +178,6 @@ std::string readImage(const std::string& path, Image& image, Metadata* metadata,
             metadata->emplace_back(p.name().string(), p.get_string(1024));
         recoverFromDescription(spec.get_string_attribute("ImageDescription"), *metadata);
     }
-    input->close();
     image = std::move(result);
     return "";
 }
