@@ -3,7 +3,7 @@
 // an open shutter, evaluates the scene again over the shutter and blurs each
 // object along its own path (an orbit, a spin, a bounce):
 //
-//   drt render examples/animation.ini --shutter 0.5 -o frames/anim.png
+//   drt render examples/animation.ini --shutter 0.5 --spp 64 -o frames/anim.png
 //   povray examples/animation.ini +Oframes/pov.png
 #version 3.7;
 

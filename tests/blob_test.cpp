@@ -402,10 +402,10 @@ blob {
 
 TEST(PovBlob, BadBlobsAreErrorsWithLocations) {
     const struct { const char* source; const char* message; int line; } cases[] = {
-        {"blob { threshold 1 }", "blob needs at least one component", 1},
-        {"blob {\n sphere { 0, -1, 1 } }", "blob component radius must be positive", 2},
-        {"blob { threshold -1 sphere { 0, 1, 1 } }", "blob threshold must be positive", 1},
-        {"blob {\n\n cylinder { 0, 0, 1, 1 } }", "blob cylinder needs two different end points", 3},
+        {"blob { threshold 1 }", "a blob needs at least one sphere or cylinder component", 1},
+        {"blob {\n sphere { 0, -1, 1 } }", "blob component radius must be positive, got -1", 2},
+        {"blob { threshold -1 sphere { 0, 1, 1 } }", "the blob threshold must be positive, got -1", 1},
+        {"blob {\n\n cylinder { 0, 0, 1, 1 } }", "a blob cylinder needs two different end points", 3},
     };
     for (const auto& c : cases) {
         Diagnostics diags;

@@ -259,7 +259,7 @@ TEST(CameraMapping, PovFrontEndErrorsAndIgnoredBlur) {
     Diagnostics bad;
     EXPECT_FALSE(loadPov("camera { cylinder 5 }", bad));
     EXPECT_NE(bad.formatAll().find("m.pov:1:19"), std::string::npos) << bad.formatAll();
-    EXPECT_NE(bad.formatAll().find("cylinder camera type"), std::string::npos) << bad.formatAll();
+    EXPECT_NE(bad.formatAll().find("invalid cylinder camera type: valid are types 1 to 4, got 5"), std::string::npos) << bad.formatAll();
     Diagnostics negative;
     EXPECT_FALSE(loadPov("camera { fisheye angle -10 }", negative));
     EXPECT_NE(negative.formatAll().find("m.pov:1:24"), std::string::npos) << negative.formatAll();

@@ -181,6 +181,27 @@ TEST(ImageIo, CheckWritableCatchesProblemsEarly) {
     EXPECT_NE(checkWritable(dir + "/sub.png"), "");
 }
 
+// checkWritable accepts the common formats without waiting for the
+// OpenImageIO module (it may still be loading in the background): each of them
+// must then really be written and read back by it, whatever the letter case.
+TEST(ImageIo, FormatsAcceptedBeforeTheModuleLoadsAreWritten) {
+    loadImageIoInBackground(); // as a render does; the operations below wait for it
+    loadImageIoInBackground(); // a second call changes nothing
+    const std::string dir = test::tempDir();
+    Image image(6, 4, 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        image.pixels[i] = float(i % 5) / 5.0f;
+    for (const char* name : {"a.png", "a.jpg", "a.JPEG", "a.tif", "a.tiff", "a.exr", "a.hdr"}) {
+        const std::string path = dir + "/" + name;
+        EXPECT_EQ(checkWritable(path), "") << name;
+        ASSERT_EQ(writeImage(path, image), "") << name;
+        Image back;
+        ASSERT_EQ(readImage(path, back), "") << name;
+        EXPECT_EQ(back.width, 6) << name;
+        EXPECT_EQ(back.height, 4) << name;
+    }
+}
+
 TEST(ImageIo, ReadErrorsNameTheFile) {
     const std::string dir = test::tempDir();
     Image image;

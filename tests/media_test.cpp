@@ -409,7 +409,7 @@ TEST(PovMedia, ABadScatteringTypeIsAnErrorWithItsLocation) {
         loadPovSceneText("media {\n  scattering { 7, 0.1 } }", "s.pov", diags, PovOptions{});
     EXPECT_FALSE(s);
     ASSERT_GE(diags.errorCount(), 1);
-    EXPECT_EQ(diags.all()[0].message, "scattering type must be 1, 2, 3, 4 or 5");
+    EXPECT_EQ(diags.all()[0].message, "the scattering type must be 1, 2, 3, 4 or 5, got 7");
     EXPECT_EQ(diags.all()[0].loc.line, 2);
     EXPECT_EQ(diags.all()[0].loc.column, 16);
 }

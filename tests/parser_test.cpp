@@ -519,7 +519,7 @@ TEST(Parser, ErrorInIncludedFileShowsTheIncludeChain) {
     EXPECT_FALSE(loadSceneFile(main, diags));
     ASSERT_EQ(diags.errorCount(), 1);
     const Diagnostic& d = diags.all()[0];
-    EXPECT_EQ(d.message, "sphere radius must be positive");
+    EXPECT_EQ(d.message, "sphere radius must be positive, got -1");
     EXPECT_EQ(d.loc.line, 2);
     EXPECT_EQ(d.loc.column, 13);
     ASSERT_EQ(d.includedFrom.size(), 2u);

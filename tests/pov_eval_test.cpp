@@ -208,7 +208,7 @@ TEST_P(PovErrors, MessageAndLocation) {
 INSTANTIATE_TEST_SUITE_P(
     All, PovErrors,
     testing::Values(
-        ErrorCase{"Undeclared", "#declare A = 1;\n#declare B = A + Bogus;", "undeclared identifier 'Bogus'", 2, 18},
+        ErrorCase{"Undeclared", "#declare A = 1;\n#declare B = A + Bogus;", "unknown identifier 'Bogus'", 2, 18},
         ErrorCase{"DivisionByZero", "#declare A = 1 / 0;", "division by zero", 1, 16},
         ErrorCase{"MissingEnd", "#if (1)\n#declare A = 1;\n", "no matching #end", 1, 1},
         ErrorCase{"StrayEnd", "\n  #end", "#end without", 2, 3},
@@ -222,7 +222,7 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"WrongType", "#declare A = \"s\" + 1;", "strings are joined with concat()", 1, 18},
         ErrorCase{"MissingInclude", "#include \"nothere.inc\"", "cannot find include file", 1, 10},
         ErrorCase{"UnknownKeyword", "sphre { 0, 1 }", "did you mean 'sphere'", 1, 1},
-        ErrorCase{"BadObjectItem", "sphere { 0, 1 pigmnt { rgb 1 } }", "expected an object modifier", 1, 15},
+        ErrorCase{"BadObjectItem", "sphere { 0, 1 pigmnt { rgb 1 } }", "unknown keyword 'pigmnt'; did you mean 'pigment'?", 1, 15},
         ErrorCase{"UnterminatedString", "#declare S = \"abc\n;", "unterminated string", 1, 14}));
 
 TEST(PovEval, ErrorInsideIncludeShowsTheChain) {
@@ -240,7 +240,7 @@ TEST(PovEval, ErrorInsideIncludeShowsTheChain) {
     const std::string text = diags.format(d);
     EXPECT_NE(text.find("In file included from " + scene + ":2:"), std::string::npos) << text;
     EXPECT_NE(text.find("outer.inc:1:"), std::string::npos) << text;
-    EXPECT_NE(text.find("inner.inc:2:14: error: undeclared identifier 'oops'"), std::string::npos) << text;
+    EXPECT_NE(text.find("inner.inc:2:14: error: unknown identifier 'oops'"), std::string::npos) << text;
 }
 
 } // namespace

@@ -100,7 +100,7 @@ TEST(PovExtrusion, MissingFontIsAnErrorWithItsLocation) {
     EXPECT_FALSE(load("#declare F = \"nofont.ttf\";\ntext { ttf F \"a\" 1, 0 }", diags));
     ASSERT_EQ(diags.errorCount(), 1);
     const Diagnostic& d = diags.all().back();
-    EXPECT_EQ(d.message, "cannot find font file \"nofont.ttf\" (searched the scene's folder and the -L paths)");
+    EXPECT_EQ(d.message.rfind("cannot find font 'nofont.ttf' (looked in ", 0), 0u) << d.message;
     EXPECT_EQ(d.loc.line, 2);
     EXPECT_EQ(d.loc.column, 12);
 }

@@ -5,7 +5,9 @@
 #include "animation/ini.h"
 #include "cli/app.h"
 #include "cli/commands.h"
+#include "image/image.h"
 #include "lang/load.h"
+#include "lang/writer.h"
 #include "pov/load.h"
 #include "render/camera_path.h"
 #include "render/light_path.h"
@@ -33,7 +35,9 @@ void expectNear(const Vec3& a, const Vec3& b, double tolerance = 1e-9) {
 
 Scene parseDrt(const std::string& text, const FrameClock& frame = {}) {
     Diagnostics d;
-    std::optional<Scene> s = loadSceneText(text, "t.drt", d, ".", frame);
+    LoadOptions o;
+    o.frame = frame;
+    std::optional<Scene> s = loadSceneText(text, "t.drt", d, o);
     EXPECT_FALSE(d.hasErrors()) << d.formatAll();
     return s ? *s : Scene{};
 }
@@ -69,14 +73,68 @@ TEST(Time, CameraAndLightMotionInBothDialects) {
                             "area_light x, z, 2, 2 }\n";
     for (const Scene& s : {parseDrt(drt), parsePov(pov)}) {
         ASSERT_EQ(s.camera.motion.size(), 1u);
-        expectNear(placementAt(s.camera.transform, s.camera.motion, 1).point({0, 0, 0}),
-                   Transform::rotate({0, 30, 0}).point({1, 0, 0}) + Vec3{0, 2, 0});
+        // The transform before the motion places the camera; the motion and
+        // the transform after it move it over time.
+        const CameraPath path(s, 40, 30);
+        expectNear(path.at(0).location, {1, 3, -5});
+        expectNear(path.at(1).location, Transform::rotate({0, 30, 0}).point({1, 1, -5}) + Vec3{0, 2, 0});
         ASSERT_EQ(s.lights.size(), 1u);
         ASSERT_TRUE(lightMoves(s.lights[0]));
         expectNear(lightAt(s.lights[0], 0).position, {1, 5, 0});
         expectNear(lightAt(s.lights[0], 0.5).position, {3, 5, 0});
         EXPECT_FALSE(lightMoves(lightAt(s.lights[0], 0.5)));
     }
+}
+
+TEST(Time, ConvertKeepsCameraAndLightMotion) {
+    // A POV-Ray scene's moving camera and lights, written as .drt and read
+    // back: the same poses at every time.
+    const Scene pov = parsePov("camera { location <0, 1, -5> look_at <0, 1, 0> translate <1, 0, 0> "
+                               "motion { at 0.5 rotate y*20 at 1 rotate y*50 translate x } translate <0, 2, 0> "
+                               "shutter_open 0 shutter_close 1 }\n"
+                               "light_source { <0, 5, 0>, rgb 1 area_light x, z, 2, 2 motion { rotate y*90 } "
+                               "translate z }\n"
+                               "union { light_source { <1, 4, 0>, rgb 0.5 motion { translate x } } "
+                               "sphere { 0, 1 } translate y }\n");
+    const std::string text = writeDrtScene(pov);
+    const Scene drt = parseDrt(text);
+    ASSERT_EQ(drt.lights.size(), 2u) << text;
+    const CameraPath a(pov, 40, 30), b(drt, 40, 30);
+    for (double t : {0.0, 0.3, 0.5, 0.8, 1.0}) {
+        expectNear(a.at(t).location, b.at(t).location);
+        expectNear(a.at(t).direction, b.at(t).direction);
+        expectNear(a.at(t).up, b.at(t).up);
+        for (size_t i = 0; i < 2; ++i) {
+            expectNear(lightAt(pov.lights[i], t).position, lightAt(drt.lights[i], t).position);
+        }
+        expectNear(lightAt(drt.lights[0], t).area->axis1, Transform::rotate({0, 90 * t, 0}).vector({1, 0, 0}));
+    }
+    // A light in a union: the union's transform goes after the light's motion.
+    expectNear(lightAt(drt.lights[1], 1).position, {2, 5, 0});
+    // The looks_like shape of a moving light moves with it.
+    const Scene looks = parsePov("light_source { <0, 3, 0>, rgb 1 looks_like { sphere { 0, 0.2 } } "
+                                 "motion { translate x } translate y }\n");
+    ASSERT_EQ(looks.objects.size(), 1u);
+    const Object& shape = looks.objects[0];
+    expectNear(placementAt(shape.transform, shape.motion, 1).point({0, 0, 0}), lightAt(looks.lights[0], 1).position);
+}
+
+TEST(Time, CameraAndLightMotionErrorsAreLocated) {
+    const auto firstError = [](const std::string& text, const std::string& name) {
+        Diagnostics d;
+        EXPECT_FALSE(loadSceneText(text, name, d, LoadOptions{}));
+        return d.all().empty() ? std::string() : d.formatAll();
+    };
+    EXPECT_NE(firstError("camera { location <0, 0, -5>\n  motion { at 1.5 rotate y*10 } }\n", "c.drt")
+                  .find("c.drt:2:15: error: motion key times must be in [0, 1]"),
+              std::string::npos);
+    EXPECT_NE(firstError("light_source { <0, 5, 0>, rgb 1 motion { wobble x } }\n", "l.drt")
+                  .find("l.drt:1:42: error:"),
+              std::string::npos);
+    EXPECT_NE(firstError("light_source { <0, 3, 0>, rgb 1 motion { translate x }\n  looks_like { sphere { 0, 1 } } }\n",
+                         "k.pov")
+                  .find("k.pov:2:3: error: 'looks_like' after 'motion'"),
+              std::string::npos);
 }
 
 TEST(Time, ObjectMotionInThePovDialect) {
@@ -88,8 +146,11 @@ TEST(Time, ObjectMotionInThePovDialect) {
     ASSERT_EQ(o.motion.size(), 1u);
     EXPECT_EQ(o.motion[0].motion.keys.size(), 3u);
     expectNear(placementAt(o.transform, o.motion, 0.25).point({3, 0, 0}), {3, 0, 0}); // spins about its centre
-    const auto& member = std::get<Csg>(s.objects[1].shape).children.at(0);
-    EXPECT_EQ(member.motion.size(), 1u);
+    // A union holding a moving member becomes its members, each with the
+    // union's transforms after its own motion.
+    const Object& member = s.objects[1];
+    ASSERT_EQ(member.motion.size(), 1u);
+    expectNear(placementAt(member.transform, member.motion, 1).point({0, 0, 0}), {1, 1, 0});
 }
 
 TEST(Time, ClockIdentifiersInBothDialects) {
@@ -250,10 +311,9 @@ TEST(Time, IniFilesGiveTheAnimation) {
 
 SceneEvaluator textEvaluator(const std::string& text, bool pov = false) {
     return [text, pov](const FrameClock& frame, Diagnostics& d) -> std::optional<Scene> {
-        if (!pov) return loadSceneText(text, "t.drt", d, ".", frame);
-        PovOptions o;
+        LoadOptions o;
         o.frame = frame;
-        return loadPovSceneText(text, "t.pov", d, o);
+        return loadSceneText(text, pov ? "t.pov" : "t.drt", d, o);
     };
 }
 
@@ -352,11 +412,14 @@ struct TempDir {
     ~TempDir() { fs::remove_all(path); }
 };
 
-std::string fileBytes(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
+// The pixels of an image file (its metadata holds the render time, so the
+// files themselves differ).
+std::vector<float> filePixels(const fs::path& p) {
+    Image image;
+    const std::string problem = readImage(p.string(), image);
+    EXPECT_EQ(problem, "") << p;
+    EXPECT_FALSE(image.pixels.empty()) << p;
+    return image.pixels;
 }
 
 int renderCli(std::vector<std::string> args, std::string* errors = nullptr) {
@@ -378,31 +441,39 @@ TEST(Time, FrameKOfARunIsTheOneFrameRenderAtItsClockByteForByte) {
                             "light_source { <-3, 5, -3>, rgb 1 }\n"
                             "sphere { <0, 0.5, 0>, 0.5 pigment { rgb <1, 0.4, 0.2> } translate <clock * 2 - 1, 0, 0> }\n"
                             "box { <-2, -0.1, -1>, <2, 0, 3> pigment { checker rgb 1, rgb 0.3 } rotate y * 90 * clock }\n";
-    ASSERT_EQ(renderCli({scene.string(), "-o", (dir.path / "f_%02d.png").string(), "--frames", "0..9", "--clock", "0..1",
+    ASSERT_EQ(renderCli({scene.string(), "-o", (dir.path / "f_%02d.exr").string(), "--frames", "0..9", "--clock", "0..1",
                          "-q"}),
               0);
-    for (int k = 0; k <= 9; ++k) ASSERT_TRUE(fs::exists(dir.path / fmt::format("f_{:02d}.png", k))) << k;
+    for (int k = 0; k <= 9; ++k) ASSERT_TRUE(fs::exists(dir.path / fmt::format("f_{:02d}.exr", k))) << k;
+    // Whatever the thread count and tile size.
+    ASSERT_EQ(renderCli({scene.string(), "-o", (dir.path / "t_%02d.exr").string(), "--frames", "0..9", "--clock",
+                         "0..1", "--threads", "1", "--tile-size", "5", "-q"}),
+              0);
+    for (int k = 0; k <= 9; ++k)
+        EXPECT_EQ(filePixels(dir.path / fmt::format("t_{:02d}.exr", k)),
+                  filePixels(dir.path / fmt::format("f_{:02d}.exr", k)))
+            << k;
     for (int k : {0, 4, 9}) {
-        const fs::path one = dir.path / fmt::format("one_{}.png", k);
+        const fs::path one = dir.path / fmt::format("one_{}.exr", k);
         ASSERT_EQ(renderCli({scene.string(), "-o", one.string(), "--clock", fmt::format("{:.17g}", k / 9.0), "-q"}), 0);
-        EXPECT_EQ(fileBytes(one), fileBytes(dir.path / fmt::format("f_{:02d}.png", k))) << k;
+        EXPECT_EQ(filePixels(one), filePixels(dir.path / fmt::format("f_{:02d}.exr", k))) << k;
     }
     // With motion blur from the clock: a frame alone (its subset) is the same frame.
-    ASSERT_EQ(renderCli({scene.string(), "-o", (dir.path / "b_%d.png").string(), "--frames", "0..9", "--shutter",
+    ASSERT_EQ(renderCli({scene.string(), "-o", (dir.path / "b_%d.exr").string(), "--frames", "0..9", "--shutter",
                          "0.5", "--subset", "3..5", "-q"}),
               0);
-    ASSERT_EQ(renderCli({scene.string(), "-o", (dir.path / "alone.png").string(), "--frames", "0..9", "--shutter",
+    ASSERT_EQ(renderCli({scene.string(), "-o", (dir.path / "alone.exr").string(), "--frames", "0..9", "--shutter",
                          "0.5", "--subset", "4..4", "-q"}),
               0);
-    EXPECT_EQ(fileBytes(dir.path / "alone.png"), fileBytes(dir.path / "b_4.png"));
-    EXPECT_FALSE(fs::exists(dir.path / "b_2.png"));
+    EXPECT_EQ(filePixels(dir.path / "alone.exr"), filePixels(dir.path / "b_4.exr"));
+    EXPECT_FALSE(fs::exists(dir.path / "b_2.exr"));
     // ... and the one-frame render at its clock and clock step.
-    ASSERT_EQ(renderCli({scene.string(), "-o", (dir.path / "one_blur.png").string(), "--clock",
+    ASSERT_EQ(renderCli({scene.string(), "-o", (dir.path / "one_blur.exr").string(), "--clock",
                          fmt::format("{:.17g}", 4 / 9.0), "--clock-delta", fmt::format("{:.17g}", 1 / 9.0),
                          "--shutter", "0.5", "-q"}),
               0);
-    EXPECT_EQ(fileBytes(dir.path / "one_blur.png"), fileBytes(dir.path / "b_4.png"));
-    EXPECT_NE(fileBytes(dir.path / "b_4.png"), fileBytes(dir.path / "f_04.png")); // the blur is there
+    EXPECT_EQ(filePixels(dir.path / "one_blur.exr"), filePixels(dir.path / "b_4.exr"));
+    EXPECT_NE(filePixels(dir.path / "b_4.exr"), filePixels(dir.path / "f_04.exr")); // the blur is there
 }
 
 TEST(Time, IniAnimationsAndTimeErrorsOnTheCommandLine) {
@@ -431,6 +502,21 @@ TEST(Time, IniAnimationsAndTimeErrorsOnTheCommandLine) {
     std::ofstream(dir.path / "noscene.ini") << "Final_Frame=3\n";
     EXPECT_EQ(renderCli({(dir.path / "noscene.ini").string(), "-o", "x.png"}, &err), 1);
     EXPECT_NE(err.find("no Input_File_Name"), std::string::npos) << err;
+    EXPECT_EQ(renderCli({(dir.path / "spin.pov").string(), "-o", "x.png", "--frames", "1..5", "--subset", "7..9"},
+                        &err),
+              2);
+    EXPECT_NE(err.find("holds no frame of 1..5"), std::string::npos) << err;
+    EXPECT_EQ(renderCli({(dir.path / "spin.pov").string(), "--frames", "1..5"}, &err), 2);
+    EXPECT_NE(err.find("--output is required"), std::string::npos) << err;
+    // The .ini's Output_File_Name when no -o is given; neither is an error.
+    std::ofstream(dir.path / "named.ini") << "Input_File_Name=spin.pov\nOutput_File_Name=named_.png\nWidth=8\n"
+                                             "Height=6\nInitial_Frame=1\nFinal_Frame=2\n";
+    ASSERT_EQ(renderCli({(dir.path / "named.ini").string(), "--spp", "1", "-q"}, &err), 0) << err;
+    EXPECT_TRUE(fs::exists(dir.path / "named_1.png"));
+    EXPECT_TRUE(fs::exists(dir.path / "named_2.png"));
+    std::ofstream(dir.path / "unnamed.ini") << "Input_File_Name=spin.pov\nFinal_Frame=2\n";
+    EXPECT_EQ(renderCli({(dir.path / "unnamed.ini").string()}, &err), 2);
+    EXPECT_NE(err.find("no Output_File_Name and no --output"), std::string::npos) << err;
 }
 
 } // namespace

@@ -35,15 +35,19 @@ double determinant3(const Mat4& m) {
 
 AnalyticShape prepare(const Object& object) {
     try {
-        return *prepareShape(object.shape);
+        std::optional<AnalyticShape> shape = prepareShape(object.shape);
+        // Every shape not traced as triangles needs an entry in prepareShape (accel/shapes.cpp).
+        if (!shape) fail(object, "this shape has no intersection code");
+        return *shape;
     } catch (const std::invalid_argument& e) {
         fail(object, e.what());
     }
 }
 
-bool isAnalytic(const Shape& shape) {
-    return !std::holds_alternative<Mesh>(shape) && !std::holds_alternative<Csg>(shape) &&
-           !std::holds_alternative<Box>(shape);
+// Meshes and boxes go to Embree as triangles (CSG is split into its members
+// before this is asked); every other shape is traced by accel/shapes.cpp.
+bool tracedAsTriangles(const Shape& shape) {
+    return std::holds_alternative<Mesh>(shape) || std::holds_alternative<Box>(shape);
 }
 
 // Where a moving object is put (scene/motion.h): `placed` replaces
@@ -233,7 +237,7 @@ struct Builder {
         }
         for (CsgNode& clip : clipNodes(object, parentToLevel, where)) clips.push_back(std::move(clip));
         // A clipped box is traced as an analytic shape, so that its hits can be filtered.
-        if (!isAnalytic(object.shape) && !(!clips.empty() && std::holds_alternative<Box>(object.shape))) {
+        if (tracedAsTriangles(object.shape) && !(!clips.empty() && std::holds_alternative<Box>(object.shape))) {
             // Clipped meshes are filtered by Embree (embree_geometry.cpp), in the top level only.
             if (!clips.empty() && &level != &impl.top)
                 fail(object, "clipped_by on a moving mesh or triangle is not supported yet");

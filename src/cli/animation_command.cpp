@@ -68,6 +68,14 @@ int runAnimation(const RenderCommand& given, std::ostream& err,
             }
             command.scene = *ini->input;
         }
+        if (command.output.empty()) {
+            if (!ini->output) {
+                err << fmt::format("drt: {}: no Output_File_Name and no --output: where would the frames go?\n",
+                                   iniPath);
+                return kUsageError;
+            }
+            command.output = *ini->output;
+        }
         if (!command.overrides.width && ini->width) command.overrides.width = *ini->width;
         if (!command.overrides.height && ini->height) command.overrides.height = *ini->height;
         command.pov.includePaths.insert(command.pov.includePaths.end(), ini->libraryPaths.begin(),

@@ -57,8 +57,8 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("scene", a.command.scene, "Scene file (.drt or .pov)")->required();
     render
         ->add_option("-o,--output", a.command.output,
-                     "Output image; the extension picks the format (.png .jpg .tif: sRGB, .exr .hdr: linear)")
-        ->required();
+                     "Output image; the extension picks the format (.png .jpg .tif: sRGB, .exr .hdr: linear). "
+                     "Required, unless a POV-Ray .ini gives Output_File_Name");
     render->add_option("--width", a.width, "Image width in pixels (overrides the scene)")
         ->check(CLI::PositiveNumber);
     render->add_option("--height", a.height, "Image height in pixels (overrides the scene)")
@@ -119,6 +119,9 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
         ->check(CLI::Range(0.0, 1.0));
     render->add_option("--ini", a.command.animation.ini,
                        "POV-Ray .ini file with the animation options (a SCENE ending in .ini is read so too)");
+    render->add_option("--dialect", a.command.pov.dialect,
+                       "Read the scene as .drt or .pov whatever its extension (default: .pov, .inc, .mac are POV-Ray's)")
+        ->check(CLI::IsMember({"drt", "pov"}));
     return render;
 }
 
@@ -194,6 +197,10 @@ bool fillTime(CLI::App& render, RenderArguments& a, std::ostream& err) {
         err << "drt render: --subset needs a frame range (--frames A..B)\n";
         return false;
     }
+    if (a.command.output.empty() && !ini) { // an .ini may name the output
+        err << "drt render: --output is required\n";
+        return false;
+    }
     return true;
 }
 
@@ -267,6 +274,9 @@ int runCommandLine(int argc, char** argv) {
     check->add_option("-L,--include-path", checkPov.includePaths,
                       "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");
     check->add_flag("--strict", checkPov.strict, "POV-Ray scenes: unsupported features are errors");
+    check->add_option("--dialect", checkPov.dialect,
+                      "Read the scene as .drt or .pov whatever its extension (default: .pov, .inc, .mac are POV-Ray's)")
+        ->check(CLI::IsMember({"drt", "pov"}));
     BenchCommand benchCommand;
     CLI::App* bench = addBenchSubcommand(app, benchCommand);
     ConvertCommand convertCommand;

@@ -31,9 +31,11 @@ namespace drt::cli {
 enum ExitCode { kSuccess = 0, kSceneError = 1, kUsageError = 2, kIoError = 3 };
 
 // Options of the POV-Ray front end (pov/load.h) for .pov scenes: -L and --strict.
+// How the front end reads a scene (both dialects).
 struct PovCliOptions {
     std::vector<std::string> includePaths; // searched after the scene's folder
     bool strict = false;                   // warnings become errors
+    std::string dialect;                   // "drt", "pov", or "": from the file's extension
 };
 
 // Time on the command line (cli/animation_command.cpp): a frame range, the

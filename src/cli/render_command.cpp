@@ -6,10 +6,10 @@
 
 #include "cli/paths.h"
 #include "cli/progress.h"
+#include "accel/geometry_query.h"
 #include "cli/render_parts.h"
 #include "distributed/checkpoint.h"
 #include "lang/load.h"
-#include "pov/load.h"
 #include "render/camera.h"
 #include "sampling/sampler.h"
 
@@ -39,29 +39,26 @@ bool looksBinary(const std::string& path) {
 
 } // namespace
 
-// The front end for `path` as a function of the frame's clock: the .drt or
-// POV-Ray front end, then the files the scene names.
+// The front end for `path` as a function of the frame's clock: one front end
+// for both dialects, then the files the scene names. The scene sees the image
+// size it will be rendered at.
 SceneEvaluator sceneEvaluator(const std::string& path, const PovCliOptions& pov, const RenderSettings& overrides) {
     return [path, pov, overrides](const FrameClock& frame, Diagnostics& diagnostics) -> std::optional<Scene> {
-        std::optional<Scene> scene;
-        if (lowerExtension(path) == ".pov" || lowerExtension(path) == ".inc") {
-            // POV-Ray front end: the scene sees the image size it will be rendered at.
-            PovOptions options;
-            options.strict = pov.strict;
-            options.frame = frame;
-            if (!pov.includePaths.empty()) {
-                const std::string dir = fs::path(path).parent_path().string();
-                options.includePaths.push_back(dir.empty() ? "." : dir);
-                options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(),
-                                            pov.includePaths.end());
-                options.includePaths.push_back(kPovStandardIncludeDir);
-            }
-            if (overrides.width) options.imageWidth = *overrides.width;
-            if (overrides.height) options.imageHeight = *overrides.height;
-            scene = loadPovSceneFile(path, diagnostics, options);
-        } else {
-            scene = loadSceneFile(path, diagnostics, frame);
+        LoadOptions options;
+        if (!pov.dialect.empty()) options.dialect = dialectNamed(pov.dialect);
+        options.strict = pov.strict;
+        options.frame = frame;
+        if (!pov.includePaths.empty()) {
+            const std::string dir = fs::path(path).parent_path().string();
+            options.includePaths.push_back(dir.empty() ? "." : dir);
+            options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(), pov.includePaths.end());
+            options.includePaths.push_back(kPovStandardIncludeDir);
         }
+        if (overrides.width) options.imageWidth = *overrides.width;
+        if (overrides.height) options.imageHeight = *overrides.height;
+        const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+        options.geometry = geometry.get();
+        std::optional<Scene> scene = drt::loadScene(path, diagnostics, options);
         if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
         return scene;
     };

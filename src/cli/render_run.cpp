@@ -17,6 +17,7 @@
 #include "distributed/checkpoint.h"
 #include "distributed/crop_merge.h"
 #include "distributed/mpi_render.h"
+#include "image/image.h"
 
 #include <chrono>
 #include <condition_variable>
@@ -228,11 +229,16 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
     }
 
     std::optional<ProgressLine> progress;
-    std::function<void(double)> report;
-    if (rank0 && command.progress && !command.quiet) {
-        progress.emplace(err);
-        report = [&progress](double fraction) { progress->update(fraction); };
-    }
+    if (rank0 && command.progress && !command.quiet) progress.emplace(err);
+    // The image module loads while the render runs rather than before or after
+    // it, from the first finished tile on: by then the render's threads run.
+    // Not earlier: while dlopen runs, starting a thread or a TBB arena waits for
+    // it (each takes the dynamic loader's lock).
+    std::atomic<bool> loadRequested{false};
+    const std::function<void(double)> report = [&progress, &loadRequested, rank0](double fraction) {
+        if (rank0 && !loadRequested.exchange(true)) loadImageIoInBackground();
+        if (progress) progress->update(fraction);
+    };
     const auto start = std::chrono::steady_clock::now();
     std::optional<RenderState> state;
     status = kSuccess;
@@ -318,6 +324,7 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
 } // namespace
 
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
+    (void)out;
     std::optional<MpiJob> mpi;
     if (MpiJob::launched()) {
         if (!MpiJob::available()) {

@@ -34,6 +34,14 @@ void Diagnostics::report(Severity s, SourceLoc loc, std::string message, std::ve
     diagnostics_.push_back({s, loc, std::move(message), std::move(includedFrom)});
 }
 
+void Diagnostics::attachNote(SourceLoc loc, std::string message, std::vector<SourceLoc> includedFrom) {
+    if (diagnostics_.empty()) {
+        report(Severity::Note, loc, std::move(message), std::move(includedFrom));
+        return;
+    }
+    diagnostics_.back().notes.push_back({Severity::Note, loc, std::move(message), std::move(includedFrom), {}});
+}
+
 static const char* severityName(Severity s) {
     switch (s) {
     case Severity::Note: return "note";
@@ -47,7 +55,11 @@ std::string Diagnostics::format(const Diagnostic& d) const {
     std::string out;
     for (auto it = d.includedFrom.rbegin(); it != d.includedFrom.rend(); ++it)
         if (it->valid()) out += fmt::format("In file included from {}:{}:\n", files_->path(it->file), it->line);
-    if (!d.loc.valid()) return out + fmt::format("drt: {}: {}\n", severityName(d.severity), d.message);
+    if (!d.loc.valid()) {
+        out += fmt::format("drt: {}: {}\n", severityName(d.severity), d.message);
+        for (const Diagnostic& n : d.notes) out += format(n);
+        return out;
+    }
     out += fmt::format("{}:{}:{}: {}: {}\n", files_->path(d.loc.file), d.loc.line, d.loc.column,
                        severityName(d.severity), d.message);
     if (!files_->quotable(d.loc.file)) return out;
@@ -67,6 +79,7 @@ std::string Diagnostics::format(const Diagnostic& d) const {
     for (size_t i = 0; i < column && i < src.size(); ++i)
         caret += (src[i] == '\t') ? '\t' : ' ';
     out += fmt::format("  {}\n  {}^\n", src, caret);
+    for (const Diagnostic& n : d.notes) out += format(n);
     return out;
 }
 

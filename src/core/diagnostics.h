@@ -51,6 +51,9 @@ struct Diagnostic {
     std::string message;
     // "included from" chain, innermost first.
     std::vector<SourceLoc> includedFrom;
+    // Notes that belong to this diagnostic ("the 'sphere' opened here is not
+    // closed"), printed right after it.
+    std::vector<Diagnostic> notes;
 };
 
 class Diagnostics {
@@ -62,6 +65,8 @@ public:
     void warning(SourceLoc loc, std::string message) { report(Severity::Warning, loc, std::move(message)); }
     void note(SourceLoc loc, std::string message) { report(Severity::Note, loc, std::move(message)); }
     void report(Severity s, SourceLoc loc, std::string message, std::vector<SourceLoc> includedFrom = {});
+    // Adds a note to the last diagnostic reported (a plain note when there is none).
+    void attachNote(SourceLoc loc, std::string message, std::vector<SourceLoc> includedFrom = {});
 
     // Warnings become errors (POV front end's --strict).
     void setWarningsAsErrors(bool on) { warningsAsErrors_ = on; }

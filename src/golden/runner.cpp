@@ -4,6 +4,7 @@
 // spreads its tiles over the cores, and TBB shares the threads between them.
 #include "golden/golden.h"
 
+#include "animation/animation.h"
 #include "assets/assets.h"
 #include "lang/load.h"
 #include "render/render.h"
@@ -134,9 +135,17 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
         result.message = fmt::format("{}: no such scene file", scenePath);
         return false;
     }
+    // The still frame `drt render` gives: clock 0, and with the shutter open
+    // a scene that reads `clock` moves as its clock says (animation/animation.h).
+    const SceneEvaluator evaluate = [&scenePath](const FrameClock& frame, Diagnostics& d) {
+        LoadOptions options;
+        options.frame = frame;
+        std::optional<Scene> evaluated = loadScene(scenePath, d, options);
+        if (evaluated && !d.hasErrors()) resolveAssets(*evaluated, d);
+        return evaluated;
+    };
     Diagnostics diagnostics;
-    std::optional<Scene> scene = loadSceneFile(scenePath, diagnostics);
-    if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+    std::optional<Scene> scene = evaluateFrame(evaluate, FrameClock{}, {}, diagnostics);
     if (diagnostics.hasErrors() || !scene) {
         result.message = fmt::format("{}: the scene has {} error{}", scenePath, diagnostics.errorCount(),
                                      diagnostics.errorCount() == 1 ? "" : "s");

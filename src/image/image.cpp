@@ -20,6 +20,8 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <mutex>
+#include <thread>
 #include <system_error>
 #include <unistd.h>
 #include <vector>
@@ -50,6 +52,18 @@ std::vector<std::string> moduleCandidates() {
     candidates.push_back(DRT_OIIO_MODULE_BUILD_PATH);
 #endif
     return candidates;
+}
+
+// Why no candidate can be loaded, as far as looking at the files tells:
+// "" when one exists.
+std::string moduleFilesMissing() {
+    std::string listed;
+    for (const std::string& path : moduleCandidates()) {
+        std::error_code ec;
+        if (fs::exists(path, ec)) return "";
+        listed += "\n  " + path + ": no such file";
+    }
+    return std::string("cannot load drt's OpenImageIO module ") + kImageIoModuleFile + ":" + listed;
 }
 
 LoadedModule load() {
@@ -87,6 +101,24 @@ const LoadedModule& imageIo() {
     return loaded;
 }
 
+// The background load of loadImageIoInBackground(), joined when the process ends.
+struct BackgroundLoad {
+    std::thread thread;
+    ~BackgroundLoad() {
+        if (thread.joinable()) thread.join();
+    }
+};
+
+// Formats that every OpenImageIO build writes (its core plugins): an output
+// with one of these extensions is accepted without asking the module, which
+// may still be loading. Any other extension is asked of the module.
+bool coreFormat(const std::string& extension) {
+    static const char* const kCore[] = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".exr", ".hdr"};
+    for (const char* core : kCore)
+        if (extension == core) return true;
+    return false;
+}
+
 // A name for the temporary file beside `path`, unique within this machine
 // (pid) and this process (counter). It keeps no extension: the writer is
 // chosen from the real path.
@@ -107,12 +139,17 @@ std::string checkWritable(const std::string& path) {
         return "no output file given";
     if (fs::path(path).filename().empty())
         return "'" + path + "' names a folder, not a file";
-    const LoadedModule& io = imageIo();
-    if (!io.module)
-        return io.error;
-    if (!io.module->hasWriter(path))
-        return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) +
-               "' (use .png, .jpg, .tif, .exr or .hdr)";
+    if (coreFormat(lowerExtension(path))) {
+        // Whether the module loads is known only once it has; a missing file is known now.
+        if (std::string missing = moduleFilesMissing(); !missing.empty()) return missing;
+    } else {
+        const LoadedModule& io = imageIo();
+        if (!io.module)
+            return io.error;
+        if (!io.module->hasWriter(path))
+            return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) +
+                   "' (use .png, .jpg, .tif, .exr or .hdr)";
+    }
     const fs::path folder = folderOf(path);
     std::error_code ec;
     if (!fs::exists(folder, ec))
@@ -133,6 +170,12 @@ std::string checkWritable(const std::string& path) {
     }
     fs::remove(probe, ec);
     return "";
+}
+
+void loadImageIoInBackground() {
+    static BackgroundLoad background;
+    static std::once_flag once;
+    std::call_once(once, [] { background.thread = std::thread([] { imageIo(); }); });
 }
 
 std::string writeImage(const std::string& path, const Image& image, const Metadata& metadata) {

@@ -23,8 +23,18 @@ struct Image {
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 
 // Fails early (before rendering) if `path` cannot be written: missing folder,
-// no permission, or an extension no OpenImageIO writer handles. Returns "" if fine.
+// no permission, no OpenImageIO module file, or an extension no OpenImageIO
+// writer handles. Returns "" if fine. The common formats (.png, .jpg, .tif,
+// .exr, .hdr) are accepted without waiting for the module to load, so a module
+// file that is present but cannot be loaded shows only at the first image
+// operation.
 std::string checkWritable(const std::string& path);
+
+// Starts loading the OpenImageIO module on a background thread, so that its
+// dynamic linking (about half a second of CPU with Debian's OpenImageIO and
+// the ~260 libraries it pulls in) overlaps a render instead of preceding it.
+// The first image operation waits for it. Calling it again does nothing.
+void loadImageIoInBackground();
 
 // Writes the image to a temporary file beside `path` and renames it over
 // `path` only when complete. 8-bit and 16-bit integer formats are sRGB-encoded

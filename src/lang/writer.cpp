@@ -5,6 +5,8 @@
 // if the result is identical (writer_detail.h).
 #include "lang/writer.h"
 
+#include "lang/keywords.h"
+#include "lang/shape_syntax.h"
 #include "lang/writer_detail.h"
 
 #include <algorithm>
@@ -22,53 +24,6 @@ using writer::vector;
 using namespace writer; // texture text (writer_texture.cpp)
 
 namespace {
-
-const char* cameraMappingKeyword(CameraMapping m) {
-    switch (m) {
-    case CameraMapping::Fisheye: return "fisheye";
-    case CameraMapping::UltraWideAngle: return "ultra_wide_angle";
-    case CameraMapping::Panoramic: return "panoramic";
-    case CameraMapping::Cylinder1: return "cylinder 1";
-    case CameraMapping::Cylinder2: return "cylinder 2";
-    case CameraMapping::Cylinder3: return "cylinder 3";
-    case CameraMapping::Cylinder4: return "cylinder 4";
-    case CameraMapping::Spherical: return "spherical";
-    case CameraMapping::Planar: break;
-    }
-    return "perspective";
-}
-
-// The parser normalises plane, disc and smooth-triangle normals. A unit
-// vector rarely normalises to itself to the last bit, so look for the short
-// direction the author most likely wrote (<0, 1, 1> for a 45-degree disc).
-Vec3 unnormalised(const Vec3& n) {
-    const double largest = maxComponent(abs(n));
-    if (!(largest > 0))
-        return n;
-    const Vec3 scaled = n / largest;
-    auto rounded = [&](double perUnit) {
-        auto r = [&](double v) { return std::round(v * perUnit) / perUnit; };
-        return Vec3(r(scaled.x), r(scaled.y), r(scaled.z));
-    };
-    for (const Vec3& c : {n, rounded(1e10), rounded(1e6), scaled})
-        if (length(c) > 0 && c / length(c) == n)
-            return c;
-    return n;
-}
-
-const char* csgKeyword(Csg::Op op) {
-    switch (op) {
-    case Csg::Op::Union:
-        return "union";
-    case Csg::Op::Merge:
-        return "merge";
-    case Csg::Op::Difference:
-        return "difference";
-    case Csg::Op::Intersection:
-        return "intersection";
-    }
-    return "union";
-}
 
 class SceneWriter {
   public:
@@ -92,9 +47,10 @@ class SceneWriter {
     void writeClips(const Object& o, const Transform& toWritten, int indent);
     void object(const Object& o, int indent);
     std::string shapeHead(const Object& o, int indent);
-    std::string meshText(const Mesh& m, int indent);
     void texture(const Texture& t, const std::string& pigment, const std::string& normal, int indent);
     static std::string motionText(const Motion& m);
+    // A camera's or light's motions, each with the transforms after it.
+    void motionLines(const MotionChain& chain, int indent);
     std::string placementText(const Object& o);
 
     WriterOptions options_;
@@ -200,10 +156,8 @@ void SceneWriter::settings(const Scene& scene) {
 void SceneWriter::camera(const CameraSpec& c) {
     const CameraSpec d;
     line(0, "camera {");
-    if (c.orthographic)
-        line(1, "orthographic");
-    if (c.mapping != CameraMapping::Planar)
-        line(1, cameraMappingKeyword(c.mapping));
+    if (c.orthographic || c.mapping != CameraMapping::Planar)
+        line(1, lang::cameraKeyword(c));
     line(1, "location " + vector(c.location));
     if (!(c.direction == d.direction))
         line(1, "direction " + vector(c.direction));
@@ -227,6 +181,7 @@ void SceneWriter::camera(const CameraSpec& c) {
         line(1, "shutter_open " + number(c.shutterOpen));
     if (c.shutterClose != d.shutterClose)
         line(1, "shutter_close " + number(c.shutterClose));
+    motionLines(c.motion, 1);
     line(0, "}");
     out_ += "\n";
 }
@@ -278,12 +233,20 @@ void SceneWriter::light(const Light& l) {
     if (l.area && !l.areaIllumination)
         line(1, "area_illumination off"); // a no-op without an area
     if (l.area && l.area->sampling != AreaSampling::Stratified)
-        line(1, l.area->sampling == AreaSampling::PovGrid ? "area_sampling pov_grid"
-                : l.area->sampling == AreaSampling::Grid  ? "area_sampling grid"
-                                                          : "area_sampling solid_angle");
+        line(1, std::string("area_sampling ") + lang::areaSamplingWord(l.area->sampling));
     if (l.inverseSquare)
         line(1, "inverse_square");
+    if (l.motion)
+        motionLines(l.motion->chain, 1);
     line(0, "}");
+}
+
+void SceneWriter::motionLines(const MotionChain& chain, int indent) {
+    for (const MotionStage& stage : chain) {
+        line(indent, motionText(stage.motion));
+        if (const std::vector<Step> after = decompose(stage.after); !after.empty())
+            line(indent, formatSteps(after).substr(1));
+    }
 }
 
 void SceneWriter::topLevelObject(const Object& o) {
@@ -352,11 +315,7 @@ void SceneWriter::object(const Object& o, int indent) {
             line(indent + 1, "no_shadow");
         if (o.hollow)
             line(indent + 1, "hollow");
-        for (const MotionStage& stage : o.motion) {
-            line(indent + 1, motionText(stage.motion));
-            if (const std::vector<Step> after = decompose(stage.after); !after.empty())
-                line(indent + 1, formatSteps(after).substr(1));
-        }
+        motionLines(o.motion, indent + 1);
         line(indent, "}");
         return;
     }
@@ -498,104 +457,11 @@ std::string SceneWriter::motionText(const Motion& m) {
     return text + " }";
 }
 
-// The opening of an object's block, through its fixed arguments.
+// The opening of an object's block, through its fixed arguments (each
+// shape's entry in shapes_*.cpp).
 std::string SceneWriter::shapeHead(const Object& o, int indent) {
-    struct Visitor {
-        SceneWriter& w;
-        int indent;
-        std::string operator()(const Sphere& s) const {
-            return "sphere { " + vector(s.center) + ", " + number(s.radius);
-        }
-        std::string operator()(const Plane& p) const {
-            // The parser divides both the normal and the distance by the normal's length.
-            const Vec3 n = unnormalised(p.normal);
-            const double len = length(n);
-            const double guess = p.distance * len;
-            double d = guess;
-            for (double c : {guess, std::nextafter(guess, INFINITY), std::nextafter(guess, -INFINITY)})
-                if (c / len == p.distance) {
-                    d = c;
-                    break;
-                }
-            return "plane { " + vector(n) + ", " + number(d);
-        }
-        std::string operator()(const Box& b) const {
-            return "box { " + vector(b.corner1) + ", " + vector(b.corner2);
-        }
-        std::string operator()(const Cylinder& c) const {
-            return "cylinder { " + vector(c.base) + ", " + vector(c.cap) + ", " + number(c.radius) +
-                   (c.open ? " open" : "");
-        }
-        std::string operator()(const Cone& c) const {
-            return "cone { " + vector(c.base) + ", " + number(c.baseRadius) + ", " + vector(c.cap) + ", " +
-                   number(c.capRadius) + (c.open ? " open" : "");
-        }
-        std::string operator()(const Disc& d) const {
-            return "disc { " + vector(d.center) + ", " + vector(unnormalised(d.normal)) + ", " +
-                   number(d.radius) + (d.holeRadius != 0 ? ", " + number(d.holeRadius) : "");
-        }
-        std::string operator()(const Torus& t) const {
-            return "torus { " + number(t.majorRadius) + ", " + number(t.minorRadius);
-        }
-        std::string operator()(const Algebraic& a) const { return algebraicHead(a); }
-        std::string operator()(const Superellipsoid& s) const { return superellipsoidHead(s); }
-        std::string operator()(const Mesh& m) const { return w.meshText(m, indent); }
-        std::string operator()(const Extrusion& e) const { return writer::extrusionText(e, indent, w.problems_); }
-        std::string operator()(const Revolution& r) const { return writer::revolutionText(r, indent); }
-        std::string operator()(const Blob& b) const { return writer::blobText(b, indent); }
-        std::string operator()(const Csg& c) const {
-            if (c.children.empty()) {
-                w.problems_.insert("a CSG with no members (left out)");
-                return "";
-            }
-            return std::string(csgKeyword(c.op)) + " {";
-        }
-    };
-    return std::visit(Visitor{*this, indent}, o.shape);
-}
-
-// A face normal exactly as the .drt parser computes it for a flat triangle.
-static Vec3 faceNormal(const Vec3& a, const Vec3& b, const Vec3& c) {
-    Vec3 n = cross(b - a, c - a);
-    return length(n) > 0 ? normalize(n) : n;
-}
-
-std::string SceneWriter::meshText(const Mesh& m, int indent) {
-    if (m.triangles.empty()) {
-        problems_.insert("a mesh with no triangles (left out)");
-        return "";
-    }
-    const bool hasNormals = !m.normals.empty() && m.normalIndices.size() == m.triangles.size();
-    auto triangleBody = [&](size_t t, bool& smooth) {
-        const auto& tri = m.triangles[t];
-        const Vec3 a = m.vertices[size_t(tri[0])], b = m.vertices[size_t(tri[1])],
-                   c = m.vertices[size_t(tri[2])];
-        smooth = false;
-        Vec3 n[3];
-        if (hasNormals) {
-            const Vec3 face = faceNormal(a, b, c);
-            for (int k = 0; k < 3; ++k) {
-                n[k] = m.normals[size_t(m.normalIndices[t][size_t(k)])];
-                smooth = smooth || !(n[k] == face);
-            }
-        }
-        if (!smooth)
-            return vector(a) + ", " + vector(b) + ", " + vector(c);
-        return vector(a) + ", " + vector(unnormalised(n[0])) + ", " + vector(b) + ", " +
-               vector(unnormalised(n[1])) + ", " + vector(c) + ", " + vector(unnormalised(n[2]));
-    };
-    bool smooth = false;
-    if (m.triangles.size() == 1) {
-        const std::string body = triangleBody(0, smooth);
-        return std::string(smooth ? "smooth_triangle { " : "triangle { ") + body;
-    }
-    std::string text = "mesh {";
-    const std::string pad(size_t(indent + 1) * 2, ' ');
-    for (size_t t = 0; t < m.triangles.size(); ++t) {
-        const std::string body = triangleBody(t, smooth);
-        text += "\n" + pad + (smooth ? "smooth_triangle { " : "triangle { ") + body + " }";
-    }
-    return text;
+    lang::ShapeText text{indent, problems_};
+    return lang::shapeHead(o.shape, text);
 }
 
 void SceneWriter::texture(const Texture& t, const std::string& pigmentText, const std::string& normalText,
@@ -615,6 +481,28 @@ void SceneWriter::texture(const Texture& t, const std::string& pigmentText, cons
 }
 
 } // namespace
+
+namespace writer {
+
+// The parser normalises plane, disc and smooth-triangle normals. A unit
+// vector rarely normalises to itself to the last bit, so look for the short
+// direction the author most likely wrote (<0, 1, 1> for a 45-degree disc).
+Vec3 unnormalised(const Vec3& n) {
+    const double largest = maxComponent(abs(n));
+    if (!(largest > 0))
+        return n;
+    const Vec3 scaled = n / largest;
+    auto rounded = [&](double perUnit) {
+        auto r = [&](double v) { return std::round(v * perUnit) / perUnit; };
+        return Vec3(r(scaled.x), r(scaled.y), r(scaled.z));
+    };
+    for (const Vec3& c : {n, rounded(1e10), rounded(1e6), scaled})
+        if (length(c) > 0 && c / length(c) == n)
+            return c;
+    return n;
+}
+
+} // namespace writer
 
 std::string writeDrtScene(const Scene& scene, const WriterOptions& options) {
     SceneWriter writer(options);

@@ -18,6 +18,7 @@ namespace drt::writer {
 // The shortest decimal text that reads back (strtod) as exactly `v`.
 std::string number(double v);
 std::string vector(const Vec3& v); // "<x, y, z>"
+std::string quoted(const std::string& s); // a string literal: "..." with \" \\ \n \t escaped
 
 // One transform item as the .drt parser reads it.
 struct Step {
@@ -42,11 +43,9 @@ std::vector<Step> decompose(const Transform& t);
 // " translate <...> rotate <...>": each step preceded by a space.
 std::string formatSteps(const std::vector<Step>& steps);
 
-// ------------------------------------------------------------ writer_algebraic.cpp
-
-// The opening of the shape's block through its coefficients (and `sturm`).
-std::string algebraicHead(const Algebraic& a);
-std::string superellipsoidHead(const Superellipsoid& s);
+// The short direction the author most likely wrote for a unit normal (the
+// reader normalises plane, disc and smooth-triangle normals).
+Vec3 unnormalised(const Vec3& n);
 
 // ------------------------------------------------------------ writer_image_map.cpp
 
@@ -76,21 +75,5 @@ std::vector<std::string> textureBlocks(const Texture& t, const std::vector<Step>
 std::string finishBody(const Finish& f);     // the non-default items, each after a space
 std::string interiorBody(const Interior& i, std::set<std::string>& problems); // the same, media included
 std::string mediaBody(const Media& m, std::set<std::string>& problems);       // the inside of `media { }`
-
-// ------------------------------------------------------------ writer_blob.cpp
-
-// The opening of a blob's block through its components (and sturm, hierarchy).
-std::string blobText(const Blob& b, int indent);
-
-// ------------------------------------------------------------ writer_revolution.cpp
-
-// The opening of a lathe or sor through its points, `open` and `sturm`.
-std::string revolutionText(const Revolution& r, int indent);
-
-// ------------------------------------------------------------ writer_extrusion.cpp
-
-// The opening of a prism or text object through its fixed arguments (points
-// on lines indented one level deeper than `indent`).
-std::string extrusionText(const Extrusion& e, int indent, std::set<std::string>& problems);
 
 } // namespace drt::writer

@@ -7,9 +7,7 @@
 
 namespace drt::writer {
 
-namespace {
-
-std::string quotedPath(const std::string& s) {
+std::string quoted(const std::string& s) {
     std::string out = "\"";
     for (char c : s) {
         if (c == '"' || c == '\\') out += '\\', out += c;
@@ -20,13 +18,11 @@ std::string quotedPath(const std::string& s) {
     return out + "\"";
 }
 
-} // namespace
-
 std::string imageMapText(const ImageMap& m) {
     namespace fs = std::filesystem;
     std::error_code ec;
     const std::string path = fs::absolute(m.path.empty() ? m.file : m.path, ec).lexically_normal().string();
-    std::string text = " image_map { " + quotedPath(path);
+    std::string text = " image_map { " + quoted(path);
     if (m.projection != ImageMap::Projection::Planar) text += " map_type " + std::to_string(int(m.projection));
     if (m.once) text += " once";
     if (m.interpolation != ImageMap::Interpolation::None)

@@ -1,5 +1,6 @@
 // Texture text for the .drt writer: colours, pigments (with their pattern
 // transforms chosen so the parser rebuilds them exactly), finishes, interiors.
+#include "lang/keywords.h"
 #include "lang/writer_detail.h"
 
 #include <algorithm>
@@ -33,23 +34,7 @@ bool isDefaultPigment(const Pigment& p) {
 }
 
 // The .drt keyword of a noise pattern, or nullptr for the other kinds.
-static const char* noiseKeyword(PatternKind kind) {
-    switch (kind) {
-    case PatternKind::Bozo: return "bozo";
-    case PatternKind::Granite: return "granite";
-    case PatternKind::Marble: return "marble";
-    case PatternKind::Wood: return "wood";
-    case PatternKind::Agate: return "agate";
-    case PatternKind::Leopard: return "leopard";
-    case PatternKind::Crackle: return "crackle";
-    case PatternKind::Wrinkles: return "wrinkles";
-    case PatternKind::Dents: return "dents";
-    case PatternKind::Bumps: return "bumps";
-    case PatternKind::Ripples: return "ripples";
-    case PatternKind::Waves: return "waves";
-    default: return nullptr;
-    }
-}
+static const char* noiseKeyword(PatternKind kind) { return lang::noisePatternWord(kind); }
 
 // " turbulence ... octaves ..." for the non-default items.
 static std::string turbulenceText(const Turbulence& t) {

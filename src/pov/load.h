@@ -1,36 +1,15 @@
-// The POV-Ray 3.7 front end: .pov scene text -> scene model (scene/scene.h).
-// POV-Ray's scene description language is a macro language evaluated while it
-// is parsed, so this front end is an evaluator, separate from src/lang. The
-// supported subset, the mappings and the approximations are in docs/pov.md.
+// POV-Ray scenes: the front end (lang/load.h) in the POV-Ray dialect whatever
+// the file name. The supported subset, the mappings and the approximations
+// are in docs/pov.md.
 #pragma once
 
-#include "core/diagnostics.h"
-#include "scene/frame_clock.h"
-#include "scene/scene.h"
-
-#include <optional>
-#include <string>
-#include <vector>
+#include "lang/load.h"
 
 namespace drt {
 
-struct PovOptions {
-    // Folders searched by #include after the including file's own folder, in
-    // order (POV-Ray's +L / Library_Path). When empty, the default is the
-    // scene's folder then /usr/share/povray-3.7/include.
-    std::vector<std::string> includePaths;
-    // Warnings (unsupported features, approximations) become errors.
-    bool strict = false;
-    // image_width / image_height seen by the scene, and the image size stored
-    // in Scene::render.
-    int imageWidth = 320;
-    int imageHeight = 240;
-    // What `clock`, `frame_number` and the other animation identifiers read.
-    FrameClock frame;
-};
-
-// The folder of Debian's povray-includes package, the last default include path.
-inline constexpr const char* kPovStandardIncludeDir = "/usr/share/povray-3.7/include";
+// The options of a POV-Ray scene are the front end's (include path, strict,
+// image size, clock, geometry).
+using PovOptions = LoadOptions;
 
 // Reads and evaluates a .pov file. Every problem is reported to `diags`
 // (file:line:col, with the include chain); returns a scene only if there were

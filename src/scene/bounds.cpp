@@ -60,8 +60,8 @@ Box3 revolutionBox(const Revolution& r) {
     return box({-rmax, ylo, -rmax}, {rmax, yhi, rmax});
 }
 
-// Object-space boxes of the primitive shapes; anything else is unbounded, so
-// shapes added to Shape later compile and stay conservative until listed here.
+// Object-space boxes of every shape, one overload each and no catch-all: a
+// shape added to Shape does not compile until it says how it is bounded.
 struct ShapeBox {
     Box3 operator()(const Sphere& s) const { return box(s.center - Vec3(s.radius), s.center + Vec3(s.radius)); }
     Box3 operator()(const Box& b) const { return box(b.corner1, b.corner2); }
@@ -111,7 +111,8 @@ struct ShapeBox {
         return result.bounded ? result : box(Vec3(0), Vec3(0)); // no component: nothing to bound
     }
     Box3 operator()(const Plane&) const { return unbounded(); }
-    template <class Other> Box3 operator()(const Other&) const { return unbounded(); }
+    // A polynomial surface may reach infinity (POV-Ray bounds it only by bounded_by).
+    Box3 operator()(const Algebraic&) const { return unbounded(); }
 };
 
 } // namespace

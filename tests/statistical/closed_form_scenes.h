@@ -98,8 +98,8 @@ inline CameraSpec needleAt(const Vec3& point) {
     return c;
 }
 
-Light rectangleLight(const Vec3& center, const Vec3& axis1, const Vec3& axis2, Color color, AreaSampling sampling,
-                     bool inverseSquare) {
+inline Light rectangleLight(const Vec3& center, const Vec3& axis1, const Vec3& axis2, Color color, AreaSampling sampling,
+                            bool inverseSquare) {
     Light l;
     l.position = center;
     l.color = color;

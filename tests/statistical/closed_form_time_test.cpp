@@ -340,7 +340,7 @@ TEST(ClosedFormTime, MovingPointLightGivesTheTimeAverageOfItsLambertTerm) {
 }
 
 // A tilted rectangle light (inverse_square, radiance C / area on both faces)
-// turning 40 degrees about z and moving 1 along x over the shutter. The floor
+// turning 40 degrees about z and moving 2 along x over the shutter. The floor
 // shows the time average of Lambert's polygon irradiance, integrated here by
 // the midpoint rule over 2000 times (error far below the noise). Sampled with
 // the default sobol sampler, whose pixel samples stratify the light jointly
@@ -349,12 +349,12 @@ TEST(ClosedFormTime, MovingPointLightGivesTheTimeAverageOfItsLambertTerm) {
 TEST(ClosedFormTime, MovingAreaLightGivesTheTimeAverageOfLambertsFormula) {
     const Vec3 center{0.3, 2, -0.2}, axis1{1.5, 0, 0}, axis2{0, 0.6, 0.8};
     constexpr double turnDegrees = 40, radiance = 3.0 / 1.5;
-    const auto cornersAt = [&](double t) { // rotate about z by 40 t degrees, then move t along x
+    const auto cornersAt = [&](double t) { // rotate about z by 40 t degrees, then move 2 t along x
         const double a = turnDegrees * t * kPi / 180, c = std::cos(a), s = std::sin(a);
         std::vector<Vec3> corners;
         for (const Vec3& k : {center - 0.5 * axis1 - 0.5 * axis2, center + 0.5 * axis1 - 0.5 * axis2,
                               center + 0.5 * axis1 + 0.5 * axis2, center - 0.5 * axis1 + 0.5 * axis2})
-            corners.push_back({c * k.x - s * k.y + t, s * k.x + c * k.y, k.z});
+            corners.push_back({c * k.x - s * k.y + 2 * t, s * k.x + c * k.y, k.z});
         return corners;
     };
     for (AreaSampling sampling : {AreaSampling::Stratified, AreaSampling::SolidAngle}) {
@@ -362,7 +362,7 @@ TEST(ClosedFormTime, MovingAreaLightGivesTheTimeAverageOfLambertsFormula) {
         scene.objects.push_back(floorPlane());
         Light light = rectangleLight(center, axis1, axis2, Color(3), sampling, true);
         auto path = std::make_shared<LightMotion>();
-        path->chain = {MotionStage{motionTo({1, 0, 0}, {0, 0, turnDegrees}), {}}};
+        path->chain = {MotionStage{motionTo({2, 0, 0}, {0, 0, turnDegrees}), {}}};
         light.motion = path;
         scene.lights.push_back(light);
         scene.camera.shutterOpen = 0;
@@ -379,9 +379,11 @@ TEST(ClosedFormTime, MovingAreaLightGivesTheTimeAverageOfLambertsFormula) {
                         z);
             EXPECT_LT(std::fabs(z), 3.0);
             EXPECT_GT(m.variance, 0.0);
-            // The motion is real: the still light's irradiance is far off.
+            // The motion is real: the still light's irradiance is far off
+            // (by 15% to 65% of E at these points, over 5 standard deviations).
             const double still = lambertIrradiance(p, {0, 1, 0}, cornersAt(0), radiance);
-            EXPECT_GT(std::fabs(still - exact), 0.05 * exact);
+            EXPECT_GT(std::fabs(still - exact), 0.1 * exact);
+            EXPECT_GT(std::fabs(still - exact) / std::sqrt(m.variance), 5.0);
         }
     }
 }

@@ -1,0 +1,347 @@
+// The evaluator of both dialects (private to src/lang). The scene language is a
+// macro language evaluated while it is read, as POV-Ray's is, so parsing and
+// evaluation are one pass: the token stream (reader.cpp) runs directives
+// (directives.cpp), includes, loops and macro calls as the item readers pull
+// tokens; expressions (expressions.cpp, primary.cpp, functions.cpp), textures
+// (textures.cpp, pigments.cpp, ...), objects (objects.cpp, shapes_*.cpp) and the
+// scene statements (scene_items.cpp, camera.cpp, lights.cpp) consume it. The
+// dialect table (lang/dialect.h) is consulted where the dialects differ.
+#pragma once
+
+#include "lang/dialect.h"
+#include "lang/keywords.h"
+#include "lang/lexer.h"
+#include "lang/load.h"
+#include "lang/value.h"
+#include "scene/weight.h"
+
+#include <functional>
+#include <map>
+#include <set>
+
+namespace drt::lang {
+
+// Loop passes and macro calls between two looks at the memory in use
+// (Limits::memoryMB).
+inline constexpr long kMemoryCheckInterval = 1024;
+
+// Thrown after an error has been reported: unwinds to the statement loop,
+// which skips to the next statement (or stops, as POV-Ray does).
+struct Abort {};
+
+class Evaluator {
+public:
+    Evaluator(Diagnostics& diags, const LoadOptions& options, DialectKind dialect);
+
+    // Evaluates a file (already added to SourceFiles as `fileId`) into scene_.
+    std::optional<Scene> run(int fileId, const std::string& baseDir);
+
+    // ------------------------------------------------------------ tokens (reader.cpp)
+    Token next();         // directives run, macros expanded
+    Token peek();         // the same token next() will return
+    Token peekOperator(); // stops at a directive or a macro name (returned unconsumed, unexpanded)
+    void pushBack(Token t);
+    bool acceptSymbol(const char* s);
+    Token expectSymbol(const char* s, const std::string& context);
+    bool acceptWord(const char* w);
+    Token expectWord(const std::string& context); // any word
+    // After '{' was consumed: skips to its matching '}', directives included.
+    void skipBlock();
+    // A ',' between arguments: required in the .drt dialect ("',' after the
+    // <what>"), optional in POV-Ray's.
+    void comma(const std::string& after);
+    // The location of the last token consumed.
+    SourceLoc lastLoc() const { return lastToken_.loc; }
+    const Token& lastToken() const { return lastToken_; }
+
+    // ------------------------------------------------------------ dialects
+    // The dialect of the file being read (its syntax rules) and of the scene
+    // (its defaults and legacy rules: the main file's).
+    const Dialect& syntax() const;
+    const Dialect& scene() const { return dialectOf(sceneDialect_); }
+    bool isDrt() const { return sceneDialect_ == DialectKind::Drt; }
+
+    // ------------------------------------------------------------ diagnostics (diagnose.cpp)
+    [[noreturn]] void fail(SourceLoc loc, const std::string& message);
+    [[noreturn]] void failExpected(const Token& got, const std::string& what);
+    // An unknown word in `block`: "did you mean", or where the keyword belongs.
+    // `extra` are further words valid here (declared names, ...).
+    [[noreturn]] void failUnknown(const Token& word, Block block, const std::vector<std::string>& extra = {},
+                                  const char* kind = "keyword");
+    [[noreturn]] void failUnknownIn(const Token& word, const std::vector<std::string>& known,
+                                    const char* kind = "keyword");
+    // A value error: reported; evaluation goes on in the .drt dialect.
+    void error(SourceLoc loc, const std::string& message);
+    // A value drt's rules refuse: an error in the .drt dialect (and in both
+    // when `always`); POV-Ray accepts it, so in that dialect it is kept silently.
+    void refuse(SourceLoc loc, const std::string& message, bool always = false);
+    void warn(SourceLoc loc, const std::string& message);
+    // One warning per `kind` for the whole scene.
+    void warnOnce(const std::string& kind, SourceLoc loc, const std::string& message);
+    void note(SourceLoc loc, const std::string& message);
+    // One note per `kind`; like warnings, waits for the use of a declared identifier.
+    void noteOnce(const std::string& kind, SourceLoc loc, const std::string& message);
+    // A construct drt lacks: an error in the .drt dialect, a warning (once per
+    // kind) in POV-Ray's, where the caller then leaves it out.
+    void unsupported(const std::string& kind, SourceLoc loc, const std::string& message);
+    // ", got -0.5 (R = 0.5 - 1)": the value of the last expression read, and
+    // the declaration it came from when it was a lone identifier.
+    std::string got(double value) const;
+    std::string got(const Vec3& value) const;
+    std::string got(int value) const { return got(double(value)); }
+
+    // Blocks being read, for "the 'sphere' opened here is not closed".
+    struct BlockScope {
+        Evaluator& e;
+        BlockScope(Evaluator& ev, const std::string& keyword, SourceLoc loc);
+        ~BlockScope();
+    };
+    // failExpected for the token that ends a block's items: adds a note at the
+    // block's keyword when the token shows its '}' is missing.
+    [[noreturn]] void failInBlock(const Token& got, const std::string& what);
+
+    // ------------------------------------------------------------ symbols (reader.cpp)
+    Cell lookup(const std::string& name) const;
+    // lookup() for a use of the identifier: reports the warnings its declaration deferred.
+    Cell use(const std::string& name);
+    // use() for an identifier just read, following `[i]...` indices into an array.
+    Cell useIndexed(const Token& name);
+    // The element of array `cell` named by the `[i]...` that follow.
+    Cell indexArray(Cell cell, const Token& name);
+    // Reads one `[i]` per dimension of `a` (array `name`): the row-major index of the element.
+    size_t arrayIndex(const lang::Array& a, const Token& name);
+    void declare(const std::string& name, const Value& value, bool local);
+    bool isMacro(const std::string& name) const;
+    // Declared names whose value is one of `kinds` (all names when empty), for suggestions.
+    std::vector<std::string> declaredNames(std::initializer_list<Value::Kind> kinds = {}) const;
+
+    // ------------------------------------------------------------ expressions
+    Value expression();
+    double floatExpr(const char* what = "a number");
+    Vec3 vectorExpr(const char* what = "a vector");
+    int intExpr(const char* what); // a whole number
+    // A number that becomes a count or an index: it must be finite and in
+    // [lowest, highest] (a located error names `what` otherwise); truncated
+    // toward zero as POV-Ray does.
+    int countExpr(const char* what, double lowest, double highest);
+    int countValue(double value, SourceLoc loc, const char* what, double lowest, double highest);
+    std::array<double, 5> colorExpr(); // colour keywords and expressions
+    Color rgbExpr() { return toColorFT(colorExpr()).rgb; }
+    std::string stringExpr();
+    bool boolExpr() { return floatExpr() != 0; }
+    // An optional boolean after a flag keyword (`hollow`, `jitter on`): absent is `fallback`.
+    bool optionalBool(bool fallback = true);
+    // Whether `t` starts a float expression (a number, '(', a sign, a float identifier, a function).
+    bool startsFloat(const Token& t) const;
+    // Whether the peeked token starts a colour (a colour keyword, '<', a number or a numeric identifier).
+    bool startsColor(const Token& t) const;
+    // The right-hand side of #declare and of a macro argument: an expression or a scene item.
+    Value rvalue();
+    bool builtin(const Token& name, Value& out); // functions.cpp
+    Value traceOrInside(const Token& name);      // trace(object, from, direction [, normal]) and inside(object, point)
+    Value primary();
+    Value postfix(Value v, SourceLoc loc);
+    Value arrayLiteral(SourceLoc loc); // after 'array'
+    bool inVector_ = false;            // '>' closes a vector literal, not a comparison
+    bool countBeforeVector_ = false;   // '<' after a count or thickness starts a vector, not a comparison
+    double toFloat(const Value& v, SourceLoc loc, const char* what = "a number");
+    Vec3 toVector(const Value& v, SourceLoc loc, const char* what = "a vector");
+    std::array<double, 5> toColor(const Value& v, SourceLoc loc);
+    static ColorFT toColorFT(const std::array<double, 5>& c) { return {Color(c[0], c[1], c[2]), c[3], c[4]}; }
+    // The working gamma of colours (POV-Ray's rules), or 1.
+    double workingGamma() const;
+
+    // ------------------------------------------------------------ textures
+    Texture texture(const Texture& base); // after 'texture'
+    Pigment pigment(const Pigment& base); // after 'pigment'
+    // The items of a texture / pigment up to `closer` ("}", or "]" in a map entry).
+    Texture textureBody(const Texture& base, const char* closer, const std::string& where);
+    Pigment pigmentBody(const Pigment& base, const char* closer, const std::string& where);
+    bool pigmentItem(Pigment& p, const Token& t);
+    bool isTexturePatternWord(const Token& t) const;
+    Texture patternedTexture(const Token& patternWord, const char* closer, const std::string& where);
+    std::vector<Texture::MapEntry> textureMap(bool average); // after 'texture_map'
+    std::vector<Pigment::MapEntry> pigmentMap(bool average); // after 'pigment_map'
+    double mapEntryValue(bool average, const char* map, const double* previous);
+    // Adds `top` on top of `below`, with POV-Ray's errors for layers over or of patterned textures.
+    void layerOnTop(Texture& below, Texture top, SourceLoc loc);
+    std::vector<ColorMapEntry> colorMap(); // after 'color_map'
+    Finish finish(const Finish& base);     // after 'finish'
+    void reflectionBlock(Finish& f);       // after 'reflection' '{'
+    Interior interior(const Interior& base);
+    Media media(const Media& base); // after 'media'
+    void scattering(Media& m);      // after 'scattering'
+    Pigment density(const Pigment& base); // after 'density'
+    Material material(const Material& base);
+    // After 'normal': the bump pattern, or none (POV-Ray dialect: a warning says why).
+    std::optional<Normal> normalBlock(SourceLoc keyword, const std::optional<Normal>& base);
+    bool turbulenceItem(const Token& t, Turbulence& turbulence); // turbulence/octaves/omega/lambda
+    bool waveItem(const Token& t, PatternWave& wave); // frequency/phase/wave types
+    void warpBlock(const Token& t, Pigment& p);       // at 'warp'
+    void noiseNote(const std::string& kind, SourceLoc loc);
+    std::optional<Pigment> imageMapPigment(SourceLoc keyword); // after 'image_map'
+    // A transform keyword (translate rotate scale matrix transform) at the current token, or nothing.
+    std::optional<Transform> transformItem();
+    Transform transformBlock(); // after 'transform'
+    void requireNonZero(const Vec3& v, SourceLoc loc, const std::string& what);
+
+    // ------------------------------------------------------------ objects
+    bool isObjectWord(const Token& t) const;
+    ObjectValue object(const Token& keyword); // keyword consumed
+    void objectModifiers(ObjectValue& po, const Token& keyword);
+    void applyTransform(ObjectValue& o, const Transform& t, SourceLoc loc);
+    void setTexture(ObjectValue& o, const Texture& texture);
+    void setInterior(ObjectValue& o, const Interior& interior);
+    void addChild(ObjectValue& parent, ObjectValue child);
+    Motion motionBlock(); // after 'motion': objects, cameras and lights
+    std::optional<std::vector<Object>> clipObjects(const Token& word); // after bounded_by / clipped_by
+    Object placed(ObjectValue po); // a clip or CSG member as a model object
+    // Finds a data file (image, font) like an include file; "" if not found.
+    std::string findDataFile(const std::string& name, bool imageExtensions) const;
+    std::string currentDir() const;
+    const std::string& mainDir() const { return mainDir_; }
+    std::string findInclude(const std::string& name, const std::string& fromDir) const;
+    // Shape readers (shapes_*.cpp), after the shape's '{'.
+    void readShape(const Token& keyword, ObjectValue& po);
+
+    // ------------------------------------------------------------ scene (scene_items.cpp, camera.cpp, lights.cpp)
+    void statement(const Token& t);
+    CameraSpec camera(const CameraSpec& base, SourceLoc loc);
+    // `looksLike`, if given, receives the looks_like object (placed, no_shadow).
+    Light lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLike = nullptr);
+    void globalSettings();
+    void renderBlock();
+    void adaptiveBlock(SourceLoc keyword);
+    void fog(const Token& keyword); // after 'fog'
+    std::vector<Pigment> skySphere(); // after 'sky_sphere'
+    void background();
+    void defaultBlock();              // after '#default' or 'default'
+    void addToScene(ObjectValue o);
+    // Limits (core/limits.h): objects and pattern nodes built or copied
+    // (Limits::objects), and the memory the scene takes.
+    void countBuilt(SourceLoc loc, int64_t weight);
+    void checkMemoryAt(SourceLoc loc);
+    void finishScene(); // gamma rules, defaults
+
+    Scene scene_;
+    bool cameraSeen_ = false;
+    std::optional<double> assumedGamma_;
+    double version_ = 3.7;
+    bool versionSeen_ = false;
+    Texture defaultTexture_; // #default { texture / pigment / finish / normal }
+    bool defaultSet_ = false; // a #default was given: untextured objects get it when placed
+    std::vector<uint32_t> randomStreams_; // seed(n) returns an index into this
+    Diagnostics& diags() { return diags_; }
+    const LoadOptions& options() const { return options_; }
+
+    // Counts nesting of a recursive read and stops runaway recursion.
+    struct DepthGuard {
+        DepthGuard(Evaluator& e, SourceLoc loc);
+        ~DepthGuard();
+        int& depth;
+    };
+
+private:
+    friend struct DepthGuard;
+    struct Frame {
+        std::shared_ptr<const std::vector<Token>> tokens;
+        size_t pos = 0;
+        bool isMacro = false;
+        SourceLoc includedFrom; // include frames: the #include directive; macro frames: the call
+        std::string macroName;  // macro frames
+        size_t condDepth = 0;   // conds_.size() when the frame started
+        std::string dir;        // include frames: folder of the file
+        std::string canonicalPath; // include frames: for cycle detection
+        DialectKind dialect = DialectKind::Drt;
+        // Look-ahead read from this frame before a child frame (include, macro
+        // call) started; it is read again when the child ends.
+        std::vector<Token> savedPushback;
+    };
+    void pushFrame(Frame f);
+    void popFrame();
+    struct Cond {
+        enum class Type { If, While, For, Switch } type = Type::If;
+        size_t frame = 0;
+        size_t pos = 0; // While: the condition; For: the first body token
+        SourceLoc loc;
+        std::string forName;
+        double forEnd = 0, forStep = 1;
+        long iterations = 0;
+        double switchValue = 0;
+        bool switchMatched = false;
+    };
+
+    Token rawNext();
+    void endFrame();
+    void directive(const Token& t);
+    void declareDirective(const Token& t, bool local);
+    void includeDirective(const Token& t);
+    void ifDirective(const Token& t, int kind); // 0 #if, 1 #ifdef, 2 #ifndef
+    void branchSkip(const Token& start);        // skip a false branch: to #else / #elseif / #end
+    void whileHead(const Token& t);
+    void forDirective(const Token& t);
+    void switchDirective(const Token& t);
+    void switchScan(const Token& t); // find the matching #case / #range / #else / #end
+    void endDirective(const Token& t);
+    void breakDirective(const Token& t);
+    void macroDefinition(const Token& t);
+    void invokeMacro(const Token& t);
+    void messageDirective(const Token& t);
+    void fileDirective(const Token& t);
+    void versionDirective(const Token& t);
+    // Counts a pass of the innermost loop against Limits::loopIterations.
+    void countIteration(const char* directive);
+    // Skips raw tokens until a directive in `stops` at nesting depth 0; returns it.
+    Token skipTo(const std::set<std::string>& stops, const Token& start);
+    std::vector<SourceLoc> includeChain() const;
+    // "'#while' has no matching #end": the directive that opened `c`.
+    static const char* condDirective(const Cond& c);
+    // Forgets the conditionals opened in the current frame (after their #end was found missing).
+    void dropFrameConds();
+    // Runs the directive `t` that opens a block (#if, #while, #for, #switch). When
+    // its head has an error, its body and #end are skipped too, so that the
+    // error is not followed by "#end without a matching #if".
+    void openingDirective(const Token& t, const std::function<void()>& run);
+    void pushFile(int fileId, SourceLoc includedFrom, const std::string& dir, const std::string& canonicalPath,
+                  DialectKind dialect);
+    Cell* arrayElementForAssignment(const Token& name, Cell cell);
+    void report(Severity severity, SourceLoc loc, const std::string& message);
+    void synchronize(); // after an error: to the next statement
+    std::string declarationText(SourceLoc start) const;
+
+    Diagnostics& diags_;
+    LoadOptions options_;
+    DialectKind sceneDialect_;
+    std::string mainDir_ = ".";
+    std::vector<Frame> frames_;
+    std::vector<Cond> conds_;
+    std::vector<Token> pushed_;
+    std::vector<std::map<std::string, Cell>> scopes_;
+    std::set<std::string> warned_;
+    std::vector<PendingWarning>* pending_ = nullptr; // while evaluating a #declare
+    std::map<std::string, std::shared_ptr<const std::vector<Token>>> lexedFiles_;
+    int expressionDepth_ = 0;
+    bool noExpand_ = false;
+    Token lastToken_, beforeLastToken_;
+    int braceDepth_ = 0; // since the statement started, for recovery
+    struct OpenBlock {
+        std::string keyword;
+        SourceLoc loc;
+    };
+    std::vector<OpenBlock> openBlocks_;
+    std::shared_ptr<const Origin> lastOrigin_; // of the last expression read by floatExpr/vectorExpr
+    SourceLoc lastExpressionLoc_;
+    int errorsSeen_ = 0;
+    long macroCalls_ = 0;
+    int64_t built_ = 0;      // Limits::objects: nodes built and copied so far
+    int abandonedFile_ = -1; // an included file that is no scene, read no further after its first error
+};
+
+// The world-space bounding box of an object (POV-Ray's min_extent / max_extent);
+// unbounded shapes give +-1e10 as POV-Ray's BOUND_HUGE/2 does.
+void objectBounds(const ObjectValue& o, Vec3& lower, Vec3& upper);
+
+// The mean colour of a pigment (patterns averaged over their colour map or sub-pigments).
+ColorFT pigmentAverage(const Pigment& p);
+
+} // namespace drt::lang

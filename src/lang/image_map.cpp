@@ -1,0 +1,208 @@
+// pigment { image_map { [type] "file" [map_type n] [once] [interpolate n]
+// [filter all f] [transmit all t] [gamma g] ... } }: the image is found here and
+// decoded once after parsing (assets/assets.h), shared by every copy of the
+// pigment. Files are found like include files (image extensions tried for a
+// name without one).
+#include "lang/evaluator.h"
+#include "scene/image_map.h"
+
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace drt::lang {
+
+namespace {
+
+bool isImageTypeWord(const Token& t) {
+    static const std::set<std::string> words = {"gif", "tga",  "iff", "ppm", "pgm", "png",
+                                                "jpeg", "tiff", "sys", "exr", "hdr", "pot"};
+    return t.kind == TokenKind::Word && words.count(t.text);
+}
+
+} // namespace
+
+std::string Evaluator::findDataFile(const std::string& name, bool imageExtensions) const {
+    const std::string fromDir = currentDir();
+    std::string path = findInclude(name, fromDir);
+    if (path.empty() && fromDir != mainDir_) path = findInclude(name, mainDir_);
+    // POV-Ray adds the image types' extensions to a name without one.
+    if (path.empty() && imageExtensions && !fs::path(name).has_extension())
+        for (const char* ext : {".png", ".tga", ".jpg", ".jpeg", ".gif", ".ppm", ".pgm", ".tiff", ".tif", ".exr",
+                                ".hdr", ".bmp"})
+            if (path = findInclude(name + ext, fromDir); !path.empty()) break;
+    if (path.empty()) return path;
+    std::error_code ec;
+    return fs::absolute(path, ec).lexically_normal().string();
+}
+
+std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword) {
+    expectSymbol("{", "after 'image_map'");
+    BlockScope scope(*this, "image_map", keyword);
+    if (peek().isWord("function")) {
+        unsupported("image_map-function", peek().loc,
+                    "image_map { function ... } is not supported; the pigment becomes mid grey");
+        skipBlock();
+        return std::nullopt;
+    }
+    if (isImageTypeWord(peek())) next();
+    auto map = std::make_shared<ImageMap>();
+    const Token file = peek();
+    if (syntax().kind == DialectKind::Drt && file.kind != TokenKind::String)
+        failExpected(next(), "the image file name in quotes");
+    map->file = stringExpr();
+    map->loc = file.loc;
+    map->path = findDataFile(map->file, true);
+    if (map->path.empty()) fail(file.loc, "cannot find image file '" + map->file + "'");
+    for (;;) {
+        const Token t = next();
+        if (t.is("}")) break;
+        const SourceLoc at = peek().loc;
+        if (t.isWord("map_type")) {
+            const int type = intExpr("the map type");
+            if (type == 0 || type == 1 || type == 2 || type == 5) map->projection = ImageMap::Projection(type);
+            else if (syntax().strictValues)
+                error(at, "map_type must be 0 (planar), 1 (spherical), 2 (cylindrical) or 5 (torus)" + got(type));
+            else warnOnce("map_type", at, "map_type " + std::to_string(type) + " is not supported; planar mapping is used");
+        } else if (t.isWord("once")) {
+            map->once = true;
+        } else if (t.isWord("interpolate")) {
+            const int type = intExpr("the interpolation");
+            if (type == 0 || type == 2 || type == 3 || type == 4) map->interpolation = ImageMap::Interpolation(type);
+            else if (syntax().strictValues)
+                error(at, "interpolate must be 0 (none), 2 (bilinear), 3 (bicubic) or 4 (normalised distance)" +
+                              got(type));
+            else warnOnce("interpolate", at, "interpolate " + std::to_string(type) + " is not known; no interpolation");
+        } else if (t.isWord("filter") || t.isWord("transmit")) {
+            const bool filter = t.isWord("filter");
+            if (acceptWord("all")) {
+                (filter ? map->filterAll : map->transmitAll) = floatExpr("the amount");
+            } else if (syntax().kind == DialectKind::Drt) {
+                failExpected(peek(), "'all' and an amount");
+            } else { // a palette index: OpenImageIO expands palettes, so indices are unknown
+                floatExpr();
+                acceptSymbol(",");
+                floatExpr();
+                warnOnce("image_map-index", t.loc,
+                         "per-index filter/transmit in an image_map is not supported and is ignored");
+            }
+        } else if (t.isWord("gamma")) {
+            if (acceptWord("srgb")) {
+                map->gamma = 0;
+            } else {
+                map->gamma = floatExpr("the file's gamma");
+                if (!(map->gamma > 0)) error(at, "gamma must be positive" + got(map->gamma)), map->gamma = 0;
+            }
+        } else if (t.isWord("premultiplied")) {
+            floatExpr();
+        } else if (t.isWord("use_color") || t.isWord("use_colour") || t.isWord("use_index") || t.isWord("use_alpha")) {
+        } else if (t.kind == TokenKind::Word) {
+            failUnknown(t, Block::ImageMap);
+        } else {
+            failInBlock(t, "an image_map item (map_type once interpolate filter transmit gamma) or '}'");
+        }
+    }
+    map->workingGamma = scene().versionGammaRules ? workingGamma() : scene_.global.assumedGamma;
+    Pigment p;
+    p.pattern = PatternKind::ImageMap;
+    p.imageMap = std::move(map);
+    return p;
+}
+
+// ------------------------------------------------------------ transforms
+
+void Evaluator::requireNonZero(const Vec3& v, SourceLoc loc, const std::string& what) {
+    if (v.x == 0 && v.y == 0 && v.z == 0) refuse(loc, what + " must not be a zero-length vector");
+}
+
+// translate v | rotate v | scale v | matrix <12 numbers> | transform { ... } | transform Name
+std::optional<Transform> Evaluator::transformItem() {
+    const Token t = peek();
+    if (t.kind != TokenKind::Word) return std::nullopt;
+    const std::string& w = t.text;
+    if (w == "translate") {
+        next();
+        return Transform::translate(vectorExpr());
+    }
+    if (w == "rotate") {
+        next();
+        return Transform::rotate(vectorExpr());
+    }
+    if (w == "scale") {
+        next();
+        const SourceLoc loc = peek().loc;
+        Vec3 s = vectorExpr();
+        if (s.x != 0 && s.y != 0 && s.z != 0) return Transform::scale(s);
+        if (syntax().strictValues) {
+            error(loc, "scale has a zero component (the object would collapse)" + got(s));
+            return Transform{};
+        }
+        // POV-Ray warns and uses 1 for a zero scale component.
+        warnOnce("scale0", loc, "scale with a zero component; that component is left at 1 (as POV-Ray)");
+        for (int i = 0; i < 3; ++i)
+            if (s[i] == 0) s[i] = 1;
+        return Transform::scale(s);
+    }
+    if (w == "matrix") {
+        next();
+        expectSymbol("<", "after 'matrix'");
+        const bool saved = inVector_;
+        inVector_ = true;
+        std::array<double, 12> m{};
+        int count = 0;
+        for (;;) {
+            const SourceLoc loc = peek().loc;
+            const double v = floatExpr("a matrix entry");
+            if (count == 12) fail(loc, "'matrix' takes exactly 12 numbers");
+            m[size_t(count++)] = v;
+            if (acceptSymbol(",")) continue;
+            if (peek().is(">")) break;
+            if (syntax().requireCommas) failExpected(peek(), "',' or '>' in the matrix");
+        }
+        inVector_ = saved;
+        expectSymbol(">", "after the 12 matrix numbers");
+        if (count != 12) fail(t.loc, "'matrix' takes exactly 12 numbers, got " + std::to_string(count));
+        std::optional<Transform> tr = Transform::fromPovMatrix(m);
+        if (!tr) {
+            error(t.loc, "singular matrix (it has no inverse)");
+            return Transform{};
+        }
+        return tr;
+    }
+    if (w == "transform") {
+        next();
+        return transformBlock();
+    }
+    return std::nullopt;
+}
+
+Transform Evaluator::transformBlock() {
+    const Token t = next();
+    if (t.kind == TokenKind::Word) {
+        const Cell c = useIndexed(t);
+        if (c && c->kind == Value::Kind::Transform) return *c->transform;
+        failExpected(t, "'{' or a transform identifier after 'transform'");
+    }
+    if (!t.is("{")) failExpected(t, "'{' after 'transform'");
+    Transform result;
+    for (;;) {
+        if (acceptSymbol("}")) return result;
+        if (acceptWord("inverse")) {
+            result = result.inverted();
+            continue;
+        }
+        if (std::optional<Transform> item = transformItem()) {
+            result = result.then(*item);
+            continue;
+        }
+        const Token id = next();
+        const Cell c = id.kind == TokenKind::Word ? useIndexed(id) : nullptr;
+        if (c && c->kind == Value::Kind::Transform) {
+            result = result.then(*c->transform);
+            continue;
+        }
+        failInBlock(id, "a transform or '}'");
+    }
+}
+
+} // namespace drt::lang

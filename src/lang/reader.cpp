@@ -1,0 +1,438 @@
+// The token stream: files, includes, conditionals, loops and macro calls.
+// As in POV-Ray, directives run as the item readers pull tokens, loops and
+// macros replay an already-lexed token vector by index, and every #include
+// and macro call opens a new scope for #local.
+#include "lang/evaluator.h"
+
+#include "core/source_file.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace drt::lang {
+
+Evaluator::DepthGuard::DepthGuard(Evaluator& e, SourceLoc loc) : depth(e.expressionDepth_) {
+    if (++depth > e.diags_.limits().nestingDepth) {
+        --depth;
+        e.fail(loc, limitExceeded(e.diags_.limits(), &Limits::nestingDepth, "nesting depth", double(depth + 1)));
+    }
+}
+Evaluator::DepthGuard::~DepthGuard() { --depth; }
+
+Evaluator::Evaluator(Diagnostics& diags, const LoadOptions& options, DialectKind dialect)
+    : diags_(diags), options_(options), sceneDialect_(dialect) {
+    scopes_.emplace_back();
+}
+
+const Dialect& Evaluator::syntax() const {
+    return frames_.empty() ? scene() : dialectOf(frames_.back().dialect);
+}
+
+// ------------------------------------------------------------ symbols
+
+Cell Evaluator::lookup(const std::string& name) const {
+    for (auto it = scopes_.rbegin(); it != scopes_.rend(); ++it)
+        if (auto found = it->find(name); found != it->end()) return found->second;
+    return nullptr;
+}
+
+Cell Evaluator::use(const std::string& name) {
+    Cell c = lookup(name);
+    if (c && c->warnings) {
+        for (const PendingWarning& p : *c->warnings) {
+            if (pending_) {
+                bool seen = false;
+                for (const PendingWarning& q : *pending_) seen = seen || q.kind == p.kind;
+                if (!seen) pending_->push_back(p);
+            } else if (warned_.insert(p.kind).second) {
+                Severity s = p.severity;
+                if (s == Severity::Warning && options_.strict) s = Severity::Error;
+                diags_.report(s, p.loc, p.message, p.includedFrom);
+            }
+        }
+    }
+    return c;
+}
+
+bool Evaluator::isMacro(const std::string& name) const {
+    const Cell c = lookup(name);
+    return c && c->kind == Value::Kind::Macro;
+}
+
+std::vector<std::string> Evaluator::declaredNames(std::initializer_list<Value::Kind> kinds) const {
+    std::vector<std::string> names;
+    for (const auto& scope : scopes_)
+        for (const auto& [name, cell] : scope) {
+            if (kinds.size() > 0 && std::find(kinds.begin(), kinds.end(), cell->kind) == kinds.end()) continue;
+            if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+        }
+    return names;
+}
+
+// #local writes the innermost scope; #declare updates the nearest existing
+// identifier (so a macro parameter bound to the caller's identifier writes
+// through) or creates a global one.
+void Evaluator::declare(const std::string& name, const Value& value, bool local) {
+    if (local) {
+        auto& scope = scopes_.back();
+        if (auto it = scope.find(name); it != scope.end()) *it->second = value;
+        else scope[name] = std::make_shared<Value>(value);
+        return;
+    }
+    if (Cell c = lookup(name)) {
+        *c = value;
+        return;
+    }
+    scopes_.front()[name] = std::make_shared<Value>(value);
+}
+
+// ------------------------------------------------------------ files
+
+void Evaluator::pushFile(int fileId, SourceLoc includedFrom, const std::string& dir,
+                         const std::string& canonicalPath, DialectKind dialect) {
+    if (int64_t(frames_.size()) >= diags_.limits().callDepth)
+        fail(includedFrom, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
+                                         double(frames_.size() + 1)));
+    const std::string& path = diags_.files().path(fileId);
+    auto& tokens = lexedFiles_[path + "#" + std::to_string(fileId)];
+    tokens = std::make_shared<const std::vector<Token>>(
+        lex(diags_.files().text(fileId), fileId, dialectOf(dialect).strictLexing));
+    Frame f;
+    f.tokens = tokens;
+    f.includedFrom = includedFrom;
+    f.condDepth = conds_.size();
+    f.dir = dir;
+    f.canonicalPath = canonicalPath;
+    f.dialect = dialect;
+    pushFrame(std::move(f));
+    scopes_.emplace_back();
+}
+
+void Evaluator::pushFrame(Frame f) {
+    if (!frames_.empty()) frames_.back().savedPushback = std::move(pushed_);
+    pushed_.clear();
+    frames_.push_back(std::move(f));
+}
+
+void Evaluator::popFrame() {
+    frames_.pop_back();
+    scopes_.pop_back();
+    if (!frames_.empty()) {
+        // pushed_ is a stack: the saved look-ahead was read first, so it goes on top.
+        std::vector<Token>& saved = frames_.back().savedPushback;
+        saved.insert(saved.begin(), pushed_.begin(), pushed_.end());
+        pushed_ = std::move(saved);
+        frames_.back().savedPushback.clear();
+    }
+}
+
+std::string Evaluator::currentDir() const {
+    for (auto it = frames_.rbegin(); it != frames_.rend(); ++it)
+        if (!it->isMacro) return it->dir;
+    return mainDir_;
+}
+
+std::string Evaluator::findInclude(const std::string& name, const std::string& fromDir) const {
+    // POV-Ray's library-path search looks for a regular file; a .drt scene
+    // names the file it means, so whatever is there is read (and a device or
+    // a folder is refused with the reason).
+    const bool anyFile = syntax().kind == DialectKind::Drt;
+    const auto usable = [&](const fs::path& p) {
+        std::error_code ec;
+        return anyFile ? fs::exists(p, ec) : fs::is_regular_file(p, ec);
+    };
+    if (fs::path(name).is_absolute()) return usable(name) ? name : "";
+    std::vector<std::string> dirs{fromDir};
+    dirs.insert(dirs.end(), options_.includePaths.begin(), options_.includePaths.end());
+    for (const std::string& dir : dirs) {
+        const fs::path candidate = (fs::path(dir) / name).lexically_normal();
+        if (usable(candidate)) return candidate.string();
+    }
+    return "";
+}
+
+namespace {
+
+std::string canonical(const std::string& path) {
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(fs::absolute(path), ec);
+    return ec ? fs::path(path).lexically_normal().string() : p.string();
+}
+
+} // namespace
+
+void Evaluator::includeDirective(const Token& t) {
+    const Token at = peek();
+    if (syntax().kind == DialectKind::Drt && at.kind != TokenKind::String) {
+        next();
+        failExpected(at, "a file name in quotes after '#include'");
+    }
+    // A plain string is taken as is: looking past it could end the current file
+    // before the include starts, losing it from the include chain.
+    const std::string name = at.kind == TokenKind::String ? next().text : stringExpr();
+    const std::string fromDir = currentDir();
+    const std::string path = findInclude(name, fromDir);
+    if (path.empty()) {
+        std::string looked;
+        std::vector<std::string> dirs{fromDir};
+        dirs.insert(dirs.end(), options_.includePaths.begin(), options_.includePaths.end());
+        for (const std::string& dir : dirs) {
+            const std::string candidate = (fs::path(dir) / name).lexically_normal().string();
+            if (looked.find(candidate) == std::string::npos) looked += (looked.empty() ? "" : ", ") + candidate;
+        }
+        const char quote = syntax().kind == DialectKind::Drt ? '\'' : '"';
+        fail(at.loc, "cannot find include file " + (quote + name + quote) + " (looked for " + looked + ")");
+    }
+    const std::string id = canonical(path);
+    // A file including itself is a cycle in .drt files; POV-Ray's include
+    // files guard such recursion with #ifndef, so there only the depth stops it.
+    if (syntax().kind == DialectKind::Drt) {
+        for (size_t i = 0; i < frames_.size(); ++i) {
+            if (frames_[i].isMacro || frames_[i].canonicalPath != id) continue;
+            std::string chain;
+            for (size_t j = i; j < frames_.size(); ++j)
+                if (!frames_[j].isMacro) chain += fs::path(frames_[j].canonicalPath).filename().string() + " -> ";
+            fail(at.loc, "include cycle: " + chain + fs::path(id).filename().string());
+        }
+    }
+    // The files open now (the scene's and its includes'); with this one,
+    // `depth` includes are open at once.
+    int64_t depth = 0;
+    for (const Frame& f : frames_) depth += f.isMacro ? 0 : 1;
+    if (depth > diags_.limits().includeDepth)
+        fail(at.loc, limitExceeded(diags_.limits(), &Limits::includeDepth, "include depth", double(depth)));
+    std::string text;
+    if (std::string problem = readSourceFile(path, diags_.limits().includeBytes, text); !problem.empty())
+        fail(at.loc, "cannot include '" + name + "': " + problem);
+    const int fileId = diags_.files().add(path, std::move(text), hasSceneExtension(path));
+    std::string dir = fs::path(path).parent_path().string();
+    // An include file's syntax follows its extension; a .drt file's own includes
+    // without a POV-Ray extension are .drt.
+    pushFile(fileId, t.loc, dir.empty() ? "." : dir, id, dialectForPath(path));
+}
+
+void Evaluator::endFrame() {
+    Frame& f = frames_.back();
+    if (conds_.size() > f.condDepth) {
+        const Cond c = conds_.back();
+        dropFrameConds();
+        fail(c.loc, fmt::format("'{}' has no matching #end before the end of the file", condDirective(c)));
+    }
+    popFrame();
+}
+
+// ------------------------------------------------------------ raw tokens
+
+// The next token of the innermost frame; ends included files on the way.
+Token Evaluator::rawNext() {
+    for (;;) {
+        Frame& f = frames_.back();
+        const Token& t = (*f.tokens)[f.pos];
+        if (frames_.size() > 1 && !f.isMacro && t.loc.file == abandonedFile_ && abandonedFile_ >= 0) {
+            dropFrameConds();
+            popFrame();
+            continue;
+        }
+        if (t.kind == TokenKind::EndOfFile) {
+            if (f.isMacro) fail(t.loc, "macro body has no #end");
+            if (frames_.size() == 1) {
+                if (conds_.size() > f.condDepth) {
+                    const Cond c = conds_.back();
+                    conds_.clear();
+                    fail(c.loc, fmt::format("'{}' has no matching #end", condDirective(c)));
+                }
+                return t;
+            }
+            endFrame();
+            continue;
+        }
+        ++f.pos;
+        if (t.kind == TokenKind::Error) {
+            error(t.loc, t.text);
+            continue;
+        }
+        return t;
+    }
+}
+
+Token Evaluator::next() {
+    for (;;) {
+        Token t;
+        if (!pushed_.empty()) {
+            t = std::move(pushed_.back());
+            pushed_.pop_back();
+        } else {
+            t = rawNext();
+        }
+        if (t.kind == TokenKind::Directive) {
+            directive(t);
+            continue;
+        }
+        if (t.kind == TokenKind::Word && !noExpand_ && isMacro(t.text)) {
+            invokeMacro(t);
+            continue;
+        }
+        if (t.is("{")) ++braceDepth_;
+        else if (t.is("}")) --braceDepth_;
+        beforeLastToken_ = std::move(lastToken_);
+        lastToken_ = t;
+        return t;
+    }
+}
+
+void Evaluator::pushBack(Token t) {
+    if (t.is("{")) --braceDepth_;
+    else if (t.is("}")) ++braceDepth_;
+    lastToken_ = beforeLastToken_;
+    pushed_.push_back(std::move(t));
+}
+
+Token Evaluator::peek() {
+    Token t = next();
+    pushBack(t);
+    return t;
+}
+
+Token Evaluator::peekOperator() {
+    if (!pushed_.empty()) return pushed_.back();
+    for (;;) {
+        Frame& f = frames_.back();
+        const Token& t = (*f.tokens)[f.pos];
+        if (t.kind == TokenKind::EndOfFile && frames_.size() > 1 && !f.isMacro) {
+            endFrame();
+            continue;
+        }
+        // A macro's #end returns to the caller: the expression may go on there.
+        if (t.kind == TokenKind::Directive && t.text == "end" && f.isMacro && conds_.size() == f.condDepth) {
+            ++f.pos;
+            popFrame();
+            continue;
+        }
+        if (t.kind == TokenKind::Directive) return t;
+        // A macro name cannot continue an expression: return it unexpanded, or
+        // `#declare S = "" M(S)` would run M before S is declared.
+        if (t.kind == TokenKind::Word && isMacro(t.text)) return t;
+        return peek();
+    }
+}
+
+bool Evaluator::acceptSymbol(const char* s) {
+    if (peek().is(s)) {
+        next();
+        return true;
+    }
+    return false;
+}
+
+Token Evaluator::expectSymbol(const char* s, const std::string& context) {
+    Token t = next();
+    if (!t.is(s)) failExpected(t, std::string("'") + s + "'" + (context.empty() ? "" : " " + context));
+    return t;
+}
+
+bool Evaluator::acceptWord(const char* w) {
+    if (peek().isWord(w)) {
+        next();
+        return true;
+    }
+    return false;
+}
+
+Token Evaluator::expectWord(const std::string& context) {
+    Token t = next();
+    if (t.kind != TokenKind::Word) failExpected(t, context);
+    return t;
+}
+
+void Evaluator::comma(const std::string& after) {
+    if (syntax().requireCommas) expectSymbol(",", "after the " + after);
+    else acceptSymbol(",");
+}
+
+void Evaluator::skipBlock() {
+    int depth = 1;
+    while (depth > 0) {
+        const Token t = next();
+        if (t.kind == TokenKind::EndOfFile) fail(t.loc, "unbalanced '{': end of file inside a block");
+        if (t.is("{")) ++depth;
+        else if (t.is("}")) --depth;
+    }
+}
+
+// ------------------------------------------------------------ recovery
+
+// After an error in the .drt dialect: skip to the next statement, i.e. past
+// the '}' that closes the broken statement, or to a top-level keyword outside
+// any block, or to a directive or scene-level block at any depth (a missing '}').
+void Evaluator::synchronize() {
+    expressionDepth_ = 0;
+    openBlocks_.clear();
+    inVector_ = countBeforeVector_ = false;
+    noExpand_ = false;
+    pending_ = nullptr;
+    for (;;) {
+        const Token t = peekOperator();
+        if (t.kind == TokenKind::EndOfFile || t.kind == TokenKind::Directive) break;
+        if (t.kind == TokenKind::Word) {
+            const std::string& w = t.text;
+            if (w == "camera" || w == "light_source" || w == "global_settings" || w == "background" ||
+                w == "render" || w == "sky_sphere" || w == "fog" || w == "media")
+                break;
+            if (braceDepth_ <= 0 && (isObjectWord(t) || lookup(w) == nullptr)) {
+                const auto& top = blockKeywords(Block::Statement);
+                if (isObjectWord(t) || std::find(top.begin(), top.end(), w) != top.end()) break;
+            }
+        }
+        const Token consumed = next();
+        if (consumed.kind == TokenKind::EndOfFile) break;
+        if ((consumed.is("}") || consumed.is(";")) && braceDepth_ <= 0) break;
+    }
+    braceDepth_ = 0;
+}
+
+// ------------------------------------------------------------ entry
+
+std::optional<Scene> Evaluator::run(int fileId, const std::string& baseDir) {
+    mainDir_ = baseDir;
+    const std::string& path = diags_.files().path(fileId);
+    const std::string id = canonical((fs::path(baseDir) / fs::path(path).filename()).string());
+    if (scene().kind == DialectKind::Pov) scene_.camera.right = Vec3(1.33, 0, 0);
+    if (!scene().mediaAttenuationDefault) {
+    }
+    try {
+        pushFile(fileId, SourceLoc{}, baseDir, id, sceneDialect_);
+        scopes_.pop_back(); // the main file shares the global scope
+    } catch (const Abort&) {
+        return std::nullopt;
+    }
+    for (;;) {
+        try {
+            braceDepth_ = 0;
+            const Token t = next();
+            if (t.kind == TokenKind::EndOfFile) break;
+            statement(t);
+        } catch (const Abort&) {
+            if (!scene().recoverAfterErrors || frames_.empty()) return std::nullopt;
+            try {
+                synchronize();
+            } catch (const Abort&) {
+                return std::nullopt;
+            }
+        }
+    }
+    if (diags_.hasErrors()) return std::nullopt;
+    try {
+        finishScene();
+    } catch (const Abort&) {
+        return std::nullopt;
+    }
+    if (diags_.hasErrors()) return std::nullopt;
+    return std::move(scene_);
+}
+
+} // namespace drt::lang

@@ -1,0 +1,69 @@
+// Every shape of the scene model (scene.h, Shape) is declared once, in one
+// front-end entry: its keywords, its reader (arguments, defaults, validation,
+// model construction) and its .drt writer entry. The entries live beside each
+// other in shapes_*.cpp. The reader table (shapeReaders) and the writer both
+// go through every alternative of Shape, so a shape without an entry does not
+// build: adding a shape means its model type, its intersection code and its
+// ShapeSyntax.
+#pragma once
+
+#include "scene/scene.h"
+
+#include <set>
+#include <string>
+#include <vector>
+
+namespace drt::lang {
+
+class Evaluator;
+struct ObjectValue;
+struct Token;
+
+// What a writer entry needs beside the shape.
+struct ShapeText {
+    int indent = 0;                    // of the shape's line, for entries written over several lines
+    std::set<std::string>& problems;   // what .drt cannot express, one line per kind
+};
+
+// ShapeSyntax<T> for each T in Shape:
+//   keywords()                      the words that start it (`sphere`; `lathe`, `sor`; ...)
+//   read(evaluator, keyword, object) after the shape's '{': reads its arguments into object
+//   head(shape, text)               the .drt text from the keyword through its arguments
+template <class T> struct ShapeSyntax; // no primary definition: a Shape without an entry does not compile
+
+#define DRT_SHAPE_SYNTAX(Type)                                                                                      \
+    template <> struct ShapeSyntax<Type> {                                                                          \
+        static const std::vector<std::string>& keywords();                                                         \
+        static void read(Evaluator& e, const Token& keyword, ObjectValue& object);                                  \
+        static std::string head(const Type& shape, ShapeText& text);                                               \
+    }
+
+DRT_SHAPE_SYNTAX(Sphere);         // shapes_basic.cpp
+DRT_SHAPE_SYNTAX(Plane);          // shapes_basic.cpp
+DRT_SHAPE_SYNTAX(Box);            // shapes_basic.cpp
+DRT_SHAPE_SYNTAX(Cylinder);       // shapes_basic.cpp
+DRT_SHAPE_SYNTAX(Cone);           // shapes_basic.cpp
+DRT_SHAPE_SYNTAX(Disc);           // shapes_basic.cpp
+DRT_SHAPE_SYNTAX(Torus);          // shapes_basic.cpp
+DRT_SHAPE_SYNTAX(Mesh);           // shapes_mesh.cpp
+DRT_SHAPE_SYNTAX(Csg);            // objects.cpp (the members are read as object modifiers)
+DRT_SHAPE_SYNTAX(Algebraic);      // shapes_algebraic.cpp
+DRT_SHAPE_SYNTAX(Superellipsoid); // shapes_algebraic.cpp
+DRT_SHAPE_SYNTAX(Extrusion);      // shapes_extrusion.cpp
+DRT_SHAPE_SYNTAX(Revolution);     // shapes_revolution.cpp
+DRT_SHAPE_SYNTAX(Blob);           // shapes_blob.cpp
+
+#undef DRT_SHAPE_SYNTAX
+
+// The reader of each shape keyword, from every ShapeSyntax.
+using ShapeReader = void (*)(Evaluator& e, const Token& keyword, ObjectValue& object);
+const std::vector<std::pair<std::string, ShapeReader>>& shapeReaders();
+ShapeReader shapeReader(const std::string& keyword); // nullptr for a word that is no shape
+
+// POV-Ray shapes drt does not have: left out with a warning, or refused in .drt.
+bool isUnsupportedShape(const std::string& keyword);
+
+// The .drt text of a shape, from the keyword through its arguments ("" when .drt cannot write it).
+std::string shapeHead(const Shape& shape, ShapeText& text);
+
+} // namespace drt::lang
