@@ -1,5 +1,5 @@
 // Tests of drt's image comparison on synthetic images with known answers
-// (issue 4): exact metrics on hand-made images, idiff-style thresholds, and the
+// (docs/golden-tests.md): exact metrics on hand-made images, idiff-style thresholds, and the
 // statistical mode's power and false-alarm rate.
 #include "cli/commands.h"
 #include "compare/compare.h"

@@ -1,4 +1,4 @@
-// Exact (bit-for-bit) limits of the distribution effects (issue 3): each effect
+// Exact (bit-for-bit) limits of the distribution effects (docs/effects.md): each effect
 // switched to its degenerate value renders the image without it. Plus the
 // area-light estimators' exact cases and light decorrelation.
 #include "accel/motion.h"

@@ -1,6 +1,7 @@
 // The lexer of both dialects: token kinds, slices, locations, comments, every
 // lexical error, and the POV-Ray dialect's leniency.
 #include "lang/lexer.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -150,7 +151,11 @@ INSTANTIATE_TEST_SUITE_P(
                     LexError{"a /* b /* c */", "unterminated comment", 1, 3},
                     LexError{"# 5", "expected a directive name after '#'", 1, 1},
                     LexError{"a @ b", "unexpected character '@'", 1, 3},
-                    LexError{"a \x01", "unexpected byte 1", 1, 3}));
+                    LexError{"a \x01", "unexpected byte 1", 1, 3}),
+    [](const testing::TestParamInfo<LexError>& info) {
+        return test::testNameOf(std::string(info.param.message) + " at " + std::to_string(info.param.line) + " " +
+                                std::to_string(info.param.column));
+    });
 
 TEST(Lexer, LexingCarriesOnAfterAnError) {
     const auto t = lexAll("a $ b", false);

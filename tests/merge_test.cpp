@@ -124,6 +124,52 @@ TEST(Merge, RefusesPartsThatDoNotFormOneImageOfOneRender) {
     fs::remove_all(dir);
 }
 
+// The merged file keeps the parts' provenance (the scene's SHA-1 over its
+// includes, seed, settings) with the merge's own command line; a part whose
+// included file was edited is of another scene, though the scene file is not.
+TEST(Merge, KeepsProvenanceAndAnEditedIncludeMakesAnotherScene) {
+    const std::string dir = test::tempDir();
+    fs::create_directories(dir + "/include");
+    test::writeFile(dir + "/scene.drt", test::readFile(test::sourcePath("examples/declare_include.drt")));
+    const std::string materials = test::readFile(test::sourcePath("examples/include/materials.drt"));
+    test::writeFile(dir + "/include/materials.drt", materials);
+    const auto crop = [&](const std::string& name, const std::string& window) {
+        return test::runDrt("render '" + dir + "/scene.drt' -o '" + dir + "/" + name + "' --crop " + window +
+                            kSettings)
+            .exitCode;
+    };
+    ASSERT_EQ(crop("top.exr", "0,36,0,13"), 0);
+    ASSERT_EQ(crop("bottom.exr", "0,36,13,27"), 0);
+    const test::CommandResult merged =
+        test::runDrt("merge '" + dir + "/top.exr' '" + dir + "/bottom.exr' -o '" + dir + "/merged.exr'");
+    ASSERT_EQ(merged.exitCode, 0) << merged.err;
+    Metadata part, whole;
+    Image image;
+    ASSERT_EQ(readImage(dir + "/top.exr", image, &part), "");
+    ASSERT_EQ(readImage(dir + "/merged.exr", image, &whole), "");
+    const auto value = [](const Metadata& m, const std::string& key) {
+        for (const auto& [k, v] : m)
+            if (k == key) return v;
+        return std::string("(none)");
+    };
+    EXPECT_EQ(value(whole, "drt:scene_sha1"), value(part, "drt:scene_sha1"));
+    EXPECT_EQ(value(whole, "drt:scene_sha1").size(), 40u);
+    EXPECT_EQ(value(whole, "drt:seed"), "3");
+    EXPECT_EQ(value(whole, "drt:settings"), value(part, "drt:settings"));
+    EXPECT_EQ(value(whole, "drt:crop"), "(none)");
+    EXPECT_NE(value(whole, "drt:command_line").find(" merge "), std::string::npos) << value(whole, "drt:command_line");
+    EXPECT_NE(value(part, "drt:command_line").find("--crop"), std::string::npos) << value(part, "drt:command_line");
+
+    test::writeFile(dir + "/include/materials.drt", materials + "\n// edited\n");
+    ASSERT_EQ(crop("edited.exr", "0,36,13,27"), 0);
+    const test::CommandResult refused =
+        test::runDrt("merge '" + dir + "/top.exr' '" + dir + "/edited.exr' -o '" + dir + "/refused.exr'");
+    EXPECT_EQ(refused.exitCode, 1) << refused.err;
+    EXPECT_NE(refused.err.find("is of another scene"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(dir + "/refused.exr"));
+    fs::remove_all(dir);
+}
+
 TEST(Merge, RenderRefusesABadCropWindow) {
     const std::string dir = test::tempDir();
     const test::CommandResult outside =

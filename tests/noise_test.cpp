@@ -120,7 +120,9 @@ TEST(Noise, BumpNormalsAreUnitOnTheSurfaceSideAndNeverNaN) {
             const Vec3 b = perturbNormal(bump, randomPoint(rng, 5), n);
             ASSERT_TRUE(finite(b));
             EXPECT_NEAR(length(b), 1.0, 1e-9);
-            if (kind == PatternKind::Bumps || kind == PatternKind::Dents) EXPECT_GT(dot(b, n), 0.2);
+            if (kind == PatternKind::Bumps || kind == PatternKind::Dents) {
+                EXPECT_GT(dot(b, n), 0.2);
+            }
             maxTilt = std::max(maxTilt, 1 - dot(b, n));
         }
         EXPECT_GT(maxTilt, 1e-4) << "pattern " << int(kind) << " does not bump";

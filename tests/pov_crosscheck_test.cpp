@@ -1,4 +1,4 @@
-// Cross-checks against POV-Ray 3.7 itself (issue 5): POV-Ray's own focal-blur
+// Cross-checks against POV-Ray 3.7 itself (docs/pov-crosscheck.md): POV-Ray's own focal-blur
 // and area-light sample scenes, rendered by `povray` and by drt (through the
 // POV front end and the .drt writer, as `drt convert` does) at 160x120, must
 // agree within thresholds that a wrong camera, lens, light placement or

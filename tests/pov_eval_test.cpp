@@ -223,7 +223,8 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"MissingInclude", "#include \"nothere.inc\"", "cannot find include file", 1, 10},
         ErrorCase{"UnknownKeyword", "sphre { 0, 1 }", "did you mean 'sphere'", 1, 1},
         ErrorCase{"BadObjectItem", "sphere { 0, 1 pigmnt { rgb 1 } }", "unknown keyword 'pigmnt'; did you mean 'pigment'?", 1, 15},
-        ErrorCase{"UnterminatedString", "#declare S = \"abc\n;", "unterminated string", 1, 14}));
+        ErrorCase{"UnterminatedString", "#declare S = \"abc\n;", "unterminated string", 1, 14}),
+    [](const testing::TestParamInfo<ErrorCase>& info) { return std::string(info.param.name); });
 
 TEST(PovEval, ErrorInsideIncludeShowsTheChain) {
     const std::string dir = test::tempDir();

@@ -1,4 +1,4 @@
-// Stability where methods fail (issue 6): each test drives the renderer into a
+// Stability where methods fail: each test drives the renderer into a
 // regime where a naive method breaks (tiny or huge scenes, far from the origin,
 // total internal reflection, grazing rays, degenerate lights, lenses, shutters
 // and triangles, deep recursion, coincident surfaces) and asserts no NaN/Inf,

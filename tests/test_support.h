@@ -25,6 +25,22 @@ struct CommandResult {
     std::string out; // stdout
     std::string err; // stderr
 };
+// A GoogleTest parameter name (letters, digits, '_') made from a description,
+// so that parameterised tests read as Suite.Test/what_it_checks in ctest.
+inline std::string testNameOf(const std::string& description) {
+    std::string name;
+    for (char c : description) {
+        const bool word = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+        if (word)
+            name += c;
+        else if (!name.empty() && name.back() != '_')
+            name += '_';
+    }
+    while (!name.empty() && name.back() == '_')
+        name.pop_back();
+    return name.empty() ? "case" : name;
+}
+
 // The path of the drt executable built with these tests.
 std::string drtExecutable();
 // Runs the drt executable with the given argument string (shell-quoted by the caller).

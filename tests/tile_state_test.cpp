@@ -208,7 +208,7 @@ TEST(CropWindow, ParsesPixelsAndFractions) {
 TEST(Checkpoint, WrittenAndReadBackOrRefusedWithTheDifference) {
     const std::string dir = test::tempDir();
     const RenderOptions options = smallOptions(false);
-    const RenderIdentity identity = renderIdentity(options, 0x1234);
+    const RenderIdentity identity = renderIdentity(options, "1234");
     const std::string path = dir + "/out.png.drt-checkpoint";
     ASSERT_EQ(writeCheckpoint(path, makeCheckpoint(identity, RenderState(options))), "");
     Checkpoint read;
@@ -219,13 +219,13 @@ TEST(Checkpoint, WrittenAndReadBackOrRefusedWithTheDifference) {
 
     RenderOptions seed = options;
     seed.seed = 8;
-    EXPECT_NE(checkpointMismatch(read, path, renderIdentity(seed, 0x1234), seed).find("seed=7 there, seed=8 here"),
+    EXPECT_NE(checkpointMismatch(read, path, renderIdentity(seed, "1234"), seed).find("seed=7 there, seed=8 here"),
               std::string::npos);
     RenderOptions size = options;
     size.width = 41;
-    EXPECT_NE(checkpointMismatch(read, path, renderIdentity(size, 0x1234), size).find("size=40x30 there, size=41x30"),
+    EXPECT_NE(checkpointMismatch(read, path, renderIdentity(size, "1234"), size).find("size=40x30 there, size=41x30"),
               std::string::npos);
-    EXPECT_NE(checkpointMismatch(read, path, renderIdentity(options, 0x99), options).find("another scene"),
+    EXPECT_NE(checkpointMismatch(read, path, renderIdentity(options, "99"), options).find("another scene"),
               std::string::npos);
     RenderIdentity otherVersion = identity;
     otherVersion.version = "0.0.1";

@@ -6,6 +6,7 @@
 #include "bench/reference.h"
 #include "bench/report.h"
 #include "compare/compare.h"
+#include "accel/geometry_query.h"
 #include "lang/load.h"
 #include "sampling/filter.h"
 #include "sampling/sampler.h"
@@ -237,7 +238,10 @@ BenchReport runBench(const BenchOptions& given, std::ostream& log) {
         throw BenchError(fmt::format("cannot read scene '{}': no such file", o.scenePath), true);
     Diagnostics diagnostics;
     const auto parseStart = std::chrono::steady_clock::now();
-    std::optional<Scene> loaded = loadSceneFile(o.scenePath, diagnostics);
+    LoadOptions load; // .drt or .pov, by the extension
+    const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+    load.geometry = geometry.get();
+    std::optional<Scene> loaded = loadScene(o.scenePath, diagnostics, load);
     if (loaded && !diagnostics.hasErrors()) resolveAssets(*loaded, diagnostics);
     const double parseSeconds = secondsSince(parseStart);
     if (diagnostics.hasErrors() || !loaded)

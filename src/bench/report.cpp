@@ -266,7 +266,7 @@ std::string formatSummary(const BenchReport& report) {
     }
 
     // Adaptive against fixed: the samples sobol needs for the relMSE adaptive
-    // reached, over the samples adaptive took (issue 6 asks for this factor).
+    // reached, over the samples adaptive took: what adaptive sampling saves.
     const auto findCurve = [&](const std::string& name) -> const MethodCurve* {
         for (const MethodCurve& c : curves)
             if (c.method == name) return &c;

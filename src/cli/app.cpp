@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <filesystem>
 #include <type_traits>
 #include <fmt/format.h>
 #include <iostream>
@@ -101,6 +102,9 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("--stats", a.command.statsOutput,
                        "Also write the render's times, ray counts and rates to this JSON file");
     render->add_flag("-q,--quiet", a.command.quiet, "No progress line and no summary");
+    render->add_flag("--reproducible", a.command.reproducible,
+                     "Leave the run's details (command line, threads, time) out of the file's metadata, so the same "
+                     "scene and seed give a byte-identical file");
     render->add_option("-L,--include-path", a.command.pov.includePaths,
                        "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");
     render->add_flag("--strict", a.command.pov.strict, "POV-Ray scenes: unsupported features are errors");
@@ -242,6 +246,15 @@ CLI::App* addCompare(CLI::App& app, CompareCommand& c) {
     return compare;
 }
 
+// Where `cmake --install` put the documentation and examples: share/doc/drt
+// beside the bin folder holding this executable ("" when run from a build tree).
+std::string installedDocs() {
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::filesystem::path docs = exe.parent_path().parent_path() / "share" / "doc" / "drt";
+    return !ec && std::filesystem::is_regular_file(docs / "README.md", ec) ? docs.string() : "";
+}
+
 // --limit NAME=VALUE (repeatable): every limit of core/limits.h (docs/limits.md).
 void addLimitOption(CLI::App* command, Limits& limits) {
     std::string names;
@@ -263,6 +276,9 @@ void addLimitOption(CLI::App* command, Limits& limits) {
 int runCommandLine(int argc, char** argv) {
     CLI::App app{"drt: a distribution ray tracer with a POV-Ray-like scene language", "drt"};
     app.set_version_flag("--version", fmt::format("drt {}", DRT_VERSION));
+    const std::string docs = installedDocs();
+    app.footer(docs.empty() ? "Documentation: README.md and docs/ in drt's source tree."
+                            : fmt::format("Documentation: {0}/README.md, {0}/docs; example scenes: {0}/examples.", docs));
     app.require_subcommand(1);
 
     RenderArguments renderArguments;
@@ -294,6 +310,9 @@ int runCommandLine(int argc, char** argv) {
     test->add_flag("--update", testCommand.update, "Rewrite the goldens (and variance images) from fresh renders");
     test->add_option("--report", testCommand.reportDir, "Write an HTML page of the failures to this folder");
     test->add_option("--only", testCommand.only, "Run only the test of this name (repeatable)");
+    test->add_option("--junit", testCommand.junitFile,
+                     "Write JUnit XML (one testcase per scene) to this file, for CI test reports");
+    test->add_option("--json", testCommand.jsonFile, "Write every test's outcome and figures as JSON to this file");
     Limits limits;
     for (CLI::App* command : {render, check, bench, convert, test}) addLimitOption(command, limits);
 
@@ -309,6 +328,7 @@ int runCommandLine(int argc, char** argv) {
         fillOverrides(*render, renderArguments);
         if (!fillTime(*render, renderArguments, std::cerr))
             return kUsageError;
+        renderArguments.command.commandLine = shellCommandLine(argc, argv);
         return runRender(renderArguments.command, std::cout, std::cerr);
     }
     if (check->parsed())
@@ -326,8 +346,10 @@ int runCommandLine(int argc, char** argv) {
     }
     if (bench->parsed())
         return runBenchCommand(benchCommand, std::cout, std::cerr);
-    if (merge->parsed())
+    if (merge->parsed()) {
+        mergeCommand.commandLine = shellCommandLine(argc, argv);
         return runMerge(mergeCommand, std::cout, std::cerr);
+    }
     if (convert->parsed())
         return runConvert(convertCommand, std::cout, std::cerr);
     if (test->parsed())

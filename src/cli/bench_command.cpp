@@ -12,7 +12,7 @@ CLI::App* addBenchSubcommand(CLI::App& app, BenchCommand& c) {
     CLI::App* bench = app.add_subcommand(
         "bench", "Chart speed against accuracy: render a scene with each method, sample count and seed, measure "
                  "the error against a reference, write results.csv, charts and summary.md");
-    bench->add_option("scene", o.scenePath, "Scene file (.drt)")->required();
+    bench->add_option("scene", o.scenePath, "Scene file (.drt or .pov)")->required();
     bench->add_option("-o,--output", o.outputDir, "Output folder (created if missing)")->required();
     bench->add_option("--spp", c.sppList, "Samples per pixel, comma-separated (default 1,4,16,64,256)");
     bench->add_option("--seeds", o.seeds, "Seeds per configuration (default 3)")->check(CLI::Range(1, 1000));

@@ -11,9 +11,10 @@
 // compare uses idiff's statuses instead (compare/compare.h: CompareStatus).
 #pragma once
 
+#include "animation/animation.h"
 #include "bench/bench.h"
 #include "compare/compare.h"
-#include "animation/animation.h"
+#include "render/provenance.h"
 #include "render/render.h"
 
 #include <functional>
@@ -66,6 +67,8 @@ struct RenderCommand {
     bool quiet = false;
     bool progress = false; // draw a progress line (the caller checks that stderr is a terminal)
     PovCliOptions pov;
+    std::string commandLine; // recorded in the output's metadata ("" : not recorded)
+    bool reproducible = false; // --reproducible: metadata without run details (byte-identical files)
     AnimationRequest animation;
 };
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err);
@@ -79,6 +82,7 @@ struct MergeCommand {
     std::string output;
     std::string varianceOutput; // where the variance parts go
     std::string sppImageOutput; // where the samples-per-pixel parts go
+    std::string commandLine;    // recorded in the outputs' metadata instead of the first part's
 };
 int runMerge(const MergeCommand& command, std::ostream& out, std::ostream& err);
 // Declares the `merge` subcommand and its options (bound to `command`) on `app`.
@@ -121,6 +125,8 @@ struct TestCommand {
     bool update = false;            // --update: rewrite the goldens
     std::string reportDir;          // --report: HTML page of the failures
     std::vector<std::string> only;  // --only NAME (repeatable): run these tests
+    std::string junitFile;          // --junit: JUnit XML of every test
+    std::string jsonFile;           // --json: the same as JSON
 };
 int runTest(const TestCommand& command, std::ostream& out, std::ostream& err);
 
@@ -161,8 +167,5 @@ struct ConversionCheck {
 };
 ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions& pov, int width, int height);
 
-// The metadata drt stores in rendered images (keys "drt:...").
-Metadata renderMetadata(const std::string& scenePath, const RenderOptions& options, const RenderStats& stats,
-                        uint64_t nonFinitePixels);
 
 } // namespace drt::cli

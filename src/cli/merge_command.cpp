@@ -10,6 +10,15 @@
 
 namespace drt::cli {
 
+namespace {
+
+void recordMergeCommand(Metadata& metadata, const std::string& commandLine) {
+    std::erase_if(metadata, [](const auto& entry) { return entry.first == "drt:command_line"; });
+    if (!commandLine.empty()) metadata.emplace_back("drt:command_line", commandLine);
+}
+
+} // namespace
+
 int runMerge(const MergeCommand& command, std::ostream& out, std::ostream& err) {
     for (const std::string& output : {command.output, command.varianceOutput, command.sppImageOutput}) {
         if (output.empty()) continue;
@@ -42,6 +51,10 @@ int runMerge(const MergeCommand& command, std::ostream& out, std::ostream& err) 
             err << fmt::format("drt merge: '{}' is to hold the {} image, but no part is one\n", given, name);
             return kUsageError;
         }
+    // The parts' provenance stays (scene hash, seed, settings, summed counts); the
+    // command line is this merge's, not the first part's.
+    recordMergeCommand(merged.colorMetadata, command.commandLine);
+    for (Metadata& metadata : merged.otherMetadata) recordMergeCommand(metadata, command.commandLine);
     if (std::string problem = writeImage(command.output, merged.color, merged.colorMetadata); !problem.empty()) {
         err << "drt merge: " << problem << "\n";
         return kIoError;

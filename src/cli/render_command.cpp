@@ -10,6 +10,8 @@
 #include "cli/render_parts.h"
 #include "distributed/checkpoint.h"
 #include "lang/load.h"
+#include "render/scene_warnings.h"
+#include "sampling/filter.h"
 #include "render/camera.h"
 #include "sampling/sampler.h"
 
@@ -66,8 +68,8 @@ SceneEvaluator sceneEvaluator(const std::string& path, const PovCliOptions& pov,
 
 // At one frame's clock, moving over its shutter (animation.h evaluateFrame).
 int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov,
-              const RenderSettings& overrides, const FrameClock& frame, const FrameOptions& frameOptions,
-              FrameReport* report) {
+              const RenderSettings& overrides, std::string* sceneSha1, const FrameClock& frame,
+              const FrameOptions& frameOptions, FrameReport* report) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !std::ifstream(path)) {
         err << fmt::format("drt: cannot read scene '{}': {}\n", path,
@@ -80,6 +82,8 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
     }
     Diagnostics diagnostics;
     scene = evaluateFrame(sceneEvaluator(path, pov, overrides), frame, frameOptions, diagnostics, report);
+    if (sceneSha1) // the scene text read (the evaluations over the shutter read the same files)
+        *sceneSha1 = sceneTextSha1(diagnostics.files());
     if (scene && !diagnostics.hasErrors()) {
         // The camera's problems (sky or up along the view, ...) are found by
         // check too, and reported at the camera.
@@ -91,6 +95,12 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         }
     }
     err << diagnostics.formatAll();
+    if (scene && !diagnostics.hasErrors()) {
+        // Apart from the front end's diagnostics, so that --strict does not make them errors.
+        Diagnostics sceneWarnings(diagnostics.sharedFiles());
+        warnAboutScene(*scene, path, sceneWarnings);
+        err << sceneWarnings.formatAll();
+    }
     if (diagnostics.hasErrors() || !scene) {
         err << fmt::format("drt: {}: {} error{}\n", path, diagnostics.errorCount(),
                            diagnostics.errorCount() == 1 ? "" : "s");
@@ -141,25 +151,22 @@ std::string millions(uint64_t n) {
 
 } // namespace
 
-Metadata renderMetadata(const std::string& scenePath, const RenderOptions& options, const RenderStats& stats,
-                        uint64_t nonFinitePixels) {
-    return {
-        {"Software", fmt::format("drt {}", DRT_VERSION)},
-        {"drt:version", DRT_VERSION},
-        {"drt:scene", fs::path(scenePath).filename().string()},
-        {"drt:seed", std::to_string(options.seed)},
-        {"drt:spp", options.adaptive ? fmt::format("{}-{} adaptive", stats.minPixelSamples, stats.maxPixelSamples)
-                                     : std::to_string(options.samplesPerPixel)},
-        {"drt:sampler", options.sampler.empty() ? defaultSamplerName() : options.sampler},
-        {"drt:render_seconds", fmt::format("{:.3f}", stats.renderSeconds)},
-        {"drt:nonfinite_samples", std::to_string(stats.nonFiniteSamples)},
-        {"drt:nonfinite_pixels", std::to_string(nonFinitePixels)},
-        {"drt:effects", describeEffects(stats.effects)},
-        {"drt:samples_taken", std::to_string(stats.pixelSamples)},
-        {"drt:adaptive", options.adaptive ? fmt::format("error {} min {} max {}", options.adaptiveError,
-                                                         options.minSamplesPerPixel, options.maxSamplesPerPixel)
-                                          : "off"},
-    };
+Metadata renderMetadata(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
+                        const RunRecord& record, const RenderStats& stats, uint64_t nonFinitePixels) {
+    Provenance p = renderProvenance(command.scene, record.sceneSha1, options, record.filter);
+    p.identify("drt:effects", describeEffects(stats.effects));
+    p.identify("drt:samples_taken", std::to_string(stats.pixelSamples));
+    if (options.adaptive)
+        p.identify("drt:spp_range", fmt::format("{}-{}", stats.minPixelSamples, stats.maxPixelSamples));
+    p.identify("drt:nonfinite_samples", std::to_string(stats.nonFiniteSamples));
+    p.identify("drt:nonfinite_pixels", std::to_string(nonFinitePixels));
+    // What crops are merged and checkpoints resumed by: the same for every run.
+    Metadata identityEntries;
+    addIdentity(identityEntries, identity, options.crop, options.width, options.height);
+    for (const auto& [key, value] : identityEntries)
+        p.identify(key, value);
+    recordRun(p, options, stats, command.commandLine, record.started);
+    return p.metadata(command.reproducible);
 }
 
 int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err) {
@@ -246,10 +253,9 @@ std::string writeStatsJson(const RenderCommand& command, const RenderOptions& op
 }
 
 int writeOutputs(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
-                 RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err) {
+                 const RunRecord& record, RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err) {
     nonFinitePixels = clearNonFinite(result.color);
-    Metadata metadata = renderMetadata(command.scene, options, result.stats, nonFinitePixels);
-    addIdentity(metadata, identity, options.crop, options.width, options.height);
+    const Metadata metadata = renderMetadata(command, options, identity, record, result.stats, nonFinitePixels);
     if (std::string problem = writeImage(command.output, result.color, metadata); !problem.empty()) {
         err << "drt: " << problem << "\n";
         return kIoError;

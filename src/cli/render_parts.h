@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "distributed/render_identity.h"
 
+#include <ctime>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -16,11 +17,27 @@ namespace drt::cli {
 SceneEvaluator sceneEvaluator(const std::string& path, const PovCliOptions& pov, const RenderSettings& overrides);
 
 // Loads a scene at one frame's clock, moving over its shutter (animation.h
-// evaluateFrame), printing every diagnostic to `err`. Returns kSuccess and
-// sets `scene`, or the exit status to stop with.
+// evaluateFrame), printing every diagnostic and the scene's warnings
+// (render/scene_warnings.h) to `err`. Returns kSuccess and sets `scene` (and
+// `sceneSha1`, the hash of the text read: render/provenance.h), or the exit
+// status to stop with.
 int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov = {},
-              const RenderSettings& overrides = {}, const FrameClock& frame = {}, const FrameOptions& frameOptions = {},
-              FrameReport* report = nullptr);
+              const RenderSettings& overrides = {}, std::string* sceneSha1 = nullptr, const FrameClock& frame = {},
+              const FrameOptions& frameOptions = {}, FrameReport* report = nullptr);
+
+// What a render's files record besides its identity (render/provenance.h).
+struct RunRecord {
+    std::string sceneSha1; // of the scene text and its includes
+    std::string filter;    // the reconstruction filter's name
+    std::time_t started = 0;
+};
+
+// The metadata of a render's image files: provenance (version, scene hash,
+// size, seed, spp, sampler, filter, effects), the identity crops and
+// checkpoints are matched by, and, unless --reproducible, the run (command
+// line, threads, start time, seconds).
+Metadata renderMetadata(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
+                        const RunRecord& record, const RenderStats& stats, uint64_t nonFinitePixels);
 
 // ".png" for "a/b.PNG".
 std::string lowerExtension(const std::string& path);
@@ -31,7 +48,7 @@ int checkOutputs(const RenderCommand& command, std::ostream& err);
 // Writes the colour, variance and samples-per-pixel images (NaN/Inf cleared:
 // `nonFinitePixels` counts them) and removes a stale checkpoint. Returns kSuccess or the status.
 int writeOutputs(const RenderCommand& command, const RenderOptions& options, const RenderIdentity& identity,
-                 RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err);
+                 const RunRecord& record, RenderResult& result, uint64_t& nonFinitePixels, std::ostream& err);
 
 // `--stats FILE`: the summary line's figures as JSON, for benchmark scripts.
 // load = parse + the files the scene names; render = build + trace; total =

@@ -17,6 +17,7 @@
 #include "distributed/checkpoint.h"
 #include "distributed/crop_merge.h"
 #include "distributed/mpi_render.h"
+#include "sampling/filter.h"
 #include "image/image.h"
 
 #include <chrono>
@@ -37,6 +38,7 @@ struct Prepared {
     std::optional<Scene> scene;
     RenderOptions options;
     RenderIdentity identity;
+    RunRecord record; // for the files' metadata
     std::optional<Checkpoint> checkpoint; // --resume, rank 0
     double loadSeconds = 0;               // parsing and the files the scene names (--stats)
 };
@@ -51,14 +53,16 @@ int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepar
         err << "drt render: " << clash << "\n";
         return kUsageError;
     }
+    p.record.started = std::time(nullptr);
     const auto loadStart = std::chrono::steady_clock::now();
     FrameReport report; // the scene at its frame's clock, moving over the shutter
-    if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides, stillFrameClock(command),
-                               frameOptions(command), &report);
+    if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides, &p.record.sceneSha1,
+                               stillFrameClock(command), frameOptions(command), &report);
         status != kSuccess)
         return status;
     p.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     printFrameReport(command, report, err);
+    p.record.filter = p.scene->render.filter.value_or(defaultFilterName());
     p.options = resolveRenderOptions(overlaySettings(p.scene->render, command.overrides));
     if (command.tileSize) p.options.tileSize = *command.tileSize;
     // Sizes and thread counts past the limits are refused before the render
@@ -77,7 +81,7 @@ int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepar
         }
         p.options.crop = window;
     }
-    p.identity = renderIdentity(p.options, sceneHashOf(command.scene));
+    p.identity = renderIdentity(p.options, p.record.sceneSha1);
     if (!writes) return kSuccess;
     // Every output is checked before the (possibly long) render starts.
     if (int status = checkOutputs(command, err); status != kSuccess) return status;
@@ -172,8 +176,7 @@ std::string saveProgress(const RenderCommand& command, const Prepared& p, const 
                 for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = partial.at(x, y, c);
         partial = std::move(rgb);
     }
-    Metadata metadata = renderMetadata(command.scene, p.options, RenderStats{}, 0);
-    addIdentity(metadata, p.identity, p.options.crop, p.options.width, p.options.height);
+    Metadata metadata = renderMetadata(command, p.options, p.identity, p.record, RenderStats{}, 0);
     metadata.emplace_back("drt:partial", progress);
     metadata.emplace_back("drt:checkpoint", checkpointPath);
     return writeImage(command.output, partial, metadata);
@@ -200,10 +203,11 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
     int status = prepare(command, rank0, messages, p);
     if (mpi) {
         const int rank0Status = int(mpi->broadcast(uint64_t(status)));
-        if (status == kSuccess && rank0Status == kSuccess &&
-            mpi->broadcast(p.identity.sceneHash) != p.identity.sceneHash) {
-            messages << fmt::format("drt: the scene '{}' differs from rank 0's (are the files the same on every "
-                                    "node?)\n",
+        // Collective: every rank takes part when rank 0 could start, even one that could not.
+        const std::string rank0Scene = rank0Status == kSuccess ? mpi->broadcast(p.identity.sceneHash) : "";
+        if (status == kSuccess && rank0Status == kSuccess && rank0Scene != p.identity.sceneHash) {
+            messages << fmt::format("drt: the scene '{}' (or a file it includes) differs from rank 0's (are the "
+                                    "files the same on every node?)\n",
                                     command.scene);
             status = kSceneError;
         }
@@ -303,7 +307,7 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
     RenderResult result = finishRender(*p.scene, *state, info);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     uint64_t nonFinitePixels = 0;
-    if (int written = writeOutputs(command, p.options, p.identity, result, nonFinitePixels, err);
+    if (int written = writeOutputs(command, p.options, p.identity, p.record, result, nonFinitePixels, err);
         written != kSuccess)
         return written;
     if (!command.statsOutput.empty()) {

@@ -1,40 +1,42 @@
 // `drt test DIR`: run the golden tests in a folder (golden/golden.h) and print
-// one line per test, the figures of each failure, and a summary.
+// one line per test, the figures of each failure, and a summary; optionally
+// the HTML report, JUnit XML and JSON.
 #include "cli/commands.h"
 
 #include "golden/golden.h"
 
-#include <chrono>
-#include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 #include <ostream>
+
+namespace fs = std::filesystem;
 
 namespace drt::cli {
 
 namespace {
 
-// The figures a reader needs to judge a failed comparison, on one line.
-std::string failureFigures(const CompareResult& r) {
-    std::string line =
-        fmt::format("RMSE {:.3g}, bias {:+.3g}, max error {:.3g} at ({}, {}), NaN/Inf pixels {}", r.rmse,
-                    r.meanSignedError, r.maxError, r.maxErrorX, r.maxErrorY, r.nonFinitePixels);
-    if (r.statistical) {
-        double worst = 0;
-        for (double z : r.globalZ)
-            if (std::fabs(z) > std::fabs(worst))
-                worst = z;
-        line += fmt::format("; global z {:+.2f} (limit {:.2f}), {} of {} tiles fail (limit {:.2f})", worst,
-                            r.globalZThreshold, r.failingTiles, r.tileTests, r.tileZThreshold);
-    } else {
-        line += fmt::format("; {} pixels differ", r.failingPixels);
-    }
-    return line;
+// A report file must go into an existing folder: checked before the (possibly
+// long) run rather than after it.
+std::string checkReportPath(const std::string& option, const std::string& path) {
+    if (path.empty())
+        return "";
+    std::error_code ec;
+    const fs::path folder = fs::path(path).parent_path();
+    if (!folder.empty() && !fs::is_directory(folder, ec))
+        return fmt::format("{} {}: folder '{}' does not exist", option, path, folder.string());
+    if (fs::is_directory(path, ec))
+        return fmt::format("{} {}: it is a folder", option, path);
+    return "";
 }
 
 } // namespace
 
 int runTest(const TestCommand& command, std::ostream& out, std::ostream& err) {
-    const auto start = std::chrono::steady_clock::now();
+    for (const auto& [option, path] : {std::pair{"--junit", command.junitFile}, std::pair{"--json", command.jsonFile}})
+        if (std::string problem = checkReportPath(option, path); !problem.empty()) {
+            err << "drt test: " << problem << "\n";
+            return kIoError;
+        }
     golden::RunOptions options;
     options.update = command.update;
     options.only = command.only;
@@ -48,20 +50,31 @@ int runTest(const TestCommand& command, std::ostream& out, std::ostream& err) {
     for (const golden::CaseResult& r : summary.cases) {
         out << fmt::format("{:<8} {:<24} {:<12} {:6.2f} s{}{}\n", golden::outcomeName(r.outcome), r.name,
                            golden::policyName(r.policy), r.seconds, r.message.empty() ? "" : "  ", r.message);
-        if (r.outcome == golden::Outcome::Fail && r.comparison)
-            out << "         " << failureFigures(*r.comparison) << "\n";
+        if (r.outcome == golden::Outcome::Fail)
+            if (const std::string figures = golden::failureFigures(r); !figures.empty())
+                out << "         " << figures << "\n";
         if (!r.details.empty())
             out << r.details;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (command.update)
         out << fmt::format("drt test {}: {} tests, {} updated, {} errors in {:.1f} s\n", command.folder,
-                           summary.cases.size(), summary.updated, summary.errors, seconds);
+                           summary.cases.size(), summary.updated, summary.errors, summary.seconds);
     else
         out << fmt::format("drt test {}: {} tests, {} passed, {} failed, {} missing, {} errors in {:.1f} s\n",
                            command.folder, summary.cases.size(), summary.passed, summary.failed,
-                           summary.missing, summary.errors, seconds);
+                           summary.missing, summary.errors, summary.seconds);
 
+    int status = summary.allPassed() ? kSuccess : kSceneError;
+    auto writeReport = [&](const std::string& path, const std::string& text) {
+        if (path.empty())
+            return;
+        if (std::string problem = golden::writeTextFile(path, text); !problem.empty()) {
+            err << "drt test: " << problem << "\n";
+            status = kIoError;
+        }
+    };
+    writeReport(command.junitFile, golden::junitReport(summary));
+    writeReport(command.jsonFile, golden::jsonReport(summary));
     if (!command.reportDir.empty() && !command.update) {
         if (std::string problem = golden::writeReport(command.reportDir, summary); !problem.empty()) {
             err << "drt test: " << problem << "\n";
@@ -69,7 +82,7 @@ int runTest(const TestCommand& command, std::ostream& out, std::ostream& err) {
         }
         out << fmt::format("report: {}/index.html\n", command.reportDir);
     }
-    return summary.allPassed() ? kSuccess : kSceneError;
+    return status;
 }
 
 } // namespace drt::cli

@@ -118,14 +118,15 @@ void decide(const CompareOptions& options, CompareResult& r) {
         for (size_t c = 0; c < r.globalZ.size(); ++c)
             if (!(std::abs(r.globalZ[c]) <= r.globalZThreshold))
                 fail(CompareStatus::Fail,
-                     fmt::format("biased: channel {} mean error {:.3g} has z = {:.2f} (|z| > {:.2f})", c,
-                                 r.meanSignedError, r.globalZ[c], r.globalZThreshold));
+                     fmt::format("biased: the mean error of channel {} has z = {:.2f} (|z| > {:.2f}); bias over "
+                                 "all channels {:+.3g}",
+                                 channelName(int(c)), r.globalZ[c], r.globalZThreshold, r.meanSignedError));
         if (r.failingTiles > 0)
             fail(CompareStatus::Fail,
                  fmt::format(
                      "{} of {} tile tests biased; worst: tile at ({}, {}) channel {} mean error {:.3g}, "
                      "z = {:.2f} (|z| > {:.2f})",
-                     r.failingTiles, r.tileTests, r.worstTile.x0, r.worstTile.y0, r.worstTile.channel,
+                     r.failingTiles, r.tileTests, r.worstTile.x0, r.worstTile.y0, channelName(r.worstTile.channel),
                      r.worstTile.meanError, r.worstTile.z, r.tileZThreshold));
     }
     if (r.statistical && !options.thresholdsWithVariance)

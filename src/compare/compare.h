@@ -105,6 +105,9 @@ double twoSidedNormalQuantile(double alpha);
 // independent tests (Sidak): 1 - (1 - alpha)^(1/tests).
 double sidakAlpha(double alpha, int64_t tests);
 
+// "R", "G", "B", "A" for channels 0-3 of an RGB(A) image, else "channel N".
+std::string channelName(int channel);
+
 // Plain-text report (idiff-like) and a JSON object with the same figures.
 std::string formatCompareText(const CompareResult& result);
 std::string formatCompareJson(const CompareResult& result, const std::string& candidatePath,

@@ -30,6 +30,13 @@ std::string quoted(const std::string& s) {
 
 } // namespace
 
+std::string channelName(int channel) {
+    static const char* const names[] = {"R", "G", "B", "A"};
+    if (channel >= 0 && channel < 4)
+        return names[channel];
+    return fmt::format("channel {}", channel);
+}
+
 std::string formatCompareText(const CompareResult& r) {
     std::string s;
     if (r.status == CompareStatus::SizeMismatch || r.status == CompareStatus::FileError)
@@ -43,19 +50,19 @@ std::string formatCompareText(const CompareResult& r) {
                      r.meanAbsoluteError);
     if (r.maxErrorX >= 0)
         s += fmt::format("  max error:         {:.6g} at pixel ({}, {}) channel {}\n", r.maxError,
-                         r.maxErrorX, r.maxErrorY, r.maxErrorChannel);
+                         r.maxErrorX, r.maxErrorY, channelName(r.maxErrorChannel));
     s += fmt::format("  PSNR (sRGB):       {}\n",
                      std::isfinite(r.psnr) ? fmt::format("{:.2f} dB", r.psnr) : "inf");
     s += fmt::format("  pixels over fail:  {}, over warn: {}\n", r.failingPixels, r.warningPixels);
     if (r.statistical) {
         std::string zs;
-        for (double z : r.globalZ)
-            zs += fmt::format("{}{:.2f}", zs.empty() ? "" : ", ", z);
+        for (size_t c = 0; c < r.globalZ.size(); ++c)
+            zs += fmt::format("{}{} {:.2f}", zs.empty() ? "" : ", ", channelName(int(c)), r.globalZ[c]);
         s += fmt::format("  global z:          {}  (|z| limit {:.2f})\n", zs, r.globalZThreshold);
         s += fmt::format("  tile tests:        {} of {} biased (|z| limit {:.2f}); worst z {:.2f} at ({}, "
                          "{}) channel {}\n",
                          r.failingTiles, r.tileTests, r.tileZThreshold, r.worstTile.z, r.worstTile.x0,
-                         r.worstTile.y0, r.worstTile.channel);
+                         r.worstTile.y0, channelName(r.worstTile.channel));
         s += fmt::format("  outlier pixels:    {}\n", r.outlierPixels);
     }
     s += compareStatusName(r.status);

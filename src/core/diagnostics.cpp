@@ -31,7 +31,7 @@ void Diagnostics::report(Severity s, SourceLoc loc, std::string message, std::ve
     if (s == Severity::Error) lastDropped_ = ++errorCount_ > limits_.errors && ++droppedErrors_;
     if (s == Severity::Warning) lastDropped_ = ++warningCount_ > limits_.errors && ++droppedWarnings_;
     if (lastDropped_) return;
-    diagnostics_.push_back({s, loc, std::move(message), std::move(includedFrom)});
+    diagnostics_.push_back({s, loc, std::move(message), std::move(includedFrom), {}});
 }
 
 void Diagnostics::attachNote(SourceLoc loc, std::string message, std::vector<SourceLoc> includedFrom) {

@@ -18,7 +18,7 @@ namespace drt {
 namespace {
 
 constexpr char kMagic[] = "drt checkpoint\n";
-constexpr uint32_t kFormat = 1;
+constexpr uint32_t kFormat = 2; // 2: the scene hash is a SHA-1 (hex) of the scene text and its includes
 // The byte layout of the pixel states: a checkpoint is only read by a build
 // with the same one (in practice the same drt version on the same kind of machine).
 constexpr uint32_t kLayout = uint32_t(sizeof(AdaptivePixel) << 16 | sizeof(TileCounts) << 8 | sizeof(void*));
@@ -85,7 +85,7 @@ std::string writeCheckpoint(const std::string& path, const Checkpoint& checkpoin
     appendValue(bytes, kLayout);
     appendValue(bytes, kEndianProbe);
     appendString(bytes, identity.version);
-    appendValue(bytes, identity.sceneHash);
+    appendString(bytes, identity.sceneHash);
     appendString(bytes, identity.settings);
     appendString(bytes, checkpoint.crop);
     appendValue(bytes, int32_t(checkpoint.tileSize));
@@ -136,7 +136,7 @@ std::string readCheckpoint(const std::string& path, Checkpoint& checkpoint) {
     if (layout != kLayout || endian != kEndianProbe)
         return fmt::format("checkpoint '{}' was written by a drt built for another kind of machine", path);
     int32_t tileSize = 0;
-    if (!reader.string(checkpoint.identity.version) || !reader.value(checkpoint.identity.sceneHash) ||
+    if (!reader.string(checkpoint.identity.version) || !reader.string(checkpoint.identity.sceneHash) ||
         !reader.string(checkpoint.identity.settings) || !reader.string(checkpoint.crop) || !reader.value(tileSize) ||
         tileSize < 1)
         return fmt::format("checkpoint '{}' is truncated", path);

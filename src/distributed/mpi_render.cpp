@@ -43,6 +43,7 @@ MpiJob::MpiJob() { throw RenderError("this drt was built without MPI (install li
 MpiJob::~MpiJob() = default;
 int MpiJob::agree(int status) { return status; }
 uint64_t MpiJob::broadcast(uint64_t value) { return value; }
+std::string MpiJob::broadcast(const std::string& value) { return value; }
 void MpiJob::abort(int status) { std::_Exit(status); }
 TileRenderInfo renderDistributed(MpiJob&, const Scene&, const RenderOptions&, RenderState&, LocalTileScheduler*,
                                  DistributedReport*) {
@@ -77,6 +78,13 @@ uint64_t MpiJob::broadcast(uint64_t value) {
     unsigned long long v = value;
     MPI_Bcast(&v, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     return v;
+}
+
+std::string MpiJob::broadcast(const std::string& value) {
+    std::string text = value;
+    text.resize(broadcast(uint64_t(value.size())));
+    MPI_Bcast(text.data(), int(text.size()), MPI_CHAR, 0, MPI_COMM_WORLD);
+    return text;
 }
 
 void MpiJob::abort(int status) {

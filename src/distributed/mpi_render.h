@@ -48,6 +48,7 @@ public:
     int agree(int status);
     // Rank 0's `value` on every rank. Collective.
     uint64_t broadcast(uint64_t value);
+    std::string broadcast(const std::string& value);
     // Ends every rank of the job at once (MPI_Abort) with `status`.
     [[noreturn]] void abort(int status);
 

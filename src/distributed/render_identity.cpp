@@ -4,31 +4,13 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
 #include <iterator>
 #include <sstream>
 #include <vector>
 
 namespace drt {
 
-uint64_t sceneHashOf(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return 0;
-    // FNV-1a over the bytes, finished with an avalanche mix.
-    uint64_t h = 0xcbf29ce484222325ULL;
-    for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
-        h ^= static_cast<unsigned char>(*it);
-        h *= 0x100000001b3ULL;
-    }
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdULL;
-    h ^= h >> 33;
-    return h;
-}
-
-std::string formatSceneHash(uint64_t hash) { return fmt::format("{:016x}", hash); }
-
-RenderIdentity renderIdentity(const RenderOptions& options, uint64_t sceneHash) {
+RenderIdentity renderIdentity(const RenderOptions& options, const std::string& sceneHash) {
     RenderIdentity identity;
     identity.version = DRT_VERSION;
     identity.sceneHash = sceneHash;
@@ -58,7 +40,7 @@ std::string describeDifference(const RenderIdentity& here, const RenderIdentity&
         return fmt::format("'{}' was made by drt {}, this is drt {}", thereName, there.version, here.version);
     if (here.sceneHash != there.sceneHash)
         return fmt::format("'{}' is of another scene (scene hash {} there, {} here)", thereName,
-                           formatSceneHash(there.sceneHash), formatSceneHash(here.sceneHash));
+                           there.sceneHash, here.sceneHash);
     if (here.settings == there.settings) return "";
     const std::vector<std::string> mine = words(here.settings), theirs = words(there.settings);
     std::string differences;
@@ -72,7 +54,7 @@ std::string describeDifference(const RenderIdentity& here, const RenderIdentity&
 
 void addIdentity(Metadata& metadata, const RenderIdentity& identity, const std::optional<PixelWindow>& crop,
                  int width, int height) {
-    metadata.emplace_back("drt:scene_hash", formatSceneHash(identity.sceneHash));
+    metadata.emplace_back("drt:scene_sha1", identity.sceneHash);
     metadata.emplace_back("drt:settings", identity.settings);
     if (crop) {
         metadata.emplace_back("drt:crop", formatWindow(*crop));
@@ -88,18 +70,10 @@ std::optional<std::string> metadataValue(const Metadata& metadata, const std::st
 
 std::optional<RenderIdentity> readIdentity(const Metadata& metadata) {
     const auto version = metadataValue(metadata, "drt:version");
-    const auto hash = metadataValue(metadata, "drt:scene_hash");
+    const auto hash = metadataValue(metadata, "drt:scene_sha1");
     const auto settings = metadataValue(metadata, "drt:settings");
-    if (!version || !hash || !settings) return std::nullopt;
-    RenderIdentity identity{*version, 0, *settings};
-    try {
-        size_t used = 0;
-        identity.sceneHash = std::stoull(*hash, &used, 16);
-        if (used != hash->size()) return std::nullopt;
-    } catch (const std::exception&) {
-        return std::nullopt;
-    }
-    return identity;
+    if (!version || !hash || hash->empty() || !settings) return std::nullopt;
+    return RenderIdentity{*version, *hash, *settings};
 }
 
 std::string formatWindow(const PixelWindow& w) { return fmt::format("{},{},{},{}", w.x0, w.x1, w.y0, w.y1); }

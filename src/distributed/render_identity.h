@@ -7,7 +7,6 @@
 #include "image/image.h"
 #include "render/render.h"
 
-#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -15,25 +14,23 @@ namespace drt {
 
 struct RenderIdentity {
     std::string version;    // drt's
-    uint64_t sceneHash = 0; // sceneHashOf the scene file
+    // SHA-1 (hex) of the scene text and its includes (sceneTextSha1,
+    // render/provenance.h): an edited include is another scene.
+    std::string sceneHash;
     // "size=320x240 spp=16 seed=0 sampler=sobol adaptive=off" (or
     // "adaptive=error:0.02,min:16,max:1024"): the settings in one line.
     std::string settings;
     bool operator==(const RenderIdentity&) const = default;
 };
 
-// A hash of the bytes of the scene file at `path` (0 if it cannot be read).
-uint64_t sceneHashOf(const std::string& path);
-std::string formatSceneHash(uint64_t hash); // 16 hex digits
-
-RenderIdentity renderIdentity(const RenderOptions& options, uint64_t sceneHash);
+RenderIdentity renderIdentity(const RenderOptions& options, const std::string& sceneHash);
 
 // What differs between `here` and `there` in words ("seed=1 here, seed=2 in
 // 'part.exr'"), or "" when they are the same.
 std::string describeDifference(const RenderIdentity& here, const RenderIdentity& there, const std::string& thereName);
 
 // The image metadata of a render's identity and window (keys drt:version,
-// drt:scene_hash, drt:settings; drt:crop "x0,x1,y0,y1" and drt:full_size
+// drt:scene_sha1, drt:settings; drt:crop "x0,x1,y0,y1" and drt:full_size
 // "WxH" for a crop), and back. readIdentity returns none when a key is missing.
 void addIdentity(Metadata& metadata, const RenderIdentity& identity, const std::optional<PixelWindow>& crop,
                  int width, int height);

@@ -10,6 +10,9 @@
 //   NAME.golden.png      an 8-bit sRGB golden (exact policy only), as the
 //                        sidecar's "format" says ("exr", "png" or "both")
 //   NAME.golden.var.exr  per-pixel variance of the golden's mean (statistical)
+//   NAME.preview.png     an 8-bit sRGB view of the EXR golden, written by
+//                        --update so a reviewer sees the picture in a code
+//                        review (not compared: the EXR is the golden)
 // A NAME.drt with no sidecar is reported as a missing golden, never created
 // unless --update is given.
 #pragma once
@@ -67,6 +70,7 @@ struct GoldenCase {
     std::string sidecarPath; // "" : no sidecar (a scene without a golden)
     std::string scenePath;
     std::string exrPath, pngPath, variancePath; // the conventional names, whether or not they exist
+    std::string previewPath; // NAME.preview.png: an 8-bit view of an EXR golden for code review
 };
 
 // The tests in `folder`, sorted by name: every NAME.golden.json, and every
@@ -84,6 +88,9 @@ const char* outcomeName(Outcome outcome); // "PASS", "FAIL", "MISSING", "ERROR",
 
 struct CaseResult {
     std::string name;
+    std::string scenePath; // as resolved ("" : not known, e.g. a broken sidecar)
+    std::string previewPath; // the golden's PNG view (preview or PNG golden) if it exists, else ""
+    GoldenSettings settings; // the sidecar's (defaults when it could not be read)
     Policy policy = Policy::Exact;
     std::string format = "exr"; // golden image files: "exr", "png" or "both"
     Outcome outcome = Outcome::Error;
@@ -104,8 +111,10 @@ struct RunOptions {
 };
 
 struct RunSummary {
+    std::string folder;
     std::vector<CaseResult> cases; // sorted by name
     int passed = 0, failed = 0, missing = 0, errors = 0, updated = 0;
+    double seconds = 0; // wall time of the whole run
     bool allPassed() const { return failed == 0 && missing == 0 && errors == 0; }
 };
 
@@ -113,9 +122,29 @@ struct RunSummary {
 // once. If the folder cannot be read, `error` says why and there are no cases.
 RunSummary runGoldenTests(const std::string& folder, const RunOptions& options, std::string& error);
 
+// The figures a reader needs to judge a failed comparison, on one line, with
+// only those that mean something under the case's policy: RMSE, bias, max
+// error and where, NaN/Inf pixels, then the exact policy's differing pixels or
+// the statistical policy's z-scores and failing tiles. "" without a comparison.
+std::string failureFigures(const CaseResult& result);
+
+// For CI systems (ci_report.cpp): JUnit XML, one <testcase> per scene in one
+// <testsuite> named after the folder, a FAIL or MISSING as <failure>, an ERROR
+// as <error>, each with the one-line message and the figures; and JSON with the
+// same figures as numbers.
+std::string junitReport(const RunSummary& summary);
+// Text for XML or HTML: & < > " ' escaped, control characters other than tab
+// and newline (not allowed in XML 1.0) dropped.
+std::string escapeMarkup(const std::string& text);
+std::string jsonReport(const RunSummary& summary);
+// Writes text to a temporary file beside `path`, then renames it over `path`.
+// Returns "" or the reason.
+std::string writeTextFile(const std::string& path, const std::string& text);
+
 // Writes reportDir/index.html with candidate, golden and heatmap (and z-map
-// for statistical tests) side by side for every failed case, the images as PNG
-// files beside it, linked relatively. Returns "" or the reason.
+// for statistical tests) side by side for every failed case and the golden
+// previews of the passed ones, every picture embedded in the page, and each
+// failed candidate as NAME.candidate.exr beside it. Returns "" or the reason.
 std::string writeReport(const std::string& reportDir, const RunSummary& summary);
 
 } // namespace drt::golden

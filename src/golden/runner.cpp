@@ -6,8 +6,11 @@
 
 #include "animation/animation.h"
 #include "assets/assets.h"
+#include "accel/geometry_query.h"
 #include "lang/load.h"
+#include "render/provenance.h"
 #include "render/render.h"
+#include "sampling/filter.h"
 #include "sampling/sampler.h"
 
 #include <tbb/parallel_for.h>
@@ -17,6 +20,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -48,14 +52,16 @@ bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-GoldenCase makeCase(const fs::path& folder, const std::string& name, bool hasSidecar) {
+// The scene of a test without a "scene" key: NAME.drt, else NAME.pov.
+GoldenCase makeCase(const fs::path& folder, const std::string& name, bool hasSidecar, const std::string& sceneExtension) {
     GoldenCase c;
     c.name = name;
     c.sidecarPath = hasSidecar ? (folder / (name + kSidecarSuffix)).string() : "";
-    c.scenePath = (folder / (name + ".drt")).string();
+    c.scenePath = (folder / (name + sceneExtension)).string();
     c.exrPath = (folder / (name + ".golden.exr")).string();
     c.pngPath = (folder / (name + ".golden.png")).string();
     c.variancePath = (folder / (name + ".golden.var.exr")).string();
+    c.previewPath = (folder / (name + ".preview.png")).string();
     return c;
 }
 
@@ -111,6 +117,7 @@ struct Prepared {
     GoldenSettings settings;
     Scene scene;
     RenderOptions options;
+    std::string scenePath, sceneSha1;
 };
 
 bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) {
@@ -127,25 +134,37 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
         }
     }
     result.policy = p.settings.policy;
+    result.settings = p.settings;
+    result.format = p.settings.format;
     const std::string scenePath =
         p.settings.scene.empty()
             ? c.scenePath
             : (fs::path(c.sidecarPath).parent_path() / p.settings.scene).lexically_normal().string();
+    result.scenePath = scenePath;
     if (!exists(scenePath)) {
         result.message = fmt::format("{}: no such scene file", scenePath);
         return false;
     }
-    // The still frame `drt render` gives: clock 0, and with the shutter open
-    // a scene that reads `clock` moves as its clock says (animation/animation.h).
-    const SceneEvaluator evaluate = [&scenePath](const FrameClock& frame, Diagnostics& d) {
-        LoadOptions options;
-        options.frame = frame;
-        std::optional<Scene> evaluated = loadScene(scenePath, d, options);
+    // Either dialect, by the extension; the scene sees the image size it is
+    // rendered at (image_width, image_height) and the geometry (trace,
+    // inside). The still frame `drt render` gives: clock 0, and with the
+    // shutter open a scene that reads `clock` moves as its clock says
+    // (animation/animation.h).
+    const SceneEvaluator evaluate = [&scenePath, &p](const FrameClock& frame, Diagnostics& d) {
+        LoadOptions load;
+        load.imageWidth = p.settings.width.value_or(load.imageWidth);
+        load.imageHeight = p.settings.height.value_or(load.imageHeight);
+        load.frame = frame;
+        const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+        load.geometry = geometry.get();
+        std::optional<Scene> evaluated = loadScene(scenePath, d, load);
         if (evaluated && !d.hasErrors()) resolveAssets(*evaluated, d);
         return evaluated;
     };
     Diagnostics diagnostics;
     std::optional<Scene> scene = evaluateFrame(evaluate, FrameClock{}, {}, diagnostics);
+    p.scenePath = scenePath;
+    p.sceneSha1 = sceneTextSha1(diagnostics.files());
     if (diagnostics.hasErrors() || !scene) {
         result.message = fmt::format("{}: the scene has {} error{}", scenePath, diagnostics.errorCount(),
                                      diagnostics.errorCount() == 1 ? "" : "s");
@@ -164,16 +183,14 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
     return true;
 }
 
-Metadata goldenMetadata(const GoldenCase& c, const GoldenSettings& s, const RenderOptions& o) {
-    // No timings, and an empty DateTime (else OpenEXR stamps the time of
-    // writing): rewriting an unchanged golden leaves its file byte for byte the same.
-    return {{"Software", fmt::format("drt {}", DRT_VERSION)},
-            {"DateTime", ""},
-            {"drt:golden", c.name},
-            {"drt:policy", policyName(s.policy)},
-            {"drt:seed", std::to_string(o.seed)},
-            {"drt:spp", std::to_string(o.samplesPerPixel)},
-            {"drt:sampler", o.sampler.empty() ? defaultSamplerName() : o.sampler}};
+// Reproducible metadata (no run details), so rewriting an unchanged golden
+// leaves its file byte for byte the same.
+Metadata goldenMetadata(const GoldenCase& c, const Prepared& p, const RenderOptions& o) {
+    Provenance provenance =
+        renderProvenance(p.scenePath, p.sceneSha1, o, p.scene.render.filter.value_or(defaultFilterName()));
+    provenance.identify("drt:golden", c.name);
+    provenance.identify("drt:policy", policyName(p.settings.policy));
+    return provenance.metadata(true);
 }
 
 // --update: render the golden (at reference_spp for a statistical one) and
@@ -198,7 +215,7 @@ void updateCase(const GoldenCase& c, Prepared& p, CaseResult& result) {
         result.message = "the render has NaN or Inf pixels: not writing a golden";
         return;
     }
-    const Metadata metadata = goldenMetadata(c, s, options);
+    const Metadata metadata = goldenMetadata(c, p, options);
     std::vector<std::string> written;
     const bool png = s.format != "exr";
     const bool exr = s.format != "png";
@@ -210,6 +227,16 @@ void updateCase(const GoldenCase& c, Prepared& p, CaseResult& result) {
             return;
         }
         written.push_back(fs::path(path).filename().string());
+    }
+    if (!png) {
+        // An 8-bit view of the EXR golden for code review (a PNG golden is its own view).
+        Metadata previewMetadata = metadata;
+        previewMetadata.emplace_back("drt:content", "preview of " + fs::path(c.exrPath).filename().string());
+        if (std::string problem = writeImage(c.previewPath, rendered.color, previewMetadata); !problem.empty()) {
+            result.message = problem;
+            return;
+        }
+        written.push_back(fs::path(c.previewPath).filename().string());
     }
     if (s.policy == Policy::Statistical) {
         Metadata varianceMetadata = metadata;
@@ -358,6 +385,8 @@ CaseResult runCase(const GoldenCase& c, bool update) {
         result.outcome = Outcome::Error;
         result.message = fmt::format("render failed: {}", e.what());
     }
+    if (const std::string& view = result.format == "exr" ? c.previewPath : c.pngPath; exists(view))
+        result.previewPath = view;
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }
@@ -369,30 +398,39 @@ std::string discoverCases(const std::string& folder, std::vector<GoldenCase>& ca
     std::error_code ec;
     if (!fs::is_directory(folder, ec))
         return fmt::format("{}: not a folder", folder);
-    std::vector<std::string> sidecars, scenes;
+    std::vector<std::string> sidecars;
+    std::map<std::string, std::string> scenes; // name -> extension (.drt preferred over .pov)
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string file = it->path().filename().string();
         if (!it->is_regular_file(ec))
             continue;
-        if (endsWith(file, kSidecarSuffix))
+        if (endsWith(file, kSidecarSuffix)) {
             sidecars.push_back(file.substr(0, file.size() - std::strlen(kSidecarSuffix)));
-        else if (endsWith(file, ".drt"))
-            scenes.push_back(file.substr(0, file.size() - 4));
+        } else {
+            for (const char* extension : {".drt", ".pov"})
+                if (endsWith(file, extension)) {
+                    std::string& known = scenes[file.substr(0, file.size() - 4)];
+                    if (known.empty() || std::string(extension) == ".drt")
+                        known = extension;
+                }
+        }
     }
     if (ec)
         return fmt::format("{}: cannot list the folder: {}", folder, ec.message());
     for (const std::string& name : sidecars)
-        cases.push_back(makeCase(folder, name, true));
-    for (const std::string& name : scenes)
+        cases.push_back(makeCase(folder, name, true, scenes.count(name) ? scenes[name] : ".drt"));
+    for (const auto& [name, extension] : scenes)
         if (std::find(sidecars.begin(), sidecars.end(), name) == sidecars.end())
-            cases.push_back(makeCase(folder, name, false));
+            cases.push_back(makeCase(folder, name, false, extension));
     std::sort(cases.begin(), cases.end(),
               [](const GoldenCase& a, const GoldenCase& b) { return a.name < b.name; });
     return "";
 }
 
 RunSummary runGoldenTests(const std::string& folder, const RunOptions& options, std::string& error) {
+    const auto start = std::chrono::steady_clock::now();
     RunSummary summary;
+    summary.folder = folder;
     std::vector<GoldenCase> cases;
     error = discoverCases(folder, cases);
     if (!error.empty())
@@ -433,6 +471,7 @@ RunSummary runGoldenTests(const std::string& folder, const RunOptions& options, 
             break;
         }
     }
+    summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return summary;
 }
 

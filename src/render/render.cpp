@@ -223,7 +223,7 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
     const auto buildStart = std::chrono::steady_clock::now();
     // A zero-length shutter gives every ray the same time: the accelerator
     // then places moving objects at that time in double precision, so the
-    // image is the static scene's at that time bit for bit (issue 3).
+    // image is the static scene's at that time bit for bit.
     const auto accelerator = camera.hasShutter() ? std::make_unique<Accelerator>(scene)
                                                  : std::make_unique<Accelerator>(scene, camera.shutterOpen);
     const Accelerator& accel = *accelerator;

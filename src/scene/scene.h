@@ -117,7 +117,7 @@ struct Finish {
     // `reflection { ... metallic m }`: tints reflected light by the pigment, by m.
     double reflectionMetallic = 0;
     bool conserveEnergy = false;
-    // Distribution ray tracing (drt extension, issue 3). 0 is a perfect mirror /
+    // Distribution ray tracing (drt extension, docs/effects.md). 0 is a perfect mirror /
     // perfect refraction; larger values widen the lobe around the ideal direction.
     double reflectionBlur = 0;
     double refractionBlur = 0;
@@ -329,7 +329,7 @@ struct Object {
 
 // ---------------------------------------------------------------- lights
 
-// Where an area light's n1 x n2 sample points go (issue 3; the estimators are
+// Where an area light's n1 x n2 sample points go (docs/effects.md; the estimators are
 // in render/lighting.h).
 enum class AreaSampling {
     PovGrid,    // POV-Ray's method: every point of the edge-to-edge n1 x n2 grid at every hit
@@ -426,7 +426,7 @@ struct CameraSpec {
     // verticalAngle angle / 2. No lens (aperture 0).
     CameraMapping mapping = CameraMapping::Planar;
     std::optional<double> verticalAngle; // spherical only
-    // Thin lens (issue 3). aperture is the lens *diameter* in scene units; 0 is a pinhole.
+    // Thin lens (docs/effects.md). aperture is the lens *diameter* in scene units; 0 is a pinhole.
     double aperture = 0;
     std::optional<Vec3> focalPoint;
     std::optional<double> focalDistance;

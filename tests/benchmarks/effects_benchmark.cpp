@@ -1,4 +1,4 @@
-// "A scene pays only for the effects it uses" (issue 6): a plain Whitted scene
+// "A scene pays only for the effects it uses": a plain Whitted scene
 // (examples/whitted.drt: point lights, mirror and glass, pinhole camera, no
 // motion, no blur) rendered by the full renderer, against a bare Whitted
 // tracer below that has no distribution code at all: no sampler, no lens or

@@ -5,6 +5,7 @@
 #include "sampling/filter.h"
 #include "sampling/warp.h"
 #include "statistical/chi2_harness.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -179,7 +180,11 @@ TEST_P(ChiSquare, SamplesFollowTheirDensity) {
     EXPECT_GT(r.result.pValue, alpha) << c.name << " (Sidak-corrected alpha " << alpha << ")";
 }
 
-INSTANTIATE_TEST_SUITE_P(AllWarps, ChiSquare, ::testing::Range(0, static_cast<int>(allCases().size())));
+INSTANTIATE_TEST_SUITE_P(AllWarps, ChiSquare, ::testing::Range(0, static_cast<int>(allCases().size())),
+                         [](const testing::TestParamInfo<int>& info) {
+                             return test::testNameOf(allCases()[size_t(info.param)].name) + "_" +
+                                    std::to_string(info.param);
+                         });
 
 // The harness itself must reject a wrong density: sampling u^2 on [0, 1]
 // against a uniform density, and a cosine hemisphere against a uniform one.

@@ -1,5 +1,5 @@
 // Render-level closed-form tests of soft shadows and of the glossy and
-// translucent lobes (issue 3), on scenes built in C++. Fixed seeds; every
+// translucent lobes (docs/effects.md), on scenes built in C++. Fixed seeds; every
 // tolerance is stated where it is asserted.
 #include "closed_form_scenes.h"
 

@@ -1,4 +1,4 @@
-// Render-level closed-form tests of the camera effects (issue 3): anti-aliasing,
+// Render-level closed-form tests of the camera effects (docs/effects.md): anti-aliasing,
 // motion blur and depth of field, each rendered with drt::render from a scene
 // built in C++ and compared with an exact answer. Fixed seeds; every tolerance
 // is stated where it is asserted.
@@ -163,7 +163,7 @@ TEST(ClosedForm, EdgeRmseSlopeBySampler) {
     // Independent sampling converges as N^-1/2; jittered and Owen-scrambled
     // Sobol pixel samples as N^-3/4 on an edge (Mitchell 1996). The slope is a
     // least-squares fit over spp 16..1024 with ~1400 edge pixels as
-    // randomisations; bands from issue 3.
+    // randomisations; the bands leave room for the fit's own scatter.
     const double independent = rmseSlope(scene, "independent", exact, 3);
     EXPECT_GE(independent, -0.55);
     EXPECT_LE(independent, -0.45);

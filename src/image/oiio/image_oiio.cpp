@@ -37,14 +37,16 @@ bool isIntegerType(OIIO::TypeDesc type) {
            type.basetype != OIIO::TypeDesc::DOUBLE;
 }
 
-// TIFF and JPEG keep only the description writeImage composes,
-// "drt key=value key=value ...": recover the keys the file did not keep.
+// TIFF and JPEG keep only the description writeImage composes, "drt" then one
+// "key=value" per line (files written before values could hold spaces separate
+// the items by spaces): recover the keys the file did not keep.
 void recoverFromDescription(const std::string& description, Metadata& metadata) {
-    if (description.rfind("drt ", 0) != 0)
+    if (description.rfind("drt\n", 0) != 0 && description.rfind("drt ", 0) != 0)
         return;
+    const char separator = description[3];
     size_t start = 4;
     while (start < description.size()) {
-        size_t end = description.find(' ', start);
+        size_t end = description.find(separator, start);
         if (end == std::string::npos)
             end = description.size();
         const std::string item = description.substr(start, end - start);
@@ -85,7 +87,7 @@ std::string writeFile(const std::string& file, const std::string& path, const Im
     for (const auto& [key, value] : metadata) {
         spec.attribute(key, value);
         if (key.rfind("drt:", 0) == 0)
-            description += " " + key + "=" + value;
+            description += "\n" + key + "=" + value;
     }
     // Formats that drop unknown attributes (TIFF, JPEG) still keep a description.
     if (!metadata.empty())

@@ -1,0 +1,64 @@
+" Vim syntax file for the drt scene language (.drt), generated from grammar/drt.ebnf by tests/editor_grammar_test.cpp.
+" Install: copy grammar/vim/ into ~/.vim/ (or a plugin folder); see docs/editors.md.
+if exists('b:current_syntax')
+  finish
+endif
+
+syn keyword drtFunction abs acos acosh asc asin asinh atan atan2
+syn keyword drtFunction atanh bitwise_and bitwise_or bitwise_xor ceil chr concat cos
+syn keyword drtFunction cosh defined degrees dimension_size dimensions div exp file_exists
+syn keyword drtFunction floor inside int ln log max max_extent min
+syn keyword drtFunction min_extent mod pow radians rand seed select sin
+syn keyword drtFunction sinh sqr sqrt str strcmp strlen strlwr strupr
+syn keyword drtFunction substr tan tanh trace val vaxis_rotate vcross vdot
+syn keyword drtFunction vlength vnormalize vrotate vstr
+syn keyword drtBoolean false no off on true yes
+syn keyword drtConstant clock image_height image_width pi tau x y z
+syn keyword drtBlock background blob box camera clipped_by cone cubic cylinder
+syn keyword drtBlock density disc finish fog global_settings image_map interior lathe
+syn keyword drtBlock light_source media mesh motion normal object pigment pigment_map
+syn keyword drtBlock plane poly prism quadric quartic render scattering sky_sphere
+syn keyword drtBlock smooth_triangle sor sphere superellipsoid text texture texture_map tiles
+syn keyword drtBlock torus triangle
+syn keyword drtKeyword absorption adaptive adc_bailout agate all ambient ambient_light angle
+syn keyword drtKeyword aperture area_illumination area_light area_sampling array assumed_gamma at average
+syn keyword drtKeyword bezier_spline blue bozo brick brick_size brilliance bumps checker
+syn keyword drtKeyword circular color color_map colour colour_map confidence conic_sweep conserve_energy
+syn keyword drtKeyword crackle crand cubic_spline cubic_wave dents difference diffuse direction
+syn keyword drtKeyword distance eccentricity emission error extinction fade_color fade_colour fade_distance
+syn keyword drtKeyword fade_power falloff filter fisheye focal_distance focal_point fog_alt fog_offset
+syn keyword drtKeyword fog_type font frequency fresnel gamma gradient granite green
+syn keyword drtKeyword grid height hexagon hierarchy hollow interpolate intersection intervals
+syn keyword drtKeyword inverse inverse_square ior jitter lambda leopard linear_spline linear_sweep
+syn keyword drtKeyword location look_at map_type marble matrix max_samples max_trace_level media_attenuation
+syn keyword drtKeyword media_interaction merge metallic method min_samples mortar no_shadow octaves
+syn keyword drtKeyword offset omega once onion open orient orthographic panoramic
+syn keyword drtKeyword perspective phase phong phong_size point_at poly_wave pov_grid quadratic_spline
+syn keyword drtKeyword radial radius ramp_wave ratio red reflection reflection_blur refraction_blur
+syn keyword drtKeyword rgb rgbf rgbft rgbt right ripples rotate roughness
+syn keyword drtKeyword sampler samples scale scallop_wave shadowless shutter_close shutter_open sine_wave
+syn keyword drtKeyword sky solid_angle specular spherical spline spotlight srgb srgbf
+syn keyword drtKeyword srgbft srgbt stratified strength string sturm thickness threshold
+syn keyword drtKeyword tightness tile2 translate transmit triangle_wave turb_depth turbulence u
+syn keyword drtKeyword ultra_wide_angle union up v variance waves width wood
+syn keyword drtKeyword wrinkles
+syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|switch\|undef\|version\|warning\|while\)\>"
+syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
+syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
+syn match drtEscape contained +\\["\\nt]+
+syn match drtComment "//.*$" contains=@Spell
+syn region drtBlockComment start="/\*" end="\*/" contains=drtBlockComment,@Spell
+
+hi def link drtFunction Function
+hi def link drtBoolean Boolean
+hi def link drtConstant Constant
+hi def link drtBlock Structure
+hi def link drtKeyword Keyword
+hi def link drtDirective PreProc
+hi def link drtNumber Number
+hi def link drtString String
+hi def link drtEscape SpecialChar
+hi def link drtComment Comment
+hi def link drtBlockComment Comment
+
+let b:current_syntax = 'drt'
