@@ -154,19 +154,17 @@ struct AreaSample {
 // The K sample points of an area light seen from `point` at one camera sample.
 class AreaSampler {
 public:
-    AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex, int samplesPerPixel)
+    AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex)
         : light_(light), area_(*light.area), point_(point),
           frame_(areaFrame(area_, light.position, point)), n1_(std::max(1, area_.size1)),
           n2_(std::max(1, area_.size2)), dimension_(lightDimension(depth, lightIndex)) {
-        const int64_t points = int64_t(n1_) * n2_;
         sampling_ = area_.sampling;
         // POV-Ray's own method takes every grid point at every hit; the others
-        // share the n1 n2 points out over the pixel's samples (lighting.h).
-        const int64_t spp = std::max(1, samplesPerPixel);
-        // The front ends keep n1 n2 within Limits::areaLightSamples; a scene
-        // built in code is clamped rather than overflow.
-        count_ = static_cast<int>(std::min<int64_t>(sampling_ == AreaSampling::PovGrid ? points : (points + spp - 1) / spp,
-                                                    std::numeric_limits<int>::max()));
+        // send one ray per camera sample (lighting.h). The front ends keep
+        // n1 n2 within Limits::areaLightSamples; a scene built in code is
+        // clamped rather than overflow.
+        if (sampling_ == AreaSampling::PovGrid)
+            count_ = static_cast<int>(std::min<int64_t>(int64_t(n1_) * n2_, std::numeric_limits<int>::max()));
         const Vec3 normal = cross(frame_.axis1, frame_.axis2);
         areaMeasure_ = length(normal);
         if (area_.circular) areaMeasure_ *= kPi / 4;
@@ -190,15 +188,23 @@ public:
         const bool inverseSquare = light_.inverseSquare;
         AreaSample s;
         if (sampling_ == AreaSampling::PovGrid || sampling_ == AreaSampling::Grid) {
-            int point = k;
-            if (sampling_ == AreaSampling::Grid)
-                point = static_cast<int>(sampler.stratifiedChoice(dimension_, k, count_, uint32_t(n1_) * uint32_t(n2_)));
-            const int i = point % n1_, j = point / n1_;
+            // PovGrid: the k-th point. Grid: the cell holding this sample's
+            // 2-D light value, the value's place within the cell its jitter,
+            // so the pixel's samples stratify the grid as they do the area.
+            int i = k % n1_, j = k / n1_;
+            Vec2 jitter = {0.5, 0.5};
+            if (sampling_ == AreaSampling::Grid) {
+                const Vec2 w = sampler.get2D(dimension_);
+                i = std::min(static_cast<int>(w.x * n1_), n1_ - 1);
+                j = std::min(static_cast<int>(w.y * n2_), n2_ - 1);
+                jitter = {w.x * n1_ - i, w.y * n2_ - j};
+            } else if (area_.jitter) {
+                jitter = uniform(sampler, k);
+            }
             // Edge to edge: i / (n1 - 1); a single row sits on the centre line.
             double u = n1_ > 1 ? double(i) / (n1_ - 1) : 0.5;
             double v = n2_ > 1 ? double(j) / (n2_ - 1) : 0.5;
             if (area_.jitter) {
-                const Vec2 jitter = uniform(sampler, k);
                 if (n1_ > 1) u += (jitter.x - 0.5) / (n1_ - 1);
                 if (n2_ > 1) v += (jitter.y - 0.5) / (n2_ - 1);
             }
@@ -232,8 +238,8 @@ public:
     }
 
 private:
-    // The k-th of the K uniform values of this camera sample: with K = 1 the
-    // pixel's own stratified sequence in the light's dimension.
+    // The k-th of the K uniform values of this camera sample: with K = 1 (all
+    // but pov_grid) the pixel's own stratified sequence in the light's dimension.
     Vec2 uniform(Sampler& sampler, int k) const {
         return count_ == 1 ? sampler.get2D(dimension_) : sampler.get2DStratified(dimension_, k, count_);
     }
@@ -279,7 +285,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             if (!light.area) {
                 cache.samples_.push_back({light.position, 1.0, false, Color(0)});
             } else {
-                const AreaSampler points(light, sp.hit.point, sp.depth, index, sampler.samplesPerPixel());
+                const AreaSampler points(light, sp.hit.point, sp.depth, index);
                 for (int k = 0; k < points.count(); ++k) {
                     const AreaSample a = points.sample(sampler, k);
                     cache.samples_.push_back({a.position, a.weight, false, Color(0)});

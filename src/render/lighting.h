@@ -3,28 +3,28 @@
 //
 // Area lights (`area_light <axis1>, <axis2>, n1, n2`): a rectangle centred on
 // the light's position with edges axis1, axis2 (area A = |axis1 x axis2|).
-// Cook's association: a shading point sends K shadow rays to the light per
-// camera sample, K = ceil(n1 n2 / spp) (one ray once spp >= n1 n2), their
-// positions taken from the light's own sampler dimension, so that the pixel's
-// spp samples stratify the light jointly with pixel, lens and time; n1 x n2
-// sets how finely the pixel's light samples stratify the light (at least
-// n1 n2 of them per pixel), not how many rays each hit sends. Where the points
-// go (AreaLight::sampling):
-//   Stratified  the pixel's spp K light samples are one scrambled (0,2)-sequence
-//               over the rectangle (Sampler::get2D for K = 1, else
-//               get2DStratified): stratified in every power-of-two grid of
-//               cells the count allows. Unbiased.
+// Cook's association: a shading point sends one shadow ray to the light per
+// camera sample (K = 1), its position taken from the light's own 2-D sampler
+// dimension, so that the pixel's spp samples stratify the light jointly with
+// pixel, lens and time; n1 x n2 sets how the light is stratified, not how many
+// rays a hit sends. Only pov_grid sends more. Where the points go
+// (AreaLight::sampling):
+//   Stratified  the pixel's light samples are one scrambled (0,2)-sequence
+//               over the rectangle (Sampler::get2D). Unbiased.
 //   SolidAngle  Urena, Fajardo & King (2013): the same values mapped through
 //               SphericalRectangle, uniform in the solid angle Omega the
 //               rectangle subtends. Falls back to Stratified for `circular`
 //               lights, non-perpendicular axes and points in the light's plane.
 //   Grid        POV-Ray's point set: the edge-to-edge grid centre +
 //               axis1 (i/(n1-1) - 1/2) + axis2 (j/(n2-1) - 1/2), each point moved
-//               by up to half a grid step with `jitter`. The pixel's light
-//               samples run through random permutations of the n1 n2 points
-//               (Sampler::stratifiedChoice), so every n1 n2 samples in a row
-//               visit each point once and the pixel converges to POV-Ray's sum
-//               over the grid. The POV-Ray front end's default.
+//               by up to half a grid step with `jitter`. The sample's 2-D light
+//               value w picks the cell (i, j) = floor(w (n1, n2)) and, with
+//               jitter, its remainder places the point within the cell, so
+//               the pixel's samples stratify the grid as the (0,2)-sequence
+//               stratifies the square (exactly, one sample a point, for
+//               power-of-two n1, n2 and spp a multiple of n1 n2) and the pixel
+//               converges to POV-Ray's sum over the grid. The POV-Ray front
+//               end's default.
 //   PovGrid     POV-Ray's own method: every one of the n1 n2 grid points at
 //               every shading point and camera sample (K = n1 n2), for
 //               comparisons with POV-Ray at equal settings.

@@ -23,19 +23,6 @@ Vec2 Sampler::get2DStratified(int dimension, int k, int count) {
     return {(cell % nx + j.x) / nx, (cell / nx + j.y) / ny};
 }
 
-uint32_t Sampler::stratifiedChoice(int dimension, int k, int count, uint32_t n) const {
-    if (n <= 1) return 0;
-    const uint64_t entry = uint64_t(index_) * uint64_t(std::max(count, 1)) + uint64_t(std::max(k, 0));
-    const uint64_t round = entry / n;
-    ChoiceKey& c = choiceKey_;
-    if (!(c.x == x_ && c.y == y_ && c.dimension == dimension && c.round == round)) {
-        const uint64_t key =
-            hashValues({seed_, uint64_t(x_), uint64_t(y_), uint64_t(dimension), round, 0xc401ceULL});
-        c = {x_, y_, dimension, round, static_cast<uint32_t>(key >> 32)};
-    }
-    return permuteIndex(static_cast<uint32_t>(entry % n), n, c.key);
-}
-
 namespace {
 
 // Independent uniform random values: the N^-1/2 baseline.

@@ -48,13 +48,6 @@ public:
     // pixel sample (e.g. n1 x n2 area-light cells): the k-th of `count`
     // stratified 2D points in the given dimension.
     virtual Vec2 get2DStratified(int dimension, int k, int count);
-    // A choice among n things, stratified over the pixel's samples: the k-th of
-    // `count` choices of this pixel sample is entry index * count + k of a
-    // sequence that runs through one random permutation of 0..n-1 after
-    // another (per pixel and dimension), so any n choices in a row from a
-    // multiple of n pick each value once.
-    uint32_t stratifiedChoice(int dimension, int k, int count, uint32_t n) const;
-
     int samplesPerPixel() const { return samplesPerPixel_; }
     uint64_t seed() const { return seed_; }
     virtual std::string name() const = 0;
@@ -64,16 +57,6 @@ protected:
     int samplesPerPixel_;
     uint64_t seed_;
     int x_ = 0, y_ = 0, index_ = 0;
-
-private:
-    // stratifiedChoice's permutation key for the last (pixel, dimension,
-    // round of n choices): the choices of one sample mostly share a round.
-    struct ChoiceKey {
-        int x = 0, y = 0, dimension = -1;
-        uint64_t round = 0;
-        uint32_t key = 0;
-    };
-    mutable ChoiceKey choiceKey_;
 };
 
 // Names accepted by --sampler and the scene: see samplerNames().
