@@ -235,22 +235,23 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
     const Integrator integrator(scene, accel);
 
     // Samples first..last-1 of pixel (x, y), in index order.
+    const bool cameraMoves = cameraPath.moving(), lensSampled = cameraPath.hasLens();
     const auto takeSamples = [&](Sampler& sampler, PixelAccumulator& pixel, int x, int y, int first, int last,
                                  RayCounts& counts) {
+        ResolvedCamera moved; // a moving camera at the sample's time
         for (int s = first; s < last; ++s) {
             sampler.startPixelSample(x, y, s);
             const Vec2 position = pixelSamplePosition(sampler, filter, x, y);
             // Only the effects in use draw samples (a pinhole takes no lens sample).
             const double time = camera.hasShutter() ? camera.timeAt(sampler.get1D(kDimTime)) : camera.shutterOpen;
-            const Vec2 lens = cameraPath.hasLens() ? sampler.get2D(kDimLens) : Vec2{0.5, 0.5};
-            std::optional<ResolvedCamera> moved;
-            if (cameraPath.moving()) moved = cameraPath.at(time);
-            const ResolvedCamera& camera = moved ? *moved : cameraPath.still();
-            if (!camera.covers(position.x, position.y)) {
+            const Vec2 lens = lensSampled ? sampler.get2D(kDimLens) : Vec2{0.5, 0.5};
+            if (cameraMoves) moved = cameraPath.at(time);
+            const ResolvedCamera& at = cameraMoves ? moved : camera;
+            if (!at.covers(position.x, position.y)) {
                 pixel.add(Color(0)); // no ray there (POV-Ray: black)
                 continue;
             }
-            const Ray ray = camera.generateRay(position.x, position.y, lens, time);
+            const Ray ray = at.generateRay(position.x, position.y, lens, time);
             pixel.add(integrator.trace(ray, sampler, counts));
         }
     };
