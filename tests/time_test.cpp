@@ -33,23 +33,17 @@ void expectNear(const Vec3& a, const Vec3& b, double tolerance = 1e-9) {
     EXPECT_NEAR(a.z, b.z, tolerance);
 }
 
-Scene parseDrt(const std::string& text, const FrameClock& frame = {}) {
+// The scene in the dialect `name`'s extension selects, at clock `frame`.
+Scene parseAs(const std::string& name, const std::string& text, const FrameClock& frame) {
     Diagnostics d;
     LoadOptions o;
     o.frame = frame;
-    std::optional<Scene> s = loadSceneText(text, "t.drt", d, o);
+    std::optional<Scene> s = loadSceneText(text, name, d, o);
     EXPECT_FALSE(d.hasErrors()) << d.formatAll();
     return s ? *s : Scene{};
 }
-
-Scene parsePov(const std::string& text, const FrameClock& frame = {}) {
-    Diagnostics d;
-    PovOptions o;
-    o.frame = frame;
-    std::optional<Scene> s = loadPovSceneText(text, "t.pov", d, o);
-    EXPECT_FALSE(d.hasErrors()) << d.formatAll();
-    return s ? *s : Scene{};
-}
+Scene parseDrt(const std::string& text, const FrameClock& frame = {}) { return parseAs("t.drt", text, frame); }
+Scene parsePov(const std::string& text, const FrameClock& frame = {}) { return parseAs("t.pov", text, frame); }
 
 RenderOptions small(int spp = 4) {
     RenderOptions o;
