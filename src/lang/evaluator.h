@@ -200,7 +200,7 @@ public:
     void setTexture(ObjectValue& o, const Texture& texture);
     void setInterior(ObjectValue& o, const Interior& interior);
     void addChild(ObjectValue& parent, ObjectValue child);
-    void motion(Object& object); // after 'motion'
+    Motion motionBlock(); // after 'motion': objects, cameras and lights
     std::optional<std::vector<Object>> clipObjects(const Token& word); // after bounded_by / clipped_by
     Object placed(ObjectValue po); // a clip or CSG member as a model object
     // Finds a data file (image, font) like an include file; "" if not found.

@@ -370,6 +370,8 @@ struct AreaLight {
     AreaSampling sampling = AreaSampling::Grid;
 };
 
+struct LightMotion;
+
 struct Light {
     Vec3 position;
     Color color{1};
@@ -396,7 +398,21 @@ struct Light {
     // the POV front end sets).
     bool mediaInteraction = true;
     bool mediaAttenuation = true;
+    // Time (render/light_path.h): how the light moves over the shutter; null
+    // for a light that stays still.
+    std::shared_ptr<const LightMotion> motion;
     SourceLoc loc;
+};
+
+// A light's pose at one time (an animated scene evaluated at that clock value).
+struct LightKey {
+    double time = 0;
+    Vec3 position, pointAt, axis1, axis2; // axes: of the area light, if any
+};
+
+struct LightMotion {
+    std::vector<LightKey> keys; // increasing times; interpolated linearly
+    MotionChain chain;          // then moved by this (position, point_at as points, axes as vectors)
 };
 
 // ---------------------------------------------------------------- camera
@@ -434,7 +450,18 @@ struct CameraSpec {
     // Shutter interval in scene time; objects' Motion spans time 0..1.
     double shutterOpen = 0;
     double shutterClose = 0;
+    // Placement (render/camera_path.h): the resolved camera is moved by
+    // `transform`, then by the motion chain at each ray's time.
+    Transform transform;
+    MotionChain motion;
     SourceLoc loc;
+};
+
+// The camera as written at one time (an animated scene evaluated at that
+// clock value): Scene::cameraKeys, interpolated by render/camera_path.h.
+struct CameraKey {
+    double time = 0;
+    CameraSpec camera;
 };
 
 // ---------------------------------------------------------------- settings
@@ -510,6 +537,7 @@ struct Fog {
 
 struct Scene {
     CameraSpec camera;
+    std::vector<CameraKey> cameraKeys; // empty, or the camera over the shutter (increasing times)
     std::vector<Light> lights;
     std::vector<Object> objects;
     Color background{0};
@@ -521,6 +549,9 @@ struct Scene {
     std::vector<Media> media; // atmospheric media: everywhere outside non-hollow objects
     GlobalSettings global;
     RenderSettings render;
+    // The scene text read `clock` (scene/frame_clock.h): with the shutter open,
+    // the scene is evaluated again over it to find how it moves.
+    bool readsClock = false;
 };
 
 } // namespace drt

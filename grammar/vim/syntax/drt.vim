@@ -13,7 +13,7 @@ syn keyword drtFunction sinh sqr sqrt str strcmp strlen strlwr strupr
 syn keyword drtFunction substr tan tanh trace val vaxis_rotate vcross vdot
 syn keyword drtFunction vlength vnormalize vrotate vstr
 syn keyword drtBoolean false no off on true yes
-syn keyword drtConstant clock image_height image_width pi tau x y z
+syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background blob box camera clipped_by cone cubic cylinder
 syn keyword drtBlock density disc finish fog global_settings image_map interior lathe
 syn keyword drtBlock light_source media mesh motion normal object pigment pigment_map
@@ -23,12 +23,13 @@ syn keyword drtBlock torus triangle
 syn keyword drtKeyword absorption adaptive adc_bailout agate all ambient ambient_light angle
 syn keyword drtKeyword aperture area_illumination area_light area_sampling array assumed_gamma at average
 syn keyword drtKeyword bezier_spline blue bozo brick brick_size brilliance bumps checker
-syn keyword drtKeyword circular color color_map colour colour_map confidence conic_sweep conserve_energy
-syn keyword drtKeyword crackle crand cubic_spline cubic_wave dents difference diffuse direction
-syn keyword drtKeyword distance eccentricity emission error extinction fade_color fade_colour fade_distance
-syn keyword drtKeyword fade_power falloff file filter fisheye focal_distance focal_point fog_alt
-syn keyword drtKeyword fog_offset fog_type font frequency fresnel gamma gradient granite
-syn keyword drtKeyword green grid height hexagon hierarchy hollow interpolate intersection
+syn keyword drtKeyword circular clock clock_delta clock_on color color_map colour colour_map
+syn keyword drtKeyword confidence conic_sweep conserve_energy crackle crand cubic_spline cubic_wave dents
+syn keyword drtKeyword difference diffuse direction distance eccentricity emission error extinction
+syn keyword drtKeyword fade_color fade_colour fade_distance fade_power falloff file filter final_clock
+syn keyword drtKeyword final_frame fisheye focal_distance focal_point fog_alt fog_offset fog_type font
+syn keyword drtKeyword frame_number frequency fresnel gamma gradient granite green grid
+syn keyword drtKeyword height hexagon hierarchy hollow initial_clock initial_frame interpolate intersection
 syn keyword drtKeyword intervals inverse inverse_square ior jitter lambda leopard linear_spline
 syn keyword drtKeyword linear_sweep location look_at map_type marble matrix max_samples max_trace_level
 syn keyword drtKeyword media_attenuation media_interaction merge metallic method min_samples mortar no_shadow
