@@ -156,7 +156,12 @@ std::vector<Step> decompose(const Transform& t) {
         const Vec3 primary = eulerDegrees(rotation);
         const auto wrap = [](double d) { return d > 180 ? d - 360 : (d <= -180 ? d + 360 : d); };
         const Vec3 alternative(wrap(primary.x + 180), wrap(180 - primary.y), wrap(primary.z + 180));
-        for (const Vec3& angles : {primary, alternative})
+        // Each also in [0, 360): `rotate y*200` is not `rotate y*-160` to the last bit.
+        const auto positive = [](const Vec3& a) {
+            const auto up = [](double d) { return d < 0 ? d + 360 : d; };
+            return Vec3(up(a.x), up(a.y), up(a.z));
+        };
+        for (const Vec3& angles : {primary, alternative, positive(primary), positive(alternative)})
         for (double perUnit : {1e10, 1e6, 0.0}) {
             std::vector<Step> linearSteps;
             const Vec3 s = roundTo(scale, perUnit), a = roundTo(angles, perUnit);
