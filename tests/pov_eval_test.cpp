@@ -156,7 +156,7 @@ TEST(PovEval, ImageSizeAndClockComeFromOptions) {
     PovOptions o;
     o.imageWidth = 640;
     o.imageHeight = 480;
-    o.clock = 0.25;
+    o.frame.clock = 0.25;
     auto r = run("#warning str(image_width / image_height + clock, 0, 4)\n", o);
     ASSERT_EQ(r->messages.size(), 1u);
     EXPECT_EQ(r->messages[0], "1.5833");

@@ -368,6 +368,22 @@ TEST(Writer, EveryExampleRoundTripsToTheSameModelAndTheSameImage) {
     EXPECT_GE(examples, 3);
 }
 
+TEST(Writer, RotationsBeyondNinetyDegreesAreWrittenAsRotationsThatRebuildTheModel) {
+    // asin gives the Euler angle about y within +-90 degrees, so `rotate y*160`
+    // first decomposes as <180, 20, 180> and `rotate y*200` as <0, -160, 0>:
+    // the same rotation, not the same bits. The writer tries the other Euler
+    // solution and the [0, 360) form too, and checks each by composing it.
+    for (const char* rotation : {"y * 160", "y * 200", "x * 120", "z * -135", "<10, 160, 30>"}) {
+        SCOPED_TRACE(rotation);
+        const std::optional<Scene> scene = loadText(std::string("sphere { 0, 1 scale 0.1 rotate ") + rotation +
+                                                    " translate <-0.9, 0, -1.1> }");
+        ASSERT_TRUE(scene);
+        std::string written;
+        ASSERT_TRUE(roundTrip(*scene, &written));
+        EXPECT_EQ(written.find("matrix"), std::string::npos) << written;
+    }
+}
+
 // ------------------------------------------------------------ every field
 
 TEST(Writer, EveryLanguageFieldRoundTrips) {

@@ -103,6 +103,28 @@ void resolveTriangleHit(const Vec3& o, const Vec3& d, const Vec3& p0, const Vec3
     t = tt;
 }
 
+// The uv coordinates and corner textures of a compact mesh's triangle at the
+// corners' barycentric weights.
+void meshSurface(const IndexedMesh& m, const Mesh& shape, uint32_t prim, const std::array<double, 3>& weights,
+                 Hit& hit) {
+    if (!m.uvs.empty()) {
+        const auto c = m.uvTriangle(prim);
+        double u = 0, v = 0;
+        for (int k = 0; k < 3; ++k) {
+            u += weights[k] * m.uvs[c[k]].u;
+            v += weights[k] * m.uvs[c[k]].v;
+        }
+        hit.hasUv = true;
+        hit.uv = {u, v, 0};
+    }
+    if (m.faceTextures.empty()) return;
+    for (int k = 0; k < 3; ++k) {
+        const uint32_t t = m.faceTextures[3 * size_t(prim) + k];
+        hit.cornerTextures[k] = t < shape.textures.size() ? &shape.textures[t] : nullptr;
+        hit.cornerWeights[k] = weights[k];
+    }
+}
+
 } // namespace
 
 bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
@@ -115,20 +137,25 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     rtcIntersect1(impl_->top.scene, &query.context, &rayhit);
     impl_->device.throwIfFailed("tracing a ray");
     if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit.hasUv = false;
+    hit.uv = {};
+    hit.cornerTextures = {};
 
     // Find the level the hit geometry lives in and the ray in that level's space.
     const Level* level = &impl_->top;
     const unsigned instID = rayhit.hit.instID[0];
     const Transform* motion = nullptr; // level space -> world, if the top level's is not world
+    const Instance* instance = nullptr;
     hit.instance = -1;
     if (instID != RTC_INVALID_GEOMETRY_ID) {
         const size_t index = impl_->top.geometries[instID].index;
-        const Instance& instance = impl_->instances[index];
-        level = instance.level.get();
+        instance = &impl_->instances[index];
+        level = instance->level.get();
         Vec3 unusedO, unusedD;
         query.levelRay(instID, rayhit.ray.time, unusedO, unusedD); // the callback's transform, or solved now
         motion = &*query.instanceToWorld;
-        hit.instance = static_cast<int>(index);
+        // A compact mesh's placement is still: only moving objects have a rest pose (restToWorld).
+        if (!instance->placed) hit.instance = static_cast<int>(index);
     }
     const bool shiftedTop = !motion && impl_->shifted;
     const Vec3& o = motion ? query.instanceOrigin : query.origin;
@@ -162,8 +189,18 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         frameUnit = p.frameUnit;
     } else {
         const MeshRecord& mesh = level->meshes[ref.index];
-        const auto& tri = mesh.triangles[rayhit.hit.primID];
-        const Vec3 &p0 = mesh.vertices[tri[0]], &p1 = mesh.vertices[tri[1]], &p2 = mesh.vertices[tri[2]];
+        const uint32_t prim = rayhit.hit.primID;
+        const bool prototype = mesh.vertices.empty(); // a compact mesh's shared level: object space
+        Vec3 p0, p1, p2;
+        if (prototype) {
+            const auto tri = mesh.indexed->triangle(prim);
+            p0 = mesh.indexed->positions[tri[0]].toVec3();
+            p1 = mesh.indexed->positions[tri[1]].toVec3();
+            p2 = mesh.indexed->positions[tri[2]].toVec3();
+        } else {
+            const auto& tri = mesh.triangles[prim];
+            p0 = mesh.vertices[tri[0]], p1 = mesh.vertices[tri[1]], p2 = mesh.vertices[tri[2]];
+        }
         double u = rayhit.hit.u, v = rayhit.hit.v;
         hit.t = embreeT;
         resolveTriangleHit(o, d, p0, p1, p2, hit.t, u, v);
@@ -172,22 +209,37 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         // A degenerate triangle has no winding normal: face the ray instead of NaN.
         geometric = unitOrTowardOrigin(cross(p1 - p0, p2 - p0));
         shading = geometric;
-        if (!mesh.normals.empty()) {
-            const auto& ni = mesh.normalIndices[rayhit.hit.primID];
+        if (prototype && !mesh.indexed->normals.empty()) {
+            const auto ni = mesh.indexed->normalTriangle(prim);
+            const auto& n = mesh.indexed->normals;
+            shading = unitOr(w * n[ni[0]].toVec3() + u * n[ni[1]].toVec3() + v * n[ni[2]].toVec3(), geometric);
+            if (dot(shading, geometric) < 0) shading = -shading;
+        } else if (!mesh.normals.empty()) {
+            const auto& ni = mesh.normalIndices[prim];
             shading = unitOr(w * mesh.normals[ni[0]] + u * mesh.normals[ni[1]] + v * mesh.normals[ni[2]], geometric);
             if (dot(shading, geometric) < 0) shading = -shading;
         }
-        if (mesh.inverse) {
+        const bool inverse = instance && instance->placed ? mesh.inverse != instance->inverse : mesh.inverse;
+        if (inverse) {
             geometric = -geometric;
             shading = -shading;
         }
-        hit.object = mesh.object;
-        hit.primitive = rayhit.hit.primID;
-        frameUnit = mesh.extent > 0 ? frameUnitFor(mesh.extent) : 0;
+        hit.object = mesh.object ? mesh.object : instance->object;
+        hit.primitive = prim;
+        if (mesh.indexed) {
+            // Weights of the IndexedMesh's own corners (a copy may have swapped 1 and 2).
+            const std::array<double, 3> weights = mesh.swapped ? std::array<double, 3>{w, v, u}
+                                                                : std::array<double, 3>{w, u, v};
+            meshSurface(*mesh.indexed, std::get<Mesh>(hit.object->shape), prim, weights, hit);
+        }
+        frameUnit = instance && instance->placed ? instance->frameUnit
+                    : mesh.extent > 0            ? frameUnitFor(mesh.extent)
+                                                 : 0;
     }
     if (motion) {
-        hit.restPoint = impl_->shifted ? point + impl_->frameOrigin : point;
         hit.point = motion->point(point);
+        if (instance->placed) hit.restPoint = hit.point;
+        else hit.restPoint = impl_->shifted ? point + impl_->frameOrigin : point;
         hit.geometricNormal = unitOrTowardOrigin(motion->normal(geometric));
         hit.shadingNormal = unitOr(motion->normal(shading), hit.geometricNormal);
     } else {
@@ -248,11 +300,21 @@ Vec3 Accelerator::offsetOrigin(const Hit& hit, const Vec3& direction) {
     return shifted ? out + hit.frameOrigin : out;
 }
 
-bool Accelerator::hasMotion() const { return !impl_->instances.empty(); }
+bool Accelerator::hasMotion() const { return impl_->anyMotion; }
+
+Accelerator::MeshStats Accelerator::meshStats() const {
+    MeshStats stats;
+    stats.sharedMeshes = impl_->prototypes.size();
+    for (const Instance& instance : impl_->instances)
+        if (instance.placed) ++stats.placements;
+    return stats;
+}
 
 Transform Accelerator::restToWorld(const Hit& hit, double time) const {
     if (hit.instance < 0 || size_t(hit.instance) >= impl_->instances.size()) return Transform();
-    return impl_->instances[size_t(hit.instance)].motion.at(std::fmin(1.0, std::fmax(0.0, time)));
+    const Instance& instance = impl_->instances[size_t(hit.instance)];
+    if (!instance.motion) return Transform();
+    return instance.motion->at(std::fmin(1.0, std::fmax(0.0, time)));
 }
 
 void Accelerator::bounds(Vec3& lower, Vec3& upper) const {

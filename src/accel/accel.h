@@ -40,6 +40,7 @@
 #include "core/vec.h"
 #include "scene/scene.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 
@@ -52,6 +53,15 @@ struct Hit {
     Vec3 shadingNormal;    // world space, unit, same side as geometricNormal (interpolated for meshes)
     const Object* object = nullptr;
     uint32_t primitive = 0; // triangle index within a mesh, else 0
+    // The surface's uv coordinates (u, v, 0) where it has them (meshes with
+    // uv vectors), for uv_mapping.
+    bool hasUv = false;
+    Vec3 uv;
+    // A mesh triangle with textures of its own (Mesh::textures): the texture
+    // of each corner (null: the object's) and the barycentric weight of each;
+    // all null for every other hit.
+    std::array<const Texture*, 3> cornerTextures{};
+    std::array<double, 3> cornerWeights{};
     // Where offsetOrigin works, set by Accelerator::intersect (the defaults are
     // plain world space): Embree traces float coordinates relative to
     // frameOrigin, and frameUnit (a power of two, at most 1) is the size of the
@@ -94,6 +104,14 @@ public:
     // Waechter and Binder, Ray Tracing Gems ch. 6, in Embree's frame, with the
     // near-zero absolute offset scaled to the object: Hit::frameUnit).
     static Vec3 offsetOrigin(const Hit& hit, const Vec3& direction);
+
+    // Compact meshes (Mesh::indexed) as built: distinct meshes with a BVH
+    // of their own, and the objects placed as instances of them.
+    struct MeshStats {
+        size_t sharedMeshes = 0;
+        size_t placements = 0;
+    };
+    MeshStats meshStats() const;
 
     // True if some object has Motion (the scene was built with time steps).
     bool hasMotion() const;

@@ -159,6 +159,8 @@ struct Builder {
                 record.triangles.push_back({f[0], f[1], f[2]});
                 record.triangles.push_back({f[0], f[2], f[3]});
             }
+        } else if (const Mesh& compact = std::get<Mesh>(object.shape); compact.indexed) {
+            copyIndexedMesh(record, object, compact, toLevel);
         } else {
             const Mesh& mesh = std::get<Mesh>(object.shape);
             const int vertexCount = static_cast<int>(mesh.vertices.size());
@@ -192,6 +194,7 @@ struct Builder {
         if (mirrored) {
             for (auto& tri : record.triangles) std::swap(tri[1], tri[2]);
             for (auto& tri : record.normalIndices) std::swap(tri[1], tri[2]);
+            record.swapped = true;
         }
         Vec3 lo(INFINITY), hi(-INFINITY);
         for (const Vec3& v : record.vertices) {
@@ -202,6 +205,87 @@ struct Builder {
         record.extent = maxComponent(hi - lo);
         attachMesh(impl.device.get(), level, std::move(record), noShadow);
         impl.device.throwIfFailed("adding a mesh");
+    }
+
+    void validate(const Object& object, const Mesh& mesh) {
+        if (const std::string error = validateIndexedMesh(*mesh.indexed, mesh.textures.size()); !error.empty())
+            fail(object, error);
+    }
+
+    // A compact mesh as a level-space copy (moving or clipped objects, which
+    // cannot be instances of the shared level).
+    void copyIndexedMesh(MeshRecord& record, const Object& object, const Mesh& mesh, const Transform& toLevel) {
+        validate(object, mesh);
+        const IndexedMesh& m = *mesh.indexed;
+        record.indexed = mesh.indexed;
+        record.vertices.reserve(m.positions.size());
+        for (const Float3& v : m.positions) record.vertices.push_back(toLevel.point(v.toVec3()));
+        const size_t count = m.triangleCount();
+        record.triangles.reserve(count);
+        for (size_t i = 0; i < count; ++i) {
+            const auto tri = m.triangle(i);
+            record.triangles.push_back({int(tri[0]), int(tri[1]), int(tri[2])});
+        }
+        if (m.normals.empty()) return;
+        for (const Float3& n : m.normals) {
+            const Vec3 level = toLevel.normal(n.toVec3());
+            const double len = length(level);
+            record.normals.push_back(len > 0 && std::isfinite(len) ? level / len : Vec3{});
+        }
+        record.normalIndices.reserve(count);
+        for (size_t i = 0; i < count; ++i) {
+            const auto tri = m.normalTriangle(i);
+            record.normalIndices.push_back({int(tri[0]), int(tri[1]), int(tri[2])});
+        }
+    }
+
+    // The shared level of a compact mesh, built on first use.
+    const AcceleratorState::Prototype* prototype(const Object& object, const Mesh& mesh) {
+        auto found = impl.prototypes.find(mesh.indexed.get());
+        if (found != impl.prototypes.end()) return &found->second;
+        validate(object, mesh);
+        AcceleratorState::Prototype proto;
+        if (!indexedMeshBounds(*mesh.indexed, proto.lower, proto.upper)) return nullptr;
+        proto.level = std::make_shared<Level>();
+        proto.level->scene = newScene();
+        attachIndexedMesh(impl.device.get(), *proto.level, mesh.indexed);
+        impl.device.throwIfFailed("adding a mesh");
+        rtcCommitScene(proto.level->scene);
+        impl.device.throwIfFailed("building a mesh");
+        return &impl.prototypes.emplace(mesh.indexed.get(), std::move(proto)).first->second;
+    }
+
+    // One placement of a compact mesh: an Embree instance of its shared level.
+    void addMeshInstance(LevelBounds& bounds, const Object& object, const Transform& toLevel, bool inverse,
+                         bool noShadow) {
+        const Mesh& mesh = std::get<Mesh>(object.shape);
+        const AcceleratorState::Prototype* proto = prototype(object, mesh);
+        if (!proto) return; // no triangles
+        Instance placed;
+        placed.level = proto->level;
+        placed.placed = impl.shifted ? toLevel.then(Transform::translate(impl.frameOrigin)) : toLevel;
+        placed.object = &object;
+        placed.inverse = inverse;
+        Vec3 lo = proto->lower, hi = proto->upper;
+        transformBounds(toLevel, lo, hi);
+        bounds.add(lo, hi);
+        placed.frameUnit = frameUnitFor(maxComponent(hi - lo));
+        RTCGeometry instance = rtcNewGeometry(impl.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+        impl.device.throwIfFailed("creating an instance");
+        rtcSetGeometryInstancedScene(instance, proto->level->scene);
+        float rows[12];
+        const Mat4& m = toLevel.matrix();
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) rows[4 * r + c] = float(m.m[r][c]);
+        rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, rows);
+        rtcSetGeometryMask(instance, noShadow ? kCameraMask : (kCameraMask | kShadowMask));
+        rtcCommitGeometry(instance);
+        const unsigned id = rtcAttachGeometry(impl.top.scene, instance);
+        rtcReleaseGeometry(instance);
+        impl.device.throwIfFailed("placing a mesh");
+        if (impl.top.geometries.size() <= id) impl.top.geometries.resize(id + 1);
+        impl.top.geometries[id] = {GeometryKind::Instance, impl.instances.size()};
+        impl.instances.push_back(std::move(placed));
     }
 
     // `where`: see Placed. `parentClips`: the clipped_by objects of enclosing
@@ -236,6 +320,11 @@ struct Builder {
             return;
         }
         for (CsgNode& clip : clipNodes(object, parentToLevel, where)) clips.push_back(std::move(clip));
+        if (const Mesh* mesh = std::get_if<Mesh>(&object.shape);
+            mesh && mesh->indexed && clips.empty() && &level == &impl.top) {
+            addMeshInstance(bounds, object, toLevel, inverse, noShadow);
+            return;
+        }
         // A clipped box is traced as an analytic shape, so that its hits can be filtered.
         if (tracedAsTriangles(object.shape) && !(!clips.empty() && std::holds_alternative<Box>(object.shape))) {
             // Clipped meshes are filtered by Embree (embree_geometry.cpp), in the top level only.
@@ -284,7 +373,7 @@ struct Builder {
 
     void addMovingObject(const Object& object, const Transform& before, const MotionChain& chain,
                          bool parentInverse, bool parentNoShadow) {
-        auto level = std::make_unique<Level>();
+        auto level = std::make_shared<Level>();
         level->scene = newScene();
         LevelBounds bounds;
         const Transform rest = restPlacement(before, chain);
@@ -298,14 +387,19 @@ struct Builder {
         } catch (const std::invalid_argument& e) {
             fail(object, e.what());
         }
-        Instance moving{std::move(level), std::move(*motion), impl.shifted, impl.frameOrigin};
+        Instance moving;
+        moving.level = std::move(level);
+        moving.motion = std::move(motion);
+        moving.shifted = impl.shifted;
+        moving.frameOrigin = impl.frameOrigin;
+        impl.anyMotion = true;
         RTCGeometry instance = rtcNewGeometry(impl.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
         impl.device.throwIfFailed("creating an instance");
         rtcSetGeometryInstancedScene(instance, moving.level->scene);
-        const int steps = moving.motion.timeStepCount();
+        const int steps = moving.motion->timeStepCount();
         rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(steps));
         for (int i = 0; i < steps; ++i) {
-            const RTCQuaternionDecomposition step = moving.motion.timeStep(i, impl.frameOrigin);
+            const RTCQuaternionDecomposition step = moving.motion->timeStep(i, impl.frameOrigin);
             rtcSetGeometryTransformQuaternion(instance, static_cast<unsigned>(i), &step);
         }
         // Shadow rays skip a no_shadow object at the instance.
@@ -409,6 +503,7 @@ void buildScene(const Scene& scene, AcceleratorState& impl) {
     if (!(maxComponent(abs(centre)) > size)) return;
     impl.top.release();
     impl.instances.clear();
+    impl.anyMotion = false;
     impl.bounded = false;
     impl.shifted = true;
     impl.frameOrigin = centre;

@@ -5,6 +5,7 @@
 #include "accel/accel.h"
 #include "accel/built_scene.h"
 
+#include <map>
 #include <optional>
 
 namespace drt {
@@ -13,7 +14,14 @@ namespace accel {
 struct AcceleratorState {
     EmbreeDevice device;
     Level top;
-    std::vector<Instance> instances; // moving objects, by GeometryRef::index
+    std::vector<Instance> instances; // moving objects and compact-mesh placements, by GeometryRef::index
+    bool anyMotion = false;          // some instance moves
+    // One level per compact mesh, shared by all its placements.
+    struct Prototype {
+        std::shared_ptr<Level> level;
+        Vec3 lower, upper; // object-space bounds
+    };
+    std::map<const IndexedMesh*, Prototype> prototypes;
     bool bounded = false;
     Vec3 lower, upper; // world bounds of everything finite
     // Embree's top-level frame: world minus frameOrigin (accel.h "Frame").

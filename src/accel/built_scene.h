@@ -97,6 +97,12 @@ struct MeshRecord {
     std::vector<std::array<int, 3>> triangles; // wound so that the winding normal faces out
     std::vector<Vec3> normals;                 // level space, may be empty
     std::vector<std::array<int, 3>> normalIndices;
+    // A compact mesh: its uvs and corner textures. With `vertices` empty the
+    // record is an instanced prototype and the triangles are the IndexedMesh's
+    // own (object space); else `vertices`, `triangles` and `normals` are its
+    // level-space copy, corners 1 and 2 swapped if `swapped`.
+    std::shared_ptr<const IndexedMesh> indexed;
+    bool swapped = false;
     bool inverse = false;
     double extent = 0; // largest side of the level-space bounds
     // clipped_by (level space): Embree's filter functions drop hits outside them.
@@ -119,14 +125,23 @@ struct Level {
     void release(); // back to empty, the Embree scene released
 };
 
+// An Embree instance in the top level: a moving object's own level, or one
+// placement of a compact mesh's shared level (`placed`).
 struct Instance {
-    std::unique_ptr<Level> level;
-    InstanceMotion motion;
+    std::shared_ptr<Level> level;        // shared by the placements of one compact mesh
+    std::optional<InstanceMotion> motion; // moving objects
     bool shifted = false;
     Vec3 frameOrigin; // level space = rest-pose world minus this, if shifted
+    // Compact-mesh placements: level (object) space -> world, the object,
+    // its inversion and Hit::frameUnit for its world size.
+    std::optional<Transform> placed;
+    const Object* object = nullptr;
+    bool inverse = false;
+    double frameUnit = 0;
     // Level space -> world at time t.
     Transform toWorld(double t) const {
-        return shifted ? Transform::translate(frameOrigin).then(motion.at(t)) : motion.at(t);
+        if (placed) return *placed;
+        return shifted ? Transform::translate(frameOrigin).then(motion->at(t)) : motion->at(t);
     }
 };
 
@@ -198,6 +213,8 @@ void transformBounds(const Transform& transform, Vec3& lower, Vec3& upper);
 void attachPrimitives(RTCDevice device, Level& level);
 // Adds one triangle geometry; returns its geometry id.
 void attachMesh(RTCDevice device, Level& level, MeshRecord mesh, bool noShadow);
+// Adds a compact mesh's triangles over its own arrays (shared buffers).
+void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const IndexedMesh> mesh);
 
 // Geometry masks: every ray for intersect() carries all bits; occlusion rays
 // carry only kShadowMask, which geometry with no_shadow lacks.

@@ -3,6 +3,7 @@
 #include "accel/accel_impl.h"
 #include "core/error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -228,6 +229,40 @@ void attachMesh(RTCDevice device, Level& level, MeshRecord mesh, bool noShadow) 
     if (level.geometries.size() <= id) level.geometries.resize(id + 1);
     level.geometries[id] = {GeometryKind::Mesh, level.meshes.size()};
     level.meshes.push_back(std::move(mesh));
+}
+
+} // namespace drt::accel
+
+namespace drt::accel {
+
+// Embree reads vertex buffers 16 bytes at a time, so the last float3 must be
+// followed by 4 readable bytes: the positions' capacity must exceed their size
+// (padIndexedMesh). A mesh without that slack is copied.
+void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const IndexedMesh> mesh) {
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (!geometry) return;
+    const std::vector<Float3>& positions = mesh->positions;
+    if (positions.capacity() > positions.size()) {
+        rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions.data(), 0,
+                                   sizeof(Float3), positions.size());
+    } else {
+        auto* copy = static_cast<Float3*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                  RTC_FORMAT_FLOAT3, sizeof(Float3),
+                                                                  positions.size()));
+        if (copy) std::copy(positions.begin(), positions.end(), copy);
+    }
+    rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh->indices.data(), 0,
+                               3 * sizeof(uint32_t), mesh->triangleCount());
+    rtcCommitGeometry(geometry);
+    const unsigned id = rtcAttachGeometry(level.scene, geometry);
+    rtcReleaseGeometry(geometry);
+    MeshRecord record;
+    record.indexed = std::move(mesh);
+    Vec3 lo, hi;
+    if (indexedMeshBounds(*record.indexed, lo, hi)) record.extent = maxComponent(hi - lo);
+    if (level.geometries.size() <= id) level.geometries.resize(id + 1);
+    level.geometries[id] = {GeometryKind::Mesh, level.meshes.size()};
+    level.meshes.push_back(std::move(record));
 }
 
 } // namespace drt::accel

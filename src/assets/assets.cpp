@@ -9,6 +9,28 @@ namespace drt {
 
 bool resolveAssets(Scene& scene, Diagnostics& diags) {
     const int errorsBefore = diags.errorCount();
+    // Meshes first: a model file's materials may name image maps.
+    // Copies of one model (a declared mesh used many times) share one
+    // MeshSource: the file is read once and its triangles shared (instancing).
+    std::map<const MeshSource*, LoadedModel> models;
+    forEachObject(scene, [&](Object& object) {
+        Mesh* mesh = std::get_if<Mesh>(&object.shape);
+        if (!mesh || !mesh->source) return;
+        const std::shared_ptr<const MeshSource> source = mesh->source;
+        mesh->source.reset();
+        if (source->kind != MeshSource::Kind::ModelFile) {
+            if (const std::string error = loadMeshSource(*source, *mesh, diags); !error.empty())
+                diags.error(source->loc, error);
+            return;
+        }
+        auto [it, fresh] = models.try_emplace(source.get());
+        if (fresh) {
+            if (const std::string error = loadModelFile(*source, scene.global.assumedGamma, it->second, diags);
+                !error.empty())
+                diags.error(source->loc, error);
+        }
+        if (it->second.mesh) showModel(it->second, object.texture, *mesh);
+    });
     // Pigments that share one ImageMap (a declared pigment used many times)
     // keep sharing the decoded copy.
     std::map<const ImageMap*, std::shared_ptr<const ImageMap>> decoded;
@@ -21,14 +43,6 @@ bool resolveAssets(Scene& scene, Diagnostics& diags) {
             it->second = std::move(map);
         }
         pigment.imageMap = it->second;
-    });
-    forEachObject(scene, [&](Object& object) {
-        Mesh* mesh = std::get_if<Mesh>(&object.shape);
-        if (!mesh || !mesh->source) return;
-        const MeshSource source = *mesh->source;
-        if (const std::string error = loadMeshSource(source, *mesh, diags); !error.empty())
-            diags.error(source.loc, error);
-        mesh->source.reset();
     });
     return diags.errorCount() == errorsBefore;
 }

@@ -58,6 +58,7 @@ std::string loadPovHeightField(const MeshSource& source, Mesh& mesh, Diagnostics
 std::string loadMeshSource(const MeshSource& source, Mesh& mesh, Diagnostics& diags) {
     switch (source.kind) {
     case MeshSource::Kind::PovHeightField: return loadPovHeightField(source, mesh, diags);
+    case MeshSource::Kind::ModelFile: break; // loadModelFile
     }
     return "unknown mesh source";
 }

@@ -16,8 +16,25 @@ namespace drt {
 // else the reason.
 std::string loadImageMap(ImageMap& map);
 
-// Fills `mesh` from `source`; warnings go to `diags`. Returns "" on success,
-// else the reason.
+// Fills `mesh` from `source` (a height field); warnings go to `diags`.
+// Returns "" on success, else the reason.
 std::string loadMeshSource(const MeshSource& source, Mesh& mesh, Diagnostics& diags);
+
+// A model file read once, however many objects show it: its triangles, and
+// per material the pigment (a colour, or a uv-mapped image map) that
+// IndexedMesh::faceTextures index.
+struct LoadedModel {
+    std::shared_ptr<const IndexedMesh> mesh;
+    std::vector<Pigment> materials;
+};
+
+// Reads a model file (MeshSource::Kind::ModelFile; model_load.cpp). Image
+// maps get `workingGamma` (the scene's assumed_gamma). Returns "" on
+// success, else the reason, naming the file.
+std::string loadModelFile(const MeshSource& source, double workingGamma, LoadedModel& model, Diagnostics& diags);
+
+// Shows a loaded model in `mesh`: its triangles, and per material a copy of
+// the object's texture with the material's pigment (Mesh::textures).
+void showModel(const LoadedModel& model, const Texture& objectTexture, Mesh& mesh);
 
 } // namespace drt

@@ -7,7 +7,9 @@
 #include "sampling/sampler.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <filesystem>
+#include <type_traits>
 #include <fmt/format.h>
 #include <iostream>
 #include <unistd.h>
@@ -24,15 +26,40 @@ struct RenderArguments {
     bool adaptive = false;
     double adaptiveError = 0;
     int minSpp = 0, maxSpp = 0;
+    std::string frames, subset, clock; // "A..B" ranges, or one clock value
+    double clockDelta = 1, shutter = 0;
 };
+
+// "A..B" (or "A" for "A..A"): two numbers; false if the text is not that.
+template <class T>
+bool parseRange(const std::string& text, T& a, T& b) {
+    const size_t dots = text.find("..");
+    const std::string first = dots == std::string::npos ? text : text.substr(0, dots);
+    const std::string second = dots == std::string::npos ? text : text.substr(dots + 2);
+    try {
+        size_t used = 0;
+        if constexpr (std::is_integral_v<T>) {
+            a = static_cast<T>(std::stoi(first, &used));
+            if (used != first.size()) return false;
+            b = static_cast<T>(std::stoi(second, &used));
+        } else {
+            a = std::stod(first, &used);
+            if (used != first.size()) return false;
+            b = std::stod(second, &used);
+        }
+        return used == second.size() && std::isfinite(double(a)) && std::isfinite(double(b));
+    } catch (const std::exception&) {
+        return false;
+    }
+}
 
 CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     CLI::App* render = app.add_subcommand("render", "Render a scene to an image file");
     render->add_option("scene", a.command.scene, "Scene file (.drt or .pov)")->required();
     render
         ->add_option("-o,--output", a.command.output,
-                     "Output image; the extension picks the format (.png .jpg .tif: sRGB, .exr .hdr: linear)")
-        ->required();
+                     "Output image; the extension picks the format (.png .jpg .tif: sRGB, .exr .hdr: linear). "
+                     "Required, unless a POV-Ray .ini gives Output_File_Name");
     render->add_option("--width", a.width, "Image width in pixels (overrides the scene)")
         ->check(CLI::PositiveNumber);
     render->add_option("--height", a.height, "Image height in pixels (overrides the scene)")
@@ -81,6 +108,21 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("-L,--include-path", a.command.pov.includePaths,
                        "POV-Ray scenes: folder searched by #include (repeatable; after the scene's folder)");
     render->add_flag("--strict", a.command.pov.strict, "POV-Ray scenes: unsupported features are errors");
+    render->add_option("--frames", a.frames,
+                       "Animation: frames A..B (initial..final), each rendered alone to OUT with its number "
+                       "(a %d or %04d in OUT, else before the extension)");
+    render->add_option("--clock", a.clock,
+                       "The clock: C0..C1 over the frames (default 0..1), or C for one image");
+    render->add_option("--clock-delta", a.clockDelta, "One image: the clock's step per frame (default 1)");
+    render->add_option("--subset", a.subset, "Animation: render only frames A..B of the range");
+    render->add_flag("--cyclic", a.command.animation.cyclic,
+                     "Animation: the last frame stops one step short of the final clock (it loops)");
+    render->add_option("--shutter", a.shutter,
+                       "Motion blur: the shutter opens at the frame's clock for this fraction of the frame "
+                       "interval (overrides the camera's)")
+        ->check(CLI::Range(0.0, 1.0));
+    render->add_option("--ini", a.command.animation.ini,
+                       "POV-Ray .ini file with the animation options (a SCENE ending in .ini is read so too)");
     render->add_option("--dialect", a.command.pov.dialect,
                        "Read the scene as .drt or .pov whatever its extension (default: .pov, .inc, .mac are POV-Ray's)")
         ->check(CLI::IsMember({"drt", "pov"}));
@@ -113,7 +155,57 @@ void fillOverrides(CLI::App& render, RenderArguments& a) {
         o.minSamplesPerPixel = a.minSpp;
     if (render.count("--max-spp"))
         o.maxSamplesPerPixel = a.maxSpp;
+    if (render.count("--clock-delta"))
+        a.command.animation.clockDelta = a.clockDelta;
+    if (render.count("--shutter"))
+        a.command.animation.shutter = a.shutter;
     a.command.progress = ::isatty(STDERR_FILENO) != 0;
+}
+
+// The time options given as ranges; false (with a message) if one is not a range.
+bool fillTime(CLI::App& render, RenderArguments& a, std::ostream& err) {
+    AnimationRequest& t = a.command.animation;
+    if (render.count("--frames")) {
+        int first = 0, last = 0;
+        if (!parseRange(a.frames, first, last)) {
+            err << "drt render: --frames needs a frame range A..B, not '" << a.frames << "'\n";
+            return false;
+        }
+        t.frames = std::make_pair(first, last);
+    }
+    if (render.count("--subset")) {
+        int first = 0, last = 0;
+        if (!parseRange(a.subset, first, last)) {
+            err << "drt render: --subset needs a frame range A..B, not '" << a.subset << "'\n";
+            return false;
+        }
+        t.subset = std::make_pair(first, last);
+    }
+    if (render.count("--clock")) {
+        double c0 = 0, c1 = 0;
+        if (!parseRange(a.clock, c0, c1)) {
+            err << "drt render: --clock needs a clock value C or a range C0..C1, not '" << a.clock << "'\n";
+            return false;
+        }
+        if (a.clock.find("..") != std::string::npos) t.clockRange = std::make_pair(c0, c1);
+        else t.clock = c0;
+    }
+    const std::string& scene = a.command.scene;
+    const bool ini = render.count("--ini") || (scene.size() > 4 && (scene.substr(scene.size() - 4) == ".ini" ||
+                                                                    scene.substr(scene.size() - 4) == ".INI"));
+    if (t.clockRange && !t.frames && !ini) {
+        err << "drt render: a clock range needs a frame range (--frames A..B)\n";
+        return false;
+    }
+    if (t.subset && !t.frames && !ini) {
+        err << "drt render: --subset needs a frame range (--frames A..B)\n";
+        return false;
+    }
+    if (a.command.output.empty() && !ini) { // an .ini may name the output
+        err << "drt render: --output is required\n";
+        return false;
+    }
+    return true;
 }
 
 CLI::App* addCompare(CLI::App& app, CompareCommand& c) {
@@ -234,6 +326,8 @@ int runCommandLine(int argc, char** argv) {
 
     if (render->parsed()) {
         fillOverrides(*render, renderArguments);
+        if (!fillTime(*render, renderArguments, std::cerr))
+            return kUsageError;
         renderArguments.command.commandLine = shellCommandLine(argc, argv);
         return runRender(renderArguments.command, std::cout, std::cerr);
     }

@@ -11,11 +11,13 @@
 // compare uses idiff's statuses instead (compare/compare.h: CompareStatus).
 #pragma once
 
+#include "animation/animation.h"
 #include "bench/bench.h"
 #include "compare/compare.h"
 #include "render/provenance.h"
 #include "render/render.h"
 
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -37,6 +39,20 @@ struct PovCliOptions {
     std::string dialect;                   // "drt", "pov", or "": from the file's extension
 };
 
+// Time on the command line (cli/animation_command.cpp): a frame range, the
+// clock, the shutter, POV-Ray .ini files.
+struct AnimationRequest {
+    std::optional<std::pair<int, int>> frames;           // --frames A..B: initial and final frame
+    std::optional<std::pair<int, int>> subset;           // --subset A..B: the frames rendered
+    std::optional<std::pair<double, double>> clockRange; // --clock C0..C1: the clock over the frames
+    std::optional<double> clock;                         // --clock C: one frame at this clock
+    std::optional<double> clockDelta;                    // --clock-delta D: that frame's clock step
+    bool cyclic = false;                                 // --cyclic: POV-Ray's Cyclic_Animation
+    std::optional<double> shutter;                       // --shutter F: fraction of the frame interval
+    std::string ini;                                     // --ini FILE (also a SCENE ending in .ini)
+    std::optional<FrameClock> frame;                     // one frame of an animation (set by runAnimation)
+};
+
 struct RenderCommand {
     std::string scene;
     std::string output;
@@ -53,6 +69,7 @@ struct RenderCommand {
     PovCliOptions pov;
     std::string commandLine; // recorded in the output's metadata ("" : not recorded)
     bool reproducible = false; // --reproducible: metadata without run details (byte-identical files)
+    AnimationRequest animation;
 };
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err);
 
@@ -70,6 +87,16 @@ struct MergeCommand {
 int runMerge(const MergeCommand& command, std::ostream& out, std::ostream& err);
 // Declares the `merge` subcommand and its options (bound to `command`) on `app`.
 CLI::App* addMergeSubcommand(CLI::App& app, MergeCommand& command);
+// Animation (animation_command.cpp): a frame range, or a scene given as an .ini file.
+bool wantsAnimation(const RenderCommand& command);
+// Each frame is rendered by `renderFrame` (cli/render_run.cpp: in this process or over MPI ranks).
+int runAnimation(const RenderCommand& command, std::ostream& err,
+                 const std::function<int(const RenderCommand& frame)>& renderFrame);
+// The clock and shutter of a single render (--clock, --clock-delta, --shutter; or a frame of an animation).
+FrameClock stillFrameClock(const RenderCommand& command);
+FrameOptions frameOptions(const RenderCommand& command);
+// Tells how a frame's motion came from its clock (unless --quiet).
+void printFrameReport(const RenderCommand& command, const FrameReport& report, std::ostream& err);
 
 int runCheck(const std::string& scenePath, std::ostream& out, std::ostream& err);
 // The same with the POV-Ray front end's options (used for .pov scenes).

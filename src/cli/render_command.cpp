@@ -41,8 +41,35 @@ bool looksBinary(const std::string& path) {
 
 } // namespace
 
+// The front end for `path` as a function of the frame's clock: one front end
+// for both dialects, then the files the scene names. The scene sees the image
+// size it will be rendered at.
+SceneEvaluator sceneEvaluator(const std::string& path, const PovCliOptions& pov, const RenderSettings& overrides) {
+    return [path, pov, overrides](const FrameClock& frame, Diagnostics& diagnostics) -> std::optional<Scene> {
+        LoadOptions options;
+        if (!pov.dialect.empty()) options.dialect = dialectNamed(pov.dialect);
+        options.strict = pov.strict;
+        options.frame = frame;
+        if (!pov.includePaths.empty()) {
+            const std::string dir = fs::path(path).parent_path().string();
+            options.includePaths.push_back(dir.empty() ? "." : dir);
+            options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(), pov.includePaths.end());
+            options.includePaths.push_back(kPovStandardIncludeDir);
+        }
+        if (overrides.width) options.imageWidth = *overrides.width;
+        if (overrides.height) options.imageHeight = *overrides.height;
+        const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+        options.geometry = geometry.get();
+        std::optional<Scene> scene = drt::loadScene(path, diagnostics, options);
+        if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+        return scene;
+    };
+}
+
+// At one frame's clock, moving over its shutter (animation.h evaluateFrame).
 int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov,
-              const RenderSettings& overrides, std::string* sceneSha1) {
+              const RenderSettings& overrides, std::string* sceneSha1, const FrameClock& frame,
+              const FrameOptions& frameOptions, FrameReport* report) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !std::ifstream(path)) {
         err << fmt::format("drt: cannot read scene '{}': {}\n", path,
@@ -54,23 +81,8 @@ int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& 
         return kSceneError;
     }
     Diagnostics diagnostics;
-    // One front end for both dialects; the scene sees the image size it will be rendered at.
-    LoadOptions options;
-    if (!pov.dialect.empty()) options.dialect = dialectNamed(pov.dialect);
-    options.strict = pov.strict;
-    if (!pov.includePaths.empty()) {
-        const std::string dir = fs::path(path).parent_path().string();
-        options.includePaths.push_back(dir.empty() ? "." : dir);
-        options.includePaths.insert(options.includePaths.end(), pov.includePaths.begin(), pov.includePaths.end());
-        options.includePaths.push_back(kPovStandardIncludeDir);
-    }
-    if (overrides.width) options.imageWidth = *overrides.width;
-    if (overrides.height) options.imageHeight = *overrides.height;
-    const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
-    options.geometry = geometry.get();
-    scene = drt::loadScene(path, diagnostics, options);
-    if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
-    if (sceneSha1)
+    scene = evaluateFrame(sceneEvaluator(path, pov, overrides), frame, frameOptions, diagnostics, report);
+    if (sceneSha1) // the scene text read (the evaluations over the shutter read the same files)
         *sceneSha1 = sceneTextSha1(diagnostics.files());
     if (scene && !diagnostics.hasErrors()) {
         // The camera's problems (sky or up along the view, ...) are found by

@@ -12,12 +12,18 @@
 
 namespace drt::cli {
 
-// Loads a scene, printing every diagnostic and the scene's warnings
+// The front end for `path` as a function of the frame's clock: evaluates the
+// scene text as seen at that clock (front end, then the files it names).
+SceneEvaluator sceneEvaluator(const std::string& path, const PovCliOptions& pov, const RenderSettings& overrides);
+
+// Loads a scene at one frame's clock, moving over its shutter (animation.h
+// evaluateFrame), printing every diagnostic and the scene's warnings
 // (render/scene_warnings.h) to `err`. Returns kSuccess and sets `scene` (and
 // `sceneSha1`, the hash of the text read: render/provenance.h), or the exit
 // status to stop with.
 int loadScene(const std::string& path, std::ostream& err, std::optional<Scene>& scene, const PovCliOptions& pov = {},
-              const RenderSettings& overrides = {}, std::string* sceneSha1 = nullptr);
+              const RenderSettings& overrides = {}, std::string* sceneSha1 = nullptr, const FrameClock& frame = {},
+              const FrameOptions& frameOptions = {}, FrameReport* report = nullptr);
 
 // What a render's files record besides its identity (render/provenance.h).
 struct RunRecord {

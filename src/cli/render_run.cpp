@@ -55,10 +55,13 @@ int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepar
     }
     p.record.started = std::time(nullptr);
     const auto loadStart = std::chrono::steady_clock::now();
-    if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides, &p.record.sceneSha1);
+    FrameReport report; // the scene at its frame's clock, moving over the shutter
+    if (int status = loadScene(command.scene, err, p.scene, command.pov, command.overrides, &p.record.sceneSha1,
+                               stillFrameClock(command), frameOptions(command), &report);
         status != kSuccess)
         return status;
     p.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
+    printFrameReport(command, report, err);
     p.record.filter = p.scene->render.filter.value_or(defaultFilterName());
     p.options = resolveRenderOptions(overlaySettings(p.scene->render, command.overrides));
     if (command.tileSize) p.options.tileSize = *command.tileSize;
@@ -341,7 +344,10 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
         }
     }
     const InterruptHandler interrupt;
-    return renderProcess(command, err, interrupt, mpi ? &*mpi : nullptr);
+    const auto renderOne = [&](const RenderCommand& c) { return renderProcess(c, err, interrupt, mpi ? &*mpi : nullptr); };
+    // An animation renders its frames one after another, each as a render of its own.
+    if (wantsAnimation(command)) return runAnimation(command, err, renderOne);
+    return renderOne(command);
 }
 
 } // namespace drt::cli

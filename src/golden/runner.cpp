@@ -4,6 +4,7 @@
 // spreads its tiles over the cores, and TBB shares the threads between them.
 #include "golden/golden.h"
 
+#include "animation/animation.h"
 #include "assets/assets.h"
 #include "accel/geometry_query.h"
 #include "lang/load.h"
@@ -144,16 +145,24 @@ bool prepare(const GoldenCase& c, bool update, Prepared& p, CaseResult& result) 
         result.message = fmt::format("{}: no such scene file", scenePath);
         return false;
     }
-    Diagnostics diagnostics;
     // Either dialect, by the extension; the scene sees the image size it is
-    // rendered at (image_width, image_height) and the geometry (trace, inside).
-    LoadOptions load;
-    load.imageWidth = p.settings.width.value_or(load.imageWidth);
-    load.imageHeight = p.settings.height.value_or(load.imageHeight);
-    const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
-    load.geometry = geometry.get();
-    std::optional<Scene> scene = loadScene(scenePath, diagnostics, load);
-    if (scene && !diagnostics.hasErrors()) resolveAssets(*scene, diagnostics);
+    // rendered at (image_width, image_height) and the geometry (trace,
+    // inside). The still frame `drt render` gives: clock 0, and with the
+    // shutter open a scene that reads `clock` moves as its clock says
+    // (animation/animation.h).
+    const SceneEvaluator evaluate = [&scenePath, &p](const FrameClock& frame, Diagnostics& d) {
+        LoadOptions load;
+        load.imageWidth = p.settings.width.value_or(load.imageWidth);
+        load.imageHeight = p.settings.height.value_or(load.imageHeight);
+        load.frame = frame;
+        const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+        load.geometry = geometry.get();
+        std::optional<Scene> evaluated = loadScene(scenePath, d, load);
+        if (evaluated && !d.hasErrors()) resolveAssets(*evaluated, d);
+        return evaluated;
+    };
+    Diagnostics diagnostics;
+    std::optional<Scene> scene = evaluateFrame(evaluate, FrameClock{}, {}, diagnostics);
     p.scenePath = scenePath;
     p.sceneSha1 = sceneTextSha1(diagnostics.files());
     if (diagnostics.hasErrors() || !scene) {

@@ -83,7 +83,19 @@ CameraSpec Evaluator::camera(const CameraSpec& base, SourceLoc loc) {
             next();
             break;
         }
-        if (std::optional<Transform> tr = transformItem()) {
+        // After a motion, a transform goes after it: the motion chain moves
+        // the resolved camera at each ray's time (render/camera_path.h).
+        if (t.isWord("motion")) {
+            next();
+            if (pov) resolve();
+            c.motion.push_back(MotionStage{motionBlock(), Transform()});
+            first = false;
+            continue;
+        }
+        if (std::optional<Transform> tr = transformItem(); tr && !c.motion.empty()) {
+            c.motion.back().after = c.motion.back().after.then(*tr);
+            continue;
+        } else if (tr) {
             if (pov) {
                 resolve();
             } else if (!c.right && !c.lookAt && !(tr->vector(Vec3(1, 0, 0)) == Vec3(1, 0, 0))) {

@@ -21,6 +21,13 @@
 
 namespace drt::lang {
 
+// uv_mapping on or off for a pigment and all its sub-pigments (pigments.cpp, textures.cpp).
+inline void setUvMapping(Pigment& p, bool on) {
+    p.uvMapping = on;
+    for (Pigment& child : p.children) setUvMapping(child, on);
+    for (Pigment::MapEntry& entry : p.pigmentMap) setUvMapping(entry.pigment, on);
+}
+
 // Loop passes and macro calls between two looks at the memory in use
 // (Limits::memoryMB).
 inline constexpr long kMemoryCheckInterval = 1024;
@@ -193,7 +200,7 @@ public:
     void setTexture(ObjectValue& o, const Texture& texture);
     void setInterior(ObjectValue& o, const Interior& interior);
     void addChild(ObjectValue& parent, ObjectValue child);
-    void motion(Object& object); // after 'motion'
+    Motion motionBlock(); // after 'motion': objects, cameras and lights
     std::optional<std::vector<Object>> clipObjects(const Token& word); // after bounded_by / clipped_by
     Object placed(ObjectValue po); // a clip or CSG member as a model object
     // Finds a data file (image, font) like an include file; "" if not found.

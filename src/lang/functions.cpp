@@ -45,7 +45,8 @@ bool Evaluator::startsFloat(const Token& t) const {
         "pi", "tau", "true", "false", "yes", "no", "on", "off", "clock", "image_width", "image_height", "version",
         "abs", "acos", "asin", "atan", "atan2", "ceil", "cos", "cosh", "degrees", "div", "exp", "floor", "int", "ln",
         "log", "max", "min", "mod", "pow", "radians", "rand", "sin", "sinh", "sqrt", "tan", "tanh", "vdot",
-        "vlength", "strlen", "val", "select", "dimension_size", "defined", "frame_number", "clock_delta"};
+        "vlength", "strlen", "val", "select", "dimension_size", "defined", "frame_number", "clock_delta",
+        "clock_on", "initial_frame", "final_frame", "initial_clock", "final_clock"};
     return words.count(t.text) > 0;
 }
 
@@ -54,13 +55,15 @@ bool Evaluator::builtin(const Token& name, Value& out) {
     // ---- constants
     static const std::map<std::string, double> floats = {
         {"pi", kPi}, {"tau", 2 * kPi}, {"true", 1}, {"yes", 1}, {"on", 1}, {"false", 0}, {"no", 0}, {"off", 0},
-        {"clock_delta", 1}, {"clock_on", 0}, {"initial_frame", 1}, {"final_frame", 1}, {"frame_number", 0},
-        {"initial_clock", 0}, {"final_clock", 1}, {"max_intersections", 64}};
+        {"max_intersections", 64}};
     if (auto it = floats.find(w); it != floats.end()) {
         out = Value::makeFloat(it->second);
         return true;
     }
-    if (w == "clock") return out = Value::makeFloat(options_.clock), true;
+    if (const std::optional<double> v = frameClockValue(options_.frame, w)) {
+        if (w == "clock") scene_.readsClock = true; // motion blur may evaluate the scene again over the shutter
+        return out = Value::makeFloat(*v), true;
+    }
     if (w == "image_width") return out = Value::makeFloat(options_.imageWidth), true;
     if (w == "image_height") return out = Value::makeFloat(options_.imageHeight), true;
     if (w == "version") return out = Value::makeFloat(version_), true;

@@ -41,13 +41,13 @@ const std::map<Block, Words>& table() {
                                  "cylinder", "spherical", "omnimax", "mesh_camera", "location", "look_at", "up",
                                  "sky", "right", "direction", "angle", "aperture", "focal_point", "focal_distance",
                                  "blur_samples", "confidence", "variance", "bokeh", "shutter_open",
-                                 "shutter_close"},
+                                 "shutter_close", "motion"},
                                 kTransforms);
         m[Block::LightSource] = with({"color", "colour", "rgb", "spotlight", "point_at", "radius", "falloff",
                                       "tightness", "fade_distance", "fade_power", "shadowless", "area_light",
                                       "jitter", "adaptive", "circular", "orient", "area_illumination",
                                       "area_sampling", "inverse_square", "media_interaction", "media_attenuation",
-                                      "looks_like", "parallel", "projected_through", "photons"},
+                                      "looks_like", "parallel", "projected_through", "photons", "motion"},
                                      kTransforms);
         m[Block::Texture] = with({"pigment", "finish", "normal", "texture_map", "tiles", "checker", "hexagon",
                                   "brick", "gradient", "radial", "onion", "average", "uv_mapping"},
@@ -55,7 +55,7 @@ const std::map<Block, Words>& table() {
         Words pigment{"color", "colour", "rgb", "rgbf", "rgbt", "rgbft", "srgb", "checker", "hexagon", "brick",
                       "brick_size", "mortar", "gradient", "radial", "onion", "spherical", "color_map", "colour_map",
                       "pigment_map", "average", "image_map", "turbulence", "octaves", "omega", "lambda", "warp",
-                      "quick_color"};
+                      "quick_color", "uv_mapping"};
         for (const std::string& w : noisePatternNames()) pigment.push_back(w);
         pigment = with(pigment, waveWords());
         m[Block::Pigment] = with(pigment, kTransforms);

@@ -25,6 +25,7 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
     area.sampling = scene().fullAreaLights ? AreaSampling::Stratified : AreaSampling::Grid;
     bool hasArea = false;
     SourceLoc pointAtLoc;
+    MotionChain motion; // the light's motions and the transforms after them
     const Token first = peek();
     const Cell id = first.kind == TokenKind::Word ? use(first.text) : nullptr;
     if (id && id->kind == Kind::Object && id->object->lights.size() == 1 && (id->object->lightOnly || looksLike)) {
@@ -32,6 +33,7 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
         next();
         l = id->object->lights.front();
         if (l.area) area = *l.area, hasArea = true;
+        if (l.motion) motion = l.motion->chain;
         if (!id->object->lightOnly) {
             *looksLike = *id->object;
             (*looksLike)->lights.clear();
@@ -46,7 +48,20 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
             next();
             break;
         }
-        if (std::optional<Transform> tr = transformItem()) {
+        // After a motion, a transform goes after it: the light's motion chain
+        // moves it at each ray's time (render/light_path.h).
+        // A looks_like object moves with the light.
+        if (t.isWord("motion")) {
+            next();
+            motion.push_back(MotionStage{motionBlock(), Transform()});
+            if (looksLike && *looksLike) (*looksLike)->object.motion.push_back(motion.back());
+            continue;
+        }
+        if (std::optional<Transform> tr = transformItem(); tr && !motion.empty()) {
+            if (looksLike && *looksLike) applyTransform(**looksLike, *tr, t.loc);
+            motion.back().after = motion.back().after.then(*tr);
+            continue;
+        } else if (tr) {
             if (looksLike && *looksLike) applyTransform(**looksLike, *tr, t.loc);
             l.position = tr->point(l.position);
             l.pointAt = tr->point(l.pointAt);
@@ -127,6 +142,8 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
             for (const AreaSamplingWord& s : areaSamplingWords())
                 if (name.isWord(s.word)) area.sampling = s.sampling, found = true;
             if (!found) failExpected(name, "'stratified', 'solid_angle', 'grid' or 'pov_grid' after 'area_sampling'");
+        } else if (w == "looks_like" && looksLike && !motion.empty()) {
+            fail(t.loc, "'looks_like' after 'motion': give the light's shape before its motion");
         } else if (w == "looks_like" && looksLike) {
             // POV-Ray: the object is moved to the light's position, moves with
             // the light's later transforms and casts no shadow.
@@ -148,6 +165,7 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
     if (l.spotlight && l.pointAt == l.position)
         refuse(pointAtLoc.valid() ? pointAtLoc : loc, "'point_at' is the same point as the light position");
     if (hasArea) l.area = area;
+    if (!motion.empty()) l.motion = std::make_shared<LightMotion>(LightMotion{{}, std::move(motion)});
     return l;
 }
 

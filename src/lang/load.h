@@ -6,6 +6,7 @@
 
 #include "core/diagnostics.h"
 #include "lang/dialect.h"
+#include "scene/frame_clock.h"
 #include "scene/geometry_query.h"
 #include "scene/scene.h"
 
@@ -28,8 +29,9 @@ struct LoadOptions {
     // dialect they are also the image size stored in Scene::render.
     int imageWidth = 320;
     int imageHeight = 240;
-    // POV-Ray's `clock` (animation time).
-    double clock = 0;
+    // What `clock`, `frame_number` and the other animation identifiers read
+    // (the same in both dialects).
+    FrameClock frame;
     // The geometry behind trace() and inside() at parse time; without it they are errors.
     SceneGeometryQuery* geometry = nullptr;
 };

@@ -80,6 +80,12 @@ std::string ShapeSyntax<Csg>::head(const Csg& c, ShapeText& text) {
 namespace {
 
 void transformLight(Light& l, const Transform& t) {
+    if (l.motion && !l.motion->chain.empty()) { // after the light's motion (render/light_path.h)
+        auto moved = std::make_shared<LightMotion>(*l.motion);
+        moved->chain.back().after = moved->chain.back().after.then(t);
+        l.motion = std::move(moved);
+        return;
+    }
     l.position = t.point(l.position);
     l.pointAt = t.point(l.pointAt);
     if (l.area) {
@@ -344,7 +350,7 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
         } else if (m == "inverse") {
             o.inverse = !o.inverse;
         } else if (m == "motion") {
-            motion(o);
+            o.motion.push_back(MotionStage{motionBlock(), Transform()});
         } else if (m == "open") {
             if (Cylinder* cy = std::get_if<Cylinder>(&o.shape)) cy->open = true;
             else if (Cone* co = std::get_if<Cone>(&o.shape)) co->open = true;
@@ -411,7 +417,8 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
 // key_items = { ("translate" | "rotate" | "scale") vector3 }   (each at most once per key)
 // Without `at` the items are one key at time 1; keyed or not, the path starts
 // from the identity at time 0 unless a key is given there (scene/motion.h).
-void Evaluator::motion(Object& object) {
+// The same block moves objects, cameras (camera.cpp) and lights (lights.cpp).
+Motion Evaluator::motionBlock() {
     const Token keyword = lastToken();
     expectSymbol("{", "after 'motion'");
     BlockScope scope(*this, "motion", keyword.loc);
@@ -457,7 +464,7 @@ void Evaluator::motion(Object& object) {
     }
     if (m.keys.empty()) m.keys.push_back(MotionKey{1});
     if (m.keys.front().time > 0) m.keys.insert(m.keys.begin(), MotionKey{0});
-    object.motion.push_back(MotionStage{std::move(m), Transform()});
+    return m;
 }
 
 // The objects of `bounded_by { ... }` or `clipped_by { ... }` in the space the

@@ -140,13 +140,26 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
     Pigment p = base;
     std::string approximated; // a POV-Ray pattern drt lacks, approximated
     SourceLoc approximatedLoc;
+    // uv_mapping anywhere in the block (or in the pigment it modifies): the
+    // block's transforms, before and after it, act in uv space; the flag is
+    // set on the whole pigment at the end, so the object's transforms leave it.
+    bool uv = p.uvMapping;
+    setUvMapping(p, false);
     for (;;) {
         const Token t = peek();
         if (t.is(closer)) {
             next();
             break;
         }
-        if (pigmentItem(p, t)) continue;
+        if (t.isWord("uv_mapping")) {
+            next();
+            uv = true;
+            continue;
+        }
+        if (pigmentItem(p, t)) {
+            if (p.uvMapping) uv = true, setUvMapping(p, false); // a declared uv-mapped pigment
+            continue;
+        }
         next();
         if (t.kind == TokenKind::Word && isApproximatedPattern(t.text)) {
             if (syntax().unsupportedIsError) fail(t.loc, "pattern '" + t.text + "' is not supported");
@@ -190,6 +203,7 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
         p = solid(avg);
         p.toWorld = keep;
     }
+    if (uv) setUvMapping(p, true);
     return p;
 }
 
@@ -341,9 +355,6 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
     } else if (w == "quick_color" || w == "quick_colour") {
         next();
         colorExpr();
-    } else if (w == "uv_mapping") {
-        next();
-        unsupported(w, t.loc, "'uv_mapping' is not supported; the pattern uses object coordinates");
     } else {
         return false;
     }

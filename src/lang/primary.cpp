@@ -141,7 +141,10 @@ Value Evaluator::primary() {
     if (w == "color" || w == "colour") return Value::makeColor(colorExpr());
     Value out;
     if (builtin(t, out)) return postfix(out, t.loc);
-    std::vector<std::string> known{"x", "y", "z", "pi", "color", "rgb", "rgbf", "rgbt", "rgbft", "srgb"};
+    std::vector<std::string> known{"x",           "y",           "z",           "pi",           "color",
+                                   "rgb",         "rgbf",        "rgbt",        "rgbft",        "srgb",
+                                   "clock",       "clock_delta", "clock_on",    "frame_number", "initial_frame",
+                                   "final_frame", "initial_clock", "final_clock"};
     const std::vector<std::string> names = declaredNames();
     known.insert(known.end(), names.begin(), names.end());
     for (const char* f : {"sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "radians", "degrees", "pow",

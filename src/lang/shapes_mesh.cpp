@@ -1,6 +1,7 @@
 // Triangle meshes:
 //   triangle { a, b, c }    smooth_triangle { a, na, b, nb, c, nc }
 //   mesh { triangle {...} smooth_triangle {...} ... }
+//   mesh { file "model.obj" }  (OBJ, PLY, glTF 2.0; the file is read after parsing)
 //   mesh2 { vertex_vectors { n, v... } [normal_vectors {...}] face_indices { n, <i,j,k>... } [normal_indices {...}] }
 //   polygon { n, p1, ..., pn }   (triangulated as a fan: exact for convex outlines)
 //   height_field { [type] "file" [smooth] [water_level w] }  (the image is read after parsing)
@@ -77,7 +78,30 @@ void triangle(Evaluator& e, Mesh& mesh, bool smooth) {
     }
 }
 
+// mesh { file "name" }: a model file found like an image (beside the file
+// that names it, then beside the scene, then on the include path), whose
+// triangles, normals, uvs and materials assets/model_load.cpp reads after
+// parsing; its problems are reported at the file name.
+void readModelFile(Evaluator& e, Mesh& m) {
+    e.next(); // file
+    const Token file = e.peek();
+    if (e.syntax().kind == DialectKind::Drt && file.kind != TokenKind::String)
+        e.failExpected(e.next(), "the model file name in quotes");
+    const std::string name = e.stringExpr();
+    const std::string path = e.findDataFile(name, false);
+    if (path.empty()) e.fail(file.loc, "cannot find model file '" + name + "'");
+    auto source = std::make_shared<MeshSource>();
+    source->kind = MeshSource::Kind::ModelFile;
+    source->path = path;
+    source->loc = file.loc;
+    m.source = std::move(source);
+}
+
 void readMesh(Evaluator& e, const Token& keyword, Mesh& m) {
+    if (e.peek().isWord("file")) {
+        readModelFile(e, m);
+        return;
+    }
     for (;;) {
         const Token t = e.peek();
         if (!(t.isWord("triangle") || t.isWord("smooth_triangle"))) break;
@@ -256,6 +280,9 @@ void ShapeSyntax<Mesh>::read(Evaluator& e, const Token& keyword, ObjectValue& o)
 }
 
 std::string ShapeSyntax<Mesh>::head(const Mesh& m, ShapeText& text) {
+    // A model file not read yet: its name, which reads back to the same mesh.
+    if (m.source && m.source->kind == MeshSource::Kind::ModelFile)
+        return "mesh { file " + writer::quoted(m.source->path);
     if (m.triangles.empty()) {
         text.problems.insert("a mesh with no triangles (left out)");
         return "";

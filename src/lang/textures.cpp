@@ -26,10 +26,12 @@ Texture Evaluator::texture(const Texture& base) {
 
 Texture Evaluator::textureBody(const Texture& base, const char* closer, const std::string& where) {
     Texture tex = base;
+    bool uv = false; // uv_mapping in the texture: its pigment reads the surface's uv (the normal does not)
     for (;;) {
         const Token t = peek();
         if (t.is(closer)) {
             next();
+            if (uv) setUvMapping(tex.pigment, true);
             return tex;
         }
         if (std::optional<Transform> tr = transformItem()) {
@@ -52,7 +54,7 @@ Texture Evaluator::textureBody(const Texture& base, const char* closer, const st
         } else if (isTexturePatternWord(t)) {
             return patternedTexture(t, closer, where);
         } else if (w == "uv_mapping") {
-            unsupported(w, t.loc, "'uv_mapping' is not supported; the pattern uses object coordinates");
+            uv = true;
         } else if (w == "quick_color" || w == "quick_colour") {
             colorExpr();
         } else {

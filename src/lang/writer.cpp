@@ -49,6 +49,8 @@ class SceneWriter {
     std::string shapeHead(const Object& o, int indent);
     void texture(const Texture& t, const std::string& pigment, const std::string& normal, int indent);
     static std::string motionText(const Motion& m);
+    // A camera's or light's motions, each with the transforms after it.
+    void motionLines(const MotionChain& chain, int indent);
     std::string placementText(const Object& o);
 
     WriterOptions options_;
@@ -179,6 +181,7 @@ void SceneWriter::camera(const CameraSpec& c) {
         line(1, "shutter_open " + number(c.shutterOpen));
     if (c.shutterClose != d.shutterClose)
         line(1, "shutter_close " + number(c.shutterClose));
+    motionLines(c.motion, 1);
     line(0, "}");
     out_ += "\n";
 }
@@ -233,7 +236,17 @@ void SceneWriter::light(const Light& l) {
         line(1, std::string("area_sampling ") + lang::areaSamplingWord(l.area->sampling));
     if (l.inverseSquare)
         line(1, "inverse_square");
+    if (l.motion)
+        motionLines(l.motion->chain, 1);
     line(0, "}");
+}
+
+void SceneWriter::motionLines(const MotionChain& chain, int indent) {
+    for (const MotionStage& stage : chain) {
+        line(indent, motionText(stage.motion));
+        if (const std::vector<Step> after = decompose(stage.after); !after.empty())
+            line(indent, formatSteps(after).substr(1));
+    }
 }
 
 void SceneWriter::topLevelObject(const Object& o) {
@@ -302,11 +315,7 @@ void SceneWriter::object(const Object& o, int indent) {
             line(indent + 1, "no_shadow");
         if (o.hollow)
             line(indent + 1, "hollow");
-        for (const MotionStage& stage : o.motion) {
-            line(indent + 1, motionText(stage.motion));
-            if (const std::vector<Step> after = decompose(stage.after); !after.empty())
-                line(indent + 1, formatSteps(after).substr(1));
-        }
+        motionLines(o.motion, indent + 1);
         line(indent, "}");
         return;
     }

@@ -150,7 +150,18 @@ std::vector<Step> decompose(const Transform& t) {
         Mat3 rotation;
         if (!splitLinear(linear, order, scale, rotation))
             continue;
-        const Vec3 angles = eulerDegrees(rotation);
+        // Both Euler solutions: (a, b, c) and (a + 180, 180 - b, c + 180) give
+        // the same rotation, and asin only returns the first, so `rotate y*160`
+        // would come back as <180, 20, 180>, a last bit off.
+        const Vec3 primary = eulerDegrees(rotation);
+        const auto wrap = [](double d) { return d > 180 ? d - 360 : (d <= -180 ? d + 360 : d); };
+        const Vec3 alternative(wrap(primary.x + 180), wrap(180 - primary.y), wrap(primary.z + 180));
+        // Each also in [0, 360): `rotate y*200` is not `rotate y*-160` to the last bit.
+        const auto positive = [](const Vec3& a) {
+            const auto up = [](double d) { return d < 0 ? d + 360 : d; };
+            return Vec3(up(a.x), up(a.y), up(a.z));
+        };
+        for (const Vec3& angles : {primary, alternative, positive(primary), positive(alternative)})
         for (double perUnit : {1e10, 1e6, 0.0}) {
             std::vector<Step> linearSteps;
             const Vec3 s = roundTo(scale, perUnit), a = roundTo(angles, perUnit);

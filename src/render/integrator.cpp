@@ -121,7 +121,9 @@ void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampl
     Color weight = pending.weight;
     if (!surface.entering) // the ray crossed the object's interior
         weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
-    shadeTexture(surface, object.texture, weight, sampler, counts, result, stack);
+    forEachSurfaceTexture(hit, [&](const Texture& texture, double share) {
+        shadeTexture(surface, texture, weight * share, sampler, counts, result, stack);
+    });
 }
 
 void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,
@@ -145,7 +147,8 @@ void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture,
 void Integrator::shadePatterned(const SurfaceHit& surface, const Texture& texture, const Color& weight,
                                 Sampler& sampler, RayCounts& counts, Color& result,
                                 std::vector<PendingRay>& stack) const {
-    forEachPickedEntry(texture, surface.hit.restPoint, [&](const Texture& entry, double w) {
+    const Vec3* uv = surface.hit.hasUv ? &surface.hit.uv : nullptr;
+    forEachPickedEntry(texture, surface.hit.restPoint, uv, [&](const Texture& entry, double w) {
         shadeTexture(surface, entry, weight * w, sampler, counts, result, stack);
     });
 }
@@ -181,7 +184,8 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         sp.hit = hit;
         sp.normal = normal;
         sp.incoming = incoming;
-        sp.pigment = evaluatePigment(layer.pigment, hit.restPoint); // textures move with their object
+        // Textures move with their object (restPoint); uv_mapping reads the surface's uv.
+        sp.pigment = evaluatePigment(layer.pigment, hit.restPoint, hit.hasUv ? &hit.uv : nullptr);
         sp.finish = &finish;
         sp.time = pending.ray.time;
         sp.depth = pending.depth;

@@ -1,4 +1,5 @@
 #include "render/lighting.h"
+#include "render/light_path.h"
 
 #include "sampling/warp.h"
 #include "render/media.h"
@@ -45,7 +46,11 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
             // Leaving an object: the segment before this hit ran inside it (POV-Ray fades shadows too).
             if (dot(ray.direction, blocker.geometricNormal) > 0)
                 transmittance *= interiorAttenuation(blocker.object->interior, blocker.t * length(ray.direction));
-            transmittance *= textureFilter(blocker.object->texture, blocker.restPoint);
+            Color filter(0);
+            forEachSurfaceTexture(blocker, [&](const Texture& texture, double share) {
+                filter += textureFilter(texture, blocker.restPoint, blocker.hasUv ? &blocker.uv : nullptr) * share;
+            });
+            transmittance *= filter;
             if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
         }
         if (isBlack(transmittance) || !(maxComponent(transmittance) > 0)) return Color(0);
@@ -84,6 +89,9 @@ bool anyFilteringCaster(const std::vector<Object>& objects) {
     for (const Object& object : objects) {
         if (object.noShadow) continue;
         if (mayLetLightThrough(object.texture)) return true;
+        if (const auto* mesh = std::get_if<Mesh>(&object.shape))
+            for (const Texture& own : mesh->textures)
+                if (mayLetLightThrough(own)) return true;
         if (const auto* csg = std::get_if<Csg>(&object.shape); csg && anyFilteringCaster(csg->children)) return true;
     }
     return false;
@@ -264,24 +272,28 @@ private:
 } // namespace
 
 DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel)
-    : scene_(scene), accel_(accel), opaqueCasters_(shadowsAreOpaque(scene)), hasMedia_(sceneHasMedia(scene)) {}
+    : scene_(scene), accel_(accel), opaqueCasters_(shadowsAreOpaque(scene)), hasMedia_(sceneHasMedia(scene)),
+      anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)) {}
 
 Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sampler& sampler,
                             RayCounts& counts) const {
     if (cache.lights_.size() != scene_.lights.size()) cache.lights_.assign(scene_.lights.size(), {});
     Color sum(0);
     for (size_t i = 0; i < scene_.lights.size(); ++i) {
-        const Light& light = scene_.lights[i];
-        if (isBlack(light.color)) continue;
+        // A moving light as it is at this point's time (render/light_path.h);
+        // a still one as written, with no copy.
+        const Light* light = &scene_.lights[i];
+        if (anyLightMoves_ && lightMoves(*light)) light = &(cache.moved_ = lightAt(*light, sp.time));
+        if (isBlack(light->color)) continue;
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
         PointLightSamples::Range& range = cache.lights_[i];
         if (range.generation != cache.generation_) { // the first layer at this point: draw the light's samples
             range.generation = cache.generation_;
             range.begin = static_cast<int>(cache.samples_.size());
-            if (!light.area) {
-                cache.samples_.push_back({light.position, 1.0, false, Color(0)});
+            if (!light->area) {
+                cache.samples_.push_back({light->position, 1.0, false, Color(0)});
             } else {
-                const AreaSampler points(light, sp.hit.point, sp.depth, index);
+                const AreaSampler points(*light, sp.hit.point, sp.depth, index);
                 for (int k = 0; k < points.count(); ++k) {
                     const AreaSample a = points.sample(sampler, k);
                     cache.samples_.push_back({a.position, a.weight, false, Color(0)});
@@ -291,10 +303,10 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         }
         PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
         // Shadow rays through media: only for lights that interact with media (POV-Ray).
-        const Scene* media = hasMedia_ && light.mediaAttenuation && light.mediaInteraction ? &scene_ : nullptr;
+        const Scene* media = hasMedia_ && light->mediaAttenuation && light->mediaInteraction ? &scene_ : nullptr;
         const auto visibility = [&](PointLightSamples::Sample& s) -> const Color& {
             if (!s.tested) {
-                s.visibility = light.shadowless ? Color(1)
+                s.visibility = light->shadowless ? Color(1)
                                                 : shadowTransmittance(accel_, sp.hit, s.position, sp.time, counts,
                                                                       media, opaqueCasters_);
                 s.tested = true;
@@ -311,7 +323,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             const Vec3 l = toLight / distance;
             if (!(dot(sp.normal, l) > 0)) return;
             if (inverseSquare) scale /= distance * distance;
-            Color intensity = lightIntensityAt(light, position, sp.hit.point) * scale;
+            Color intensity = lightIntensityAt(*light, position, sp.hit.point) * scale;
             if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
             if (shadow) {
                 intensity *= visibility(*shadow);
@@ -320,23 +332,23 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             sum += lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity,
                              crandNoise(sp, index, sampler));
         };
-        if (!light.area) {
-            pointLight(light.position, 1.0, light.inverseSquare, samples);
-        } else if (light.areaIllumination) {
+        if (!light->area) {
+            pointLight(light->position, 1.0, light->inverseSquare, samples);
+        } else if (light->areaIllumination) {
             // Each sample point shades as a weighted point light.
             for (int k = 0; k < range.count; ++k)
                 if (samples[k].weight > 0) pointLight(samples[k].position, samples[k].weight, false, samples + k);
         } else {
             // A point light at the centre times the mean visibility of the samples.
-            const Vec3 toCenter = light.position - sp.hit.point;
+            const Vec3 toCenter = light->position - sp.hit.point;
             const double distance = length(toCenter);
             if (!(distance > 0)) continue;
             const Vec3 l = toCenter / distance;
             if (!(dot(sp.normal, l) > 0)) continue;
-            Color intensity = lightIntensityAt(light, light.position, sp.hit.point);
-            if (light.inverseSquare) intensity = intensity / (distance * distance);
+            Color intensity = lightIntensityAt(*light, light->position, sp.hit.point);
+            if (light->inverseSquare) intensity = intensity / (distance * distance);
             if (isBlack(intensity)) continue;
-            if (!light.shadowless) {
+            if (!light->shadowless) {
                 Color visible(0);
                 for (int k = 0; k < range.count; ++k) visible += visibility(samples[k]);
                 intensity *= visible / range.count;

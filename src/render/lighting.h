@@ -139,6 +139,7 @@ private:
     uint64_t generation_ = 1;
     std::vector<Range> lights_; // by light
     std::vector<Sample> samples_;
+    Light moved_; // a moving light as it is at the shaded point's time (render/light_path.h)
 };
 
 // The scene's lights as one render sees them: what is known before tracing
@@ -157,6 +158,7 @@ private:
     const Accelerator& accel_;
     bool opaqueCasters_;
     bool hasMedia_; // media anywhere: shadow rays of lights that interact with them look for them
+    bool anyLightMoves_; // some light moves over the shutter (render/light_path.h)
 };
 
 } // namespace drt

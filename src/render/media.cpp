@@ -1,5 +1,6 @@
 #include "render/media.h"
 
+#include "render/light_path.h"
 #include "render/pigment.h"
 #include "render/shading.h"
 
@@ -99,18 +100,18 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
     Color sum(0);
     Hit from;
     from.point = p;
-    for (const Light& light : lighting.scene->lights) {
-        if (!light.mediaInteraction || isBlack(light.color)) continue;
+    const auto scatterFrom = [&](const Light& light) {
+        if (!light.mediaInteraction || isBlack(light.color)) return;
         const Vec3 toLight = light.position - p;
         const double distance = length(toLight);
-        if (!(distance > 0)) continue;
+        if (!(distance > 0)) return;
         Color intensity = light.color * (spotlightAttenuation(light, light.position, p) * fadeAttenuation(light, distance));
         if (light.inverseSquare) intensity = intensity / (distance * distance);
-        if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) continue;
+        if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
         if (!light.shadowless && lighting.accel) {
             intensity *= shadowTransmittance(*lighting.accel, from, light.position, lighting.time, counts,
                                              light.mediaAttenuation ? lighting.scene : nullptr); // interaction is on here
-            if (isBlack(intensity)) continue;
+            if (isBlack(intensity)) return;
         }
         const double cosTheta = dot(toLight / distance, direction);
         for (size_t i = 0; i < media.size(); ++i) {
@@ -119,6 +120,11 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
             sum += densities[i] * m.scattering * intensity *
                    (4 * kPi * phaseFunction(m.scatteringType, m.eccentricity, cosTheta));
         }
+    };
+    for (const Light& light : lighting.scene->lights) {
+        // A moving light as it is at the ray's time (render/light_path.h); a still one as written, with no copy.
+        if (lightMoves(light)) scatterFrom(lightAt(light, lighting.time));
+        else scatterFrom(light);
     }
     return sum;
 }

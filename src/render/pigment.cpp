@@ -26,9 +26,9 @@ double rampWave(double v) {
 // Fractional position of v within a period of 1, in [0, 1).
 double cellFraction(double v) { return v - std::floor(v); }
 
-ColorFT child(const Pigment& pigment, size_t index, const Vec3& worldPoint) {
+ColorFT child(const Pigment& pigment, size_t index, const Vec3& worldPoint, const Vec3* uv) {
     if (index >= pigment.children.size()) return ColorFT{};
-    return evaluatePigment(pigment.children[index], worldPoint);
+    return evaluatePigment(pigment.children[index], worldPoint, uv);
 }
 
 ColorFT mix(const ColorFT& a, const ColorFT& b, double t) {
@@ -113,8 +113,9 @@ ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value) {
     return map.back().color;
 }
 
-Vec3 patternPoint(const Pigment& pattern, const Vec3& worldPoint) {
-    return warpPatternPoint(pattern.pattern, pattern.turbulence, pattern.toWorld.inversePoint(worldPoint));
+Vec3 patternPoint(const Pigment& pattern, const Vec3& worldPoint, const Vec3* uv) {
+    const Vec3& at = pattern.uvMapping ? (uv ? *uv : Vec3{}) : worldPoint;
+    return warpPatternPoint(pattern.pattern, pattern.turbulence, pattern.toWorld.inversePoint(at));
 }
 
 PatternSample samplePatternAt(const Pigment& pigment, const Vec3& p) {
@@ -142,20 +143,20 @@ PatternSample samplePatternAt(const Pigment& pigment, const Vec3& p) {
     return s;
 }
 
-PatternSample samplePattern(const Pigment& pigment, const Vec3& worldPoint) {
+PatternSample samplePattern(const Pigment& pigment, const Vec3& worldPoint, const Vec3* uv) {
     if (pigment.pattern == PatternKind::Solid || pigment.pattern == PatternKind::Average) return PatternSample{};
-    return samplePatternAt(pigment, patternPoint(pigment, worldPoint));
+    return samplePatternAt(pigment, patternPoint(pigment, worldPoint, uv));
 }
 
 namespace {
 
 // pigment_map with `average`: sum w_i P_i / sum w_i over all entries.
-ColorFT averagePigmentMap(const std::vector<Pigment::MapEntry>& map, const Vec3& worldPoint) {
+ColorFT averagePigmentMap(const std::vector<Pigment::MapEntry>& map, const Vec3& worldPoint, const Vec3* uv) {
     ColorFT sum{Color(0), 0, 0};
     double total = 0;
     for (const Pigment::MapEntry& entry : map) {
         if (entry.value == 0) continue;
-        const ColorFT c = evaluatePigment(entry.pigment, worldPoint);
+        const ColorFT c = evaluatePigment(entry.pigment, worldPoint, uv);
         sum.rgb += c.rgb * entry.value;
         sum.filter += c.filter * entry.value;
         sum.transmit += c.transmit * entry.value;
@@ -165,25 +166,26 @@ ColorFT averagePigmentMap(const std::vector<Pigment::MapEntry>& map, const Vec3&
     return ColorFT{sum.rgb / total, sum.filter / total, sum.transmit / total};
 }
 
-ColorFT lookupPigmentMap(const std::vector<Pigment::MapEntry>& map, double value, const Vec3& worldPoint) {
+ColorFT lookupPigmentMap(const std::vector<Pigment::MapEntry>& map, double value, const Vec3& worldPoint,
+                         const Vec3* uv) {
     const MapBlend b = blendMapEntries(map.size(), [&](size_t i) { return map[i].value; }, value);
-    const ColorFT lower = evaluatePigment(map[b.lower].pigment, worldPoint);
+    const ColorFT lower = evaluatePigment(map[b.lower].pigment, worldPoint, uv);
     if (b.t == 0) return lower;
-    return mix(lower, evaluatePigment(map[b.upper].pigment, worldPoint), b.t);
+    return mix(lower, evaluatePigment(map[b.upper].pigment, worldPoint, uv), b.t);
 }
 
 } // namespace
 
-ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint) {
+ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint, const Vec3* uv) {
     if (pigment.pattern == PatternKind::Solid) return pigment.color;
-    if (pigment.pattern == PatternKind::Average) return averagePigmentMap(pigment.pigmentMap, worldPoint);
+    if (pigment.pattern == PatternKind::Average) return averagePigmentMap(pigment.pigmentMap, worldPoint, uv);
     if (pigment.pattern == PatternKind::ImageMap) { // a colour of its own, not a pattern value
         if (!pigment.imageMap) return ColorFT{};
-        return imageMapColor(*pigment.imageMap, patternPoint(pigment, worldPoint));
+        return imageMapColor(*pigment.imageMap, patternPoint(pigment, worldPoint, uv));
     }
-    const PatternSample s = samplePattern(pigment, worldPoint);
-    if (s.block) return child(pigment, size_t(s.index), worldPoint);
-    if (!pigment.pigmentMap.empty()) return lookupPigmentMap(pigment.pigmentMap, s.value, worldPoint);
+    const PatternSample s = samplePattern(pigment, worldPoint, uv);
+    if (s.block) return child(pigment, size_t(s.index), worldPoint, uv);
+    if (!pigment.pigmentMap.empty()) return lookupPigmentMap(pigment.pigmentMap, s.value, worldPoint, uv);
     return lookupColorMap(pigment.colorMap, s.value);
 }
 

@@ -9,9 +9,11 @@ namespace drt {
 
 // The pigment's colour (with filter and transmit) at world point p. Each
 // pigment, sub-pigments included, is evaluated in its own pattern space
-// Pigment::toWorld.inversePoint(p). Missing sub-pigments are black; an empty
-// colour map ramps from black to white.
-ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint);
+// Pigment::toWorld.inversePoint(p), or, with uv_mapping, at
+// toWorld.inversePoint(uv) where `uv` is the surface's (u, v, 0) (null: the
+// surface has none, (0, 0, 0) is used). Missing sub-pigments are black; an
+// empty colour map ramps from black to white.
+ColorFT evaluatePigment(const Pigment& pigment, const Vec3& worldPoint, const Vec3* uv = nullptr);
 
 // Pattern values in pattern space, exposed for tests.
 int checkerIndex(const Vec3& p);            // 0 or 1
@@ -32,11 +34,11 @@ struct PatternSample {
     int index = 0;
     double value = 0;
 };
-PatternSample samplePattern(const Pigment& pattern, const Vec3& worldPoint);
+PatternSample samplePattern(const Pigment& pattern, const Vec3& worldPoint, const Vec3* uv = nullptr);
 // The same in two steps: where the pattern is evaluated (pattern space, after
 // the turbulence warp), and the pattern there (also used for the slopes of
 // normal patterns, render/normal_pattern.h).
-Vec3 patternPoint(const Pigment& pattern, const Vec3& worldPoint);
+Vec3 patternPoint(const Pigment& pattern, const Vec3& worldPoint, const Vec3* uv = nullptr);
 PatternSample samplePatternAt(const Pigment& pattern, const Vec3& patternSpacePoint);
 
 // A map lookup as colour maps do it: the result is (1 - t) entry[lower] +

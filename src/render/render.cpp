@@ -36,6 +36,8 @@
 #include "accel/accel.h"
 #include "core/limits.h"
 #include "render/camera.h"
+#include "render/camera_path.h"
+#include "render/light_path.h"
 #include "render/film.h"
 #include "render/integrator.h"
 #include "render/tile_state.h"
@@ -49,6 +51,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <fmt/format.h>
@@ -57,6 +60,7 @@
 #include <variant>
 #include <chrono>
 #include <mutex>
+#include <optional>
 
 namespace drt {
 
@@ -116,6 +120,9 @@ bool converged(const PixelAccumulator& pixel, const RenderOptions& options) {
 bool anyFinish(const std::vector<Object>& objects, const auto& predicate) {
     for (const Object& object : objects) {
         if (anyFinish(object.texture, predicate)) return true;
+        if (const auto* mesh = std::get_if<Mesh>(&object.shape))
+            for (const Texture& own : mesh->textures)
+                if (anyFinish(own, predicate)) return true;
         if (const auto* csg = std::get_if<Csg>(&object.shape); csg && anyFinish(csg->children, predicate)) return true;
     }
     return false;
@@ -136,7 +143,9 @@ SceneEffects sceneEffects(const Scene& scene, const RenderOptions& options) {
     e.adaptive = options.adaptive;
     e.antialiasing = options.adaptive ? options.maxSamplesPerPixel > 1 : options.samplesPerPixel > 1;
     e.depthOfField = scene.camera.aperture > 0;
-    e.motionBlur = scene.camera.shutterOpen != scene.camera.shutterClose && anyMotion(scene.objects);
+    e.motionBlur = scene.camera.shutterOpen != scene.camera.shutterClose &&
+                   (anyMotion(scene.objects) || !scene.camera.motion.empty() || scene.cameraKeys.size() > 1 ||
+                    std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves));
     for (const Light& light : scene.lights)
         e.areaLights = e.areaLights || (light.area && !isBlack(light.color));
     e.gloss = anyFinish(scene.objects, [](const Finish& f) {
@@ -207,7 +216,9 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
                            TileScheduler& scheduler) {
     if (!assetsResolved(scene))
         throw RenderError("the scene names image or mesh files that were not read (call resolveAssets after parsing)");
-    const ResolvedCamera camera = resolveCamera(scene.camera, options.width, options.height);
+    // The camera at each ray's time (render/camera_path.h); `camera` is the still one.
+    const CameraPath cameraPath(scene, options.width, options.height);
+    const ResolvedCamera& camera = cameraPath.still();
     const std::unique_ptr<Sampler> prototype = createSampler(options);
     const Filter filter = sceneFilter(scene);
 
@@ -220,25 +231,30 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
                                                  : std::make_unique<Accelerator>(scene, camera.shutterOpen);
     const Accelerator& accel = *accelerator;
     info.buildSeconds = secondsSince(buildStart);
-    info.motionBlur = accel.hasMotion() && camera.hasShutter();
-    info.depthOfField = camera.hasLens();
+    info.motionBlur = camera.hasShutter() && (accel.hasMotion() || cameraPath.moving() ||
+                                              std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves));
+    info.depthOfField = cameraPath.hasLens();
 
     const Integrator integrator(scene, accel);
 
     // Samples first..last-1 of pixel (x, y), in index order.
+    const bool cameraMoves = cameraPath.moving(), lensSampled = cameraPath.hasLens();
     const auto takeSamples = [&](Sampler& sampler, PixelAccumulator& pixel, int x, int y, int first, int last,
                                  RayCounts& counts) {
+        ResolvedCamera moved; // a moving camera at the sample's time
         for (int s = first; s < last; ++s) {
             sampler.startPixelSample(x, y, s);
             const Vec2 position = pixelSamplePosition(sampler, filter, x, y);
             // Only the effects in use draw samples (a pinhole takes no lens sample).
             const double time = camera.hasShutter() ? camera.timeAt(sampler.get1D(kDimTime)) : camera.shutterOpen;
-            const Vec2 lens = camera.hasLens() ? sampler.get2D(kDimLens) : Vec2{0.5, 0.5};
-            if (!camera.covers(position.x, position.y)) {
+            const Vec2 lens = lensSampled ? sampler.get2D(kDimLens) : Vec2{0.5, 0.5};
+            if (cameraMoves) moved = cameraPath.at(time);
+            const ResolvedCamera& at = cameraMoves ? moved : camera;
+            if (!at.covers(position.x, position.y)) {
                 pixel.add(Color(0)); // no ray there (POV-Ray: black)
                 continue;
             }
-            const Ray ray = camera.generateRay(position.x, position.y, lens, time);
+            const Ray ray = at.generateRay(position.x, position.y, lens, time);
             pixel.add(integrator.trace(ray, sampler, counts));
         }
     };

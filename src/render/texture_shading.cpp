@@ -29,30 +29,30 @@ void layersTopFirst(const Texture& texture, std::vector<const Texture*>& out) {
 
 namespace {
 
-Color patternedFilter(const Texture& patterned, const Vec3& worldPoint) {
+Color patternedFilter(const Texture& patterned, const Vec3& worldPoint, const Vec3* uv) {
     Color sum(0);
-    forEachPickedEntry(patterned, worldPoint,
-                       [&](const Texture& entry, double w) { sum += textureFilter(entry, worldPoint) * w; });
+    forEachPickedEntry(patterned, worldPoint, uv,
+                       [&](const Texture& entry, double w) { sum += textureFilter(entry, worldPoint, uv) * w; });
     return sum;
 }
 
 } // namespace
 
-Color textureFilter(const Texture& texture, const Vec3& worldPoint) {
+Color textureFilter(const Texture& texture, const Vec3& worldPoint, const Vec3* uv) {
     if (texture.plain()) {
-        const ColorFT p = evaluatePigment(texture.pigment, worldPoint);
+        const ColorFT p = evaluatePigment(texture.pigment, worldPoint, uv);
         return p.rgb * p.filter + Color(p.transmit);
     }
-    if (texture.layersAbove.empty()) return patternedFilter(texture, worldPoint);
+    if (texture.layersAbove.empty()) return patternedFilter(texture, worldPoint, uv);
     std::vector<const Texture*> layers;
     layersTopFirst(texture, layers);
     Color filter(1);
     for (const Texture* layer : layers) {
         if (!layer->map.empty()) {
-            filter *= patternedFilter(*layer, worldPoint);
+            filter *= patternedFilter(*layer, worldPoint, uv);
             break;
         }
-        const ColorFT p = evaluatePigment(layer->pigment, worldPoint);
+        const ColorFT p = evaluatePigment(layer->pigment, worldPoint, uv);
         filter *= p.rgb * p.filter + Color(p.transmit);
     }
     return filter;

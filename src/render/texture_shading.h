@@ -13,6 +13,7 @@
 //   P.rgb f + t (blended by weight for patterned textures).
 #pragma once
 
+#include "accel/accel.h"
 #include "core/color.h"
 #include "core/vec.h"
 #include "render/pigment.h"
@@ -26,11 +27,12 @@ namespace drt {
 inline double greyValue(const Color& c) { return 0.297 * c.r + 0.589 * c.g + 0.114 * c.b; }
 
 // Calls visit(entry, weight) for the entries of a patterned texture (!map.empty())
-// that the pattern picks at worldPoint, skipping weight-0 entries. A template:
+// that the pattern picks at worldPoint (uv: the surface's, for uv_mapping; may
+// be null), skipping weight-0 entries. A template:
 // it runs for every shaded point of a patterned texture, and a std::function
 // would add an indirect call (and possibly an allocation) each time.
 template <class Visit>
-void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint, Visit&& visit) {
+void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint, const Vec3* uv, Visit&& visit) {
     const std::vector<Texture::MapEntry>& map = patterned.map;
     if (map.empty()) return;
     if (patterned.pigment.pattern == PatternKind::Average) {
@@ -41,7 +43,7 @@ void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint, Visit&
             if (entry.value != 0) visit(entry.texture, entry.value / total);
         return;
     }
-    const PatternSample s = samplePattern(patterned.pigment, worldPoint);
+    const PatternSample s = samplePattern(patterned.pigment, worldPoint, uv);
     if (s.block) {
         if (s.index >= 0 && size_t(s.index) < map.size()) visit(map[size_t(s.index)].texture, 1.0);
         return;
@@ -51,6 +53,31 @@ void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint, Visit&
     if (b.t != 0) visit(map[b.upper].texture, b.t);
 }
 
+// Calls visit(texture, weight) for the textures a hit shows: the object's, or
+// a mesh triangle's own (Hit::cornerTextures, null corners meaning the
+// object's), each distinct one once with its corners' summed weights.
+template <class Visit>
+void forEachSurfaceTexture(const Hit& hit, Visit&& visit) {
+    const Texture& own = hit.object->texture;
+    const auto& corners = hit.cornerTextures;
+    if (corners[0] == corners[1] && corners[1] == corners[2]) { // one texture: exactly its shading
+        visit(corners[0] ? *corners[0] : own, 1.0);
+        return;
+    }
+    for (int k = 0; k < 3; ++k) {
+        const Texture* t = corners[k] ? corners[k] : &own;
+        bool seen = false;
+        double weight = 0;
+        for (int j = 0; j < 3; ++j) {
+            const Texture* other = corners[j] ? corners[j] : &own;
+            if (other != t) continue;
+            if (j < k) seen = true;
+            weight += hit.cornerWeights[j];
+        }
+        if (!seen && weight > 0) visit(*t, weight);
+    }
+}
+
 // The layers of a layered texture, top first, appended to `out`. A patterned
 // layer (the front ends refuse them, as POV-Ray does; the model allows them)
 // ends the list: its entries are whole textures, seen through the layers
@@ -58,7 +85,7 @@ void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint, Visit&
 void layersTopFirst(const Texture& texture, std::vector<const Texture*>& out);
 
 // What a shadow ray keeps after crossing the surface at worldPoint.
-Color textureFilter(const Texture& texture, const Vec3& worldPoint);
+Color textureFilter(const Texture& texture, const Vec3& worldPoint, const Vec3* uv = nullptr);
 
 // True if any finish in the texture (layers, map entries) satisfies the predicate.
 bool anyFinish(const Texture& texture, const std::function<bool(const Finish&)>& predicate);

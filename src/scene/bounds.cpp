@@ -78,6 +78,11 @@ struct ShapeBox {
         return box({-r, -t.minorRadius, -r}, {r, t.minorRadius, r});
     }
     Box3 operator()(const Mesh& m) const {
+        if (m.indexed) {
+            Box3 b;
+            b.bounded = indexedMeshBounds(*m.indexed, b.lower, b.upper);
+            return b.bounded ? b : unbounded();
+        }
         if (m.vertices.empty()) return unbounded();
         Box3 b{m.vertices.front(), m.vertices.front(), true};
         for (const Vec3& v : m.vertices) b.lower = min(b.lower, v), b.upper = max(b.upper, v);

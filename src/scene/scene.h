@@ -11,6 +11,7 @@
 #include "scene/algebraic.h"
 #include "scene/blob.h"
 #include "scene/extrusion.h"
+#include "scene/indexed_mesh.h"
 #include "scene/motion.h"
 #include "scene/revolution.h"
 
@@ -92,6 +93,11 @@ struct Pigment {
     // the pattern value are evaluated and blended like colour-map entries.
     struct MapEntry;
     std::vector<MapEntry> pigmentMap;
+    // POV-Ray's uv_mapping: the pattern is evaluated at (u, v, 0) of the
+    // surface's uv coordinates (Hit::uv) mapped by toWorld's inverse, and the
+    // object's transforms do not move it (transformPigmentSpaces leaves it).
+    // On a surface without uv coordinates it is evaluated at (0, 0, 0).
+    bool uvMapping = false;
 };
 
 struct Pigment::MapEntry {
@@ -186,7 +192,7 @@ inline void addLayerOnTop(Texture& bottom, Texture top) {
 
 // Applies a transform after the pattern space of a pigment and of all its sub-pigments.
 inline void transformPigmentSpaces(Pigment& p, const Transform& t) {
-    p.toWorld = p.toWorld.then(t);
+    if (!p.uvMapping) p.toWorld = p.toWorld.then(t);
     for (Pigment& child : p.children) transformPigmentSpaces(child, t);
     for (Pigment::MapEntry& entry : p.pigmentMap) transformPigmentSpaces(entry.pigment, t);
 }
@@ -275,7 +281,10 @@ struct Torus { // around the y axis
 // A mesh read from a file after parsing (src/assets fills vertices and
 // triangles): the file and what the scene said about it.
 struct MeshSource {
-    enum class Kind { PovHeightField }; // POV-Ray's height_field image rules
+    enum class Kind {
+        PovHeightField, // POV-Ray's height_field image rules
+        ModelFile,      // OBJ, PLY, glTF 2.0 through assimp (assets/model_load.cpp)
+    };
     Kind kind = Kind::PovHeightField;
     std::string path; // found by the front end
     bool smooth = false;
@@ -292,6 +301,14 @@ struct Mesh {
     // when present, normalIndices has one entry per triangle.
     std::vector<Vec3> normals;
     std::vector<std::array<int, 3>> normalIndices;
+    // The compact form (scene/indexed_mesh.h): when set, the vectors above are
+    // empty and the triangles are here. Copies of the Mesh share it, and the
+    // accelerator builds one BVH for all the objects that show it.
+    std::shared_ptr<const IndexedMesh> indexed;
+    // Textures of single triangles (IndexedMesh::faceTextures index them);
+    // the others take the object's texture. In the mesh's object space, like
+    // Object::texture.
+    std::vector<Texture> textures;
 };
 
 struct Object;
@@ -353,6 +370,8 @@ struct AreaLight {
     AreaSampling sampling = AreaSampling::Grid;
 };
 
+struct LightMotion;
+
 struct Light {
     Vec3 position;
     Color color{1};
@@ -379,7 +398,21 @@ struct Light {
     // the POV front end sets).
     bool mediaInteraction = true;
     bool mediaAttenuation = true;
+    // Time (render/light_path.h): how the light moves over the shutter; null
+    // for a light that stays still.
+    std::shared_ptr<const LightMotion> motion;
     SourceLoc loc;
+};
+
+// A light's pose at one time (an animated scene evaluated at that clock value).
+struct LightKey {
+    double time = 0;
+    Vec3 position, pointAt, axis1, axis2; // axes: of the area light, if any
+};
+
+struct LightMotion {
+    std::vector<LightKey> keys; // increasing times; interpolated linearly
+    MotionChain chain;          // then moved by this (position, point_at as points, axes as vectors)
 };
 
 // ---------------------------------------------------------------- camera
@@ -417,7 +450,18 @@ struct CameraSpec {
     // Shutter interval in scene time; objects' Motion spans time 0..1.
     double shutterOpen = 0;
     double shutterClose = 0;
+    // Placement (render/camera_path.h): the resolved camera is moved by
+    // `transform`, then by the motion chain at each ray's time.
+    Transform transform;
+    MotionChain motion;
     SourceLoc loc;
+};
+
+// The camera as written at one time (an animated scene evaluated at that
+// clock value): Scene::cameraKeys, interpolated by render/camera_path.h.
+struct CameraKey {
+    double time = 0;
+    CameraSpec camera;
 };
 
 // ---------------------------------------------------------------- settings
@@ -493,6 +537,7 @@ struct Fog {
 
 struct Scene {
     CameraSpec camera;
+    std::vector<CameraKey> cameraKeys; // empty, or the camera over the shutter (increasing times)
     std::vector<Light> lights;
     std::vector<Object> objects;
     Color background{0};
@@ -504,6 +549,9 @@ struct Scene {
     std::vector<Media> media; // atmospheric media: everywhere outside non-hollow objects
     GlobalSettings global;
     RenderSettings render;
+    // The scene text read `clock` (scene/frame_clock.h): with the shutter open,
+    // the scene is evaluated again over it to find how it moves.
+    bool readsClock = false;
 };
 
 } // namespace drt

@@ -43,8 +43,11 @@ void forEachPigment(SceneT& scene, Fn&& fn) {
     auto media = [&](MediaT& m) {
         for (PigmentT& density : m.densities) pigment(pigment, density);
     };
+    using MeshT = std::conditional_t<isConst, const Mesh, Mesh>;
     forEachObject(scene, [&](ObjectT& object) {
         texture(texture, object.texture);
+        if (MeshT* mesh = std::get_if<Mesh>(&object.shape))
+            for (TextureT& own : mesh->textures) texture(texture, own);
         for (MediaT& m : object.interior.media) media(m);
     });
     for (PigmentT& sky : scene.sky) pigment(pigment, sky);

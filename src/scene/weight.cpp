@@ -30,7 +30,11 @@ void addWeight(SceneWeight& weight, const Object& object, int64_t cap) {
     ++weight.objects;
     addWeight(weight, object.texture, cap);
     addWeight(weight, object.interior, cap);
-    if (const Mesh* mesh = std::get_if<Mesh>(&object.shape)) weight.patterns += int64_t(mesh->triangles.size()) / 16;
+    if (const Mesh* mesh = std::get_if<Mesh>(&object.shape)) {
+        const size_t triangles = mesh->indexed ? mesh->indexed->triangleCount() : mesh->triangles.size();
+        weight.patterns += int64_t(triangles) / 16;
+        for (const Texture& own : mesh->textures) addWeight(weight, own, cap);
+    }
     if (const Csg* csg = std::get_if<Csg>(&object.shape))
         for (const Object& child : csg->children) addWeight(weight, child, cap);
     for (const Object& clip : object.clippedBy) addWeight(weight, clip, cap);

@@ -13,66 +13,6 @@ namespace {
 
 using namespace closedform;
 
-// A white diffuse floor y = 0 (diffuse 1, no ambient): with brilliance 1 its
-// pixel value is exactly the irradiance sum_lights I cos(theta) the lights
-// deliver (POV-Ray's diffuse term has no 1/pi).
-Object floorPlane() {
-    Object o;
-    o.shape = Plane{{0, 1, 0}, 0};
-    o.texture.pigment.color = ColorFT{Color(1), 0, 0};
-    o.texture.finish.ambient = Color(0);
-    o.texture.finish.diffuse = 1;
-    return o;
-}
-
-// A camera whose every ray goes straight down onto `point`, so a 1x1 render
-// measures the floor at one point.
-CameraSpec needleAt(const Vec3& point) {
-    CameraSpec c;
-    c.location = point + Vec3(0, 1e-3, 0);
-    c.direction = {0, -1, 0};
-    c.up = Vec3(0, 0, 1) * 1e-9;
-    c.right = Vec3(1, 0, 0) * 1e-9;
-    return c;
-}
-
-Light rectangleLight(const Vec3& center, const Vec3& axis1, const Vec3& axis2, Color color, AreaSampling sampling,
-                     bool inverseSquare) {
-    Light l;
-    l.position = center;
-    l.color = color;
-    l.area = AreaLight{axis1, axis2, 4, 4};
-    l.area->sampling = sampling;
-    l.areaIllumination = true;
-    l.inverseSquare = inverseSquare;
-    return l;
-}
-
-// Lambert (1760): the irradiance at p (unit normal n) from a polygon of
-// uniform radiance L is E = L/2 |sum_i beta_i n.Gamma_i|, where beta_i is the
-// angle edge i subtends at p and Gamma_i the unit normal of the plane through
-// p and that edge: Gamma_i = normalize(v_i x v_i+1), v_i = corner_i - p.
-double lambertIrradiance(const Vec3& p, const Vec3& n, const std::vector<Vec3>& corners, double radiance) {
-    double sum = 0;
-    for (size_t i = 0; i < corners.size(); ++i) {
-        const Vec3 a = normalize(corners[i] - p), b = normalize(corners[(i + 1) % corners.size()] - p);
-        const double beta = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
-        sum += beta * dot(n, normalize(cross(a, b)));
-    }
-    return 0.5 * radiance * std::fabs(sum);
-}
-
-struct Measure {
-    double mean, variance; // of the pixel mean
-};
-
-Measure measureAt(const Scene& base, const Vec3& point, int spp, const std::string& sampler, uint64_t seed) {
-    Scene scene = base;
-    scene.camera = needleAt(point);
-    const RenderResult r = render(scene, options(1, 1, spp, sampler, seed));
-    return {red(r.color, 0, 0), red(r.variance, 0, 0)};
-}
-
 // ---------------------------------------------------------------- soft shadows
 
 TEST(ClosedFormLights, RectangleIrradianceMatchesLambertsFormula) {

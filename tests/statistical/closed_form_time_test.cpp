@@ -1,15 +1,23 @@
 // Render-level closed-form tests of time: a disc spinning about its own
-// centre, a sphere on a circular path. Emissive objects on black seen by an
-// orthographic camera along +z, so a pixel's value is exactly the fraction of its area and
-// of the shutter the object covers. Fixed seeds; every tolerance is stated
-// where it is asserted.
+// centre, a sphere on a circular path (keyed, and from a POV-Ray scene's
+// clock), a camera panning against a scene panning the other way: emissive
+// objects on black seen by an orthographic camera along +z, so a pixel's value
+// is exactly the fraction of its area and of the shutter the object covers.
+// Moving point and area lights over a diffuse floor: the pixel is the time
+// average of the irradiance. Fixed seeds; every tolerance is stated where it
+// is asserted.
 #include "closed_form_scenes.h"
+
+#include "animation/animation.h"
+#include "pov/load.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <functional>
+#include <memory>
 
 namespace drt {
 namespace {
@@ -189,6 +197,195 @@ TEST(ClosedFormTime, BallOnACircularPathBlursAlongTheArc) {
     const int midX = kSize / 2, midY = kSize / 2;
     EXPECT_EQ(red(r.color, midX, midY), 0.0);
     EXPECT_EQ(red(r.color, midX - 1, midY - 1), 0.0);
+}
+
+// ---------------------------------------------------------------- panning camera
+
+// Emissive objects around a pinhole camera at the origin; `cameraPans`: the
+// camera turns by 20 degrees about y over the shutter, else the objects turn
+// by -20 degrees about the camera.
+Scene panScene(bool cameraPans) {
+    Scene scene;
+    const Vec3 places[] = {{-1, 0.3, 5}, {0.5, -0.4, 6}, {1.6, 0.2, 4}, {2.8, -0.1, 5}};
+    int k = 0;
+    for (const Vec3& p : places) {
+        Object o;
+        o.shape = k % 2 ? Shape{Sphere{p, 0.5}} : Shape{Box{p - Vec3(0.4), p + Vec3(0.4)}};
+        o.texture = emissive(Color(0.2 + 0.2 * k, 0.9 - 0.2 * k, 0.5));
+        if (!cameraPans) o.motion = {MotionStage{motionTo({}, {0, -20, 0}), {}}};
+        scene.objects.push_back(o);
+        ++k;
+    }
+    scene.camera.location = {0, 0, 0};
+    scene.camera.direction = {0, 0, 1};
+    scene.camera.right = Vec3(1, 0, 0);
+    scene.camera.up = {0, 1, 0};
+    scene.camera.shutterOpen = 0;
+    scene.camera.shutterClose = 1;
+    if (cameraPans) scene.camera.motion = {MotionStage{motionTo({}, {0, 20, 0}), {}}};
+    return scene;
+}
+
+TEST(ClosedFormTime, PanningCameraEqualsTheScenePanningTheOtherWay) {
+    // The same samples (pixel, time) see the same points: the camera turned by
+    // a(t) about its own location, or the world turned by -a(t) about it. The
+    // two differ only by rounding, which may flip a sample on an edge.
+    // Tolerance: at most 1% of the pixels differ by more than 1e-4, and the
+    // images agree to an RMSE below 0.2 / spp (a few flipped samples).
+    constexpr int spp = 32;
+    const RenderResult a = render(panScene(true), options(kSize, kSize, spp, "sobol", 33));
+    const RenderResult b = render(panScene(false), options(kSize, kSize, spp, "sobol", 33));
+    int differing = 0;
+    double squared = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const double d = a.color.at(x, y, c) - b.color.at(x, y, c);
+                squared += d * d;
+                differing += std::fabs(d) > 1e-4;
+            }
+    const double rmse = std::sqrt(squared / (3.0 * kSize * kSize));
+    std::printf("  panning camera against panning scene: %d channel values differ, RMSE %.2e\n", differing, rmse);
+    EXPECT_LE(differing, 3 * kSize * kSize / 100);
+    EXPECT_LT(rmse, 0.2 / spp);
+    // The pan is real: a still camera sees another image.
+    Scene still = panScene(true);
+    still.camera.motion.clear();
+    const RenderResult c = render(still, options(kSize, kSize, spp, "sobol", 33));
+    double stillSquared = 0;
+    for (size_t i = 0; i < c.color.pixels.size(); ++i)
+        stillSquared += std::pow(double(c.color.pixels[i]) - a.color.pixels[i], 2);
+    EXPECT_GT(std::sqrt(stillSquared / c.color.pixels.size()), 10 * rmse + 0.01);
+}
+
+// ---------------------------------------------------------------- motion from the clock
+
+// The orbiting ball of BallOnACircularPathBlursAlongTheArc written as a
+// POV-Ray animation: no motion block, only `rotate z*180*clock` about the
+// centre. With the shutter open over the frame (clock 0 .. 1) drt evaluates the
+// scene over the shutter and moves the ball along the path the evaluations
+// trace, which must be the arc.
+TEST(ClosedFormTime, BallMovedByTheClockBlursAlongTheArc) {
+    const std::string text = fmt::format(
+        "camera {{ orthographic location <{0}, {1}, -5> direction <0, 0, 1> right <{2}, 0, 0> up <0, {2}, 0> }}\n"
+        "sphere {{ <{3}, {1}, 0>, {4} pigment {{ rgb 1 }} finish {{ ambient 0 diffuse 0 emission 1 }}\n"
+        "  translate <{5}, {6}, 0> rotate z * {7} * clock translate <{0}, {1}, 0> }}\n",
+        kCentre.x, kCentre.y, kView, kCentre.x + kOrbit, kBall, -kCentre.x, -kCentre.y, kSweepDegrees);
+    const SceneEvaluator evaluate = [&](const FrameClock& frame, Diagnostics& diagnostics) {
+        PovOptions o;
+        o.frame = frame;
+        o.imageWidth = o.imageHeight = kSize;
+        return loadPovSceneText(text, "orbit.pov", diagnostics, o);
+    };
+    FrameClock frame; // clock 0, clock_delta 1: scene time t is clock t
+    FrameOptions shutter;
+    shutter.shutter = 1.0;
+    Diagnostics diagnostics;
+    FrameReport report;
+    const std::optional<Scene> scene = evaluateFrame(evaluate, frame, shutter, diagnostics, &report);
+    ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
+    EXPECT_EQ(report.objectsFromClock, 1);
+    EXPECT_GE(report.evaluations, 3);
+    const RenderResult r = render(*scene, options(kSize, kSize, 128, "independent", 34));
+    const auto ring = [](int x, int y) {
+        const Vec3 d = worldOf(x + 0.5, y + 0.5) - kCentre;
+        const double radius = std::hypot(d.x, d.y), phi = std::atan2(d.y, d.x) * 180 / kPi;
+        return radius > kOrbit - kBall + 0.02 && radius < kOrbit + kBall - 0.02 && phi > 20 && phi < 160;
+    };
+    const Agreement a = agreement(r, ring, [](int x, int y) { return pixelMean(x, y, arcCoverage); });
+    std::printf("  ball moved by the clock (%d evaluations): %d pixels, z %.2f, mean squared error / variance %.3f\n",
+                report.evaluations, a.pixels, a.zMean, a.meanSquaredOverVariance);
+    // The same tolerances as the keyed path: |z| < 3, mean squared error
+    // within 1.5 variances (the evaluations' path is within 1e-3 of the
+    // ball's size of the arc).
+    EXPECT_GT(a.pixels, 60);
+    EXPECT_LT(std::fabs(a.zMean), 3.0);
+    EXPECT_LT(a.meanSquaredOverVariance, 1.5);
+    // The arc, not its chord: nothing at the centre.
+    EXPECT_EQ(red(r.color, kSize / 2, kSize / 2), 0.0);
+}
+
+// ---------------------------------------------------------------- moving lights
+
+// A white point light at height h above the floor, moving along x from s0 to
+// s1 over the shutter. Without falloff the floor at p = (px, 0, pz) shows
+// cos(theta) = h / sqrt((s - px)^2 + h^2 + pz^2); averaged over s uniform in
+// [s0, s1] (constant speed): h (asinh((s1 - px) / q) - asinh((s0 - px) / q)) / (s1 - s0),
+// q = sqrt(h^2 + pz^2).
+TEST(ClosedFormTime, MovingPointLightGivesTheTimeAverageOfItsLambertTerm) {
+    constexpr double h = 2, s0 = -1.5, s1 = 1.5;
+    Scene scene;
+    scene.objects.push_back(floorPlane());
+    Light light;
+    light.position = {s0, h, 0};
+    auto path = std::make_shared<LightMotion>();
+    path->chain = {MotionStage{motionTo({s1 - s0, 0, 0}), {}}};
+    light.motion = path;
+    scene.lights.push_back(light);
+    scene.camera.shutterOpen = 0;
+    scene.camera.shutterClose = 1;
+    for (const Vec3& p : {Vec3{0, 0, 0}, Vec3{0.7, 0, 0.4}, Vec3{-2, 0, 1}}) {
+        const double q = std::hypot(h, p.z);
+        const double exact = h * (std::asinh((s1 - p.x) / q) - std::asinh((s0 - p.x) / q)) / (s1 - s0);
+        // Independent samples: the variance image is the variance of the mean; |z| < 3.
+        const Measure m = measureAt(scene, p, 256, "independent", 35);
+        const double z = (m.mean - exact) / std::sqrt(m.variance);
+        std::printf("  point light moving by (%.1f, %.1f): E %.5f, rendered %.5f, z %.2f\n", p.x, p.z, exact, m.mean,
+                    z);
+        EXPECT_LT(std::fabs(z), 3.0);
+        // The motion is real: the light held at its opening place gives another value.
+        const double opening = h / std::sqrt(std::pow(s0 - p.x, 2) + q * q);
+        EXPECT_GT(std::fabs(opening - exact) / std::sqrt(m.variance), 8.0);
+    }
+}
+
+// A tilted rectangle light (inverse_square, radiance C / area on both faces)
+// turning 40 degrees about z and moving 2 along x over the shutter. The floor
+// shows the time average of Lambert's polygon irradiance, integrated here by
+// the midpoint rule over 2000 times (error far below the noise). Sampled with
+// the default sobol sampler, whose pixel samples stratify the light jointly
+// with time (Cook's association): the variance image overstates a stratified
+// mean's variance, so |z| < 3 is conservative.
+TEST(ClosedFormTime, MovingAreaLightGivesTheTimeAverageOfLambertsFormula) {
+    const Vec3 center{0.3, 2, -0.2}, axis1{1.5, 0, 0}, axis2{0, 0.6, 0.8};
+    constexpr double turnDegrees = 40, radiance = 3.0 / 1.5;
+    const auto cornersAt = [&](double t) { // rotate about z by 40 t degrees, then move 2 t along x
+        const double a = turnDegrees * t * kPi / 180, c = std::cos(a), s = std::sin(a);
+        std::vector<Vec3> corners;
+        for (const Vec3& k : {center - 0.5 * axis1 - 0.5 * axis2, center + 0.5 * axis1 - 0.5 * axis2,
+                              center + 0.5 * axis1 + 0.5 * axis2, center - 0.5 * axis1 + 0.5 * axis2})
+            corners.push_back({c * k.x - s * k.y + 2 * t, s * k.x + c * k.y, k.z});
+        return corners;
+    };
+    for (AreaSampling sampling : {AreaSampling::Stratified, AreaSampling::SolidAngle}) {
+        Scene scene;
+        scene.objects.push_back(floorPlane());
+        Light light = rectangleLight(center, axis1, axis2, Color(3), sampling, true);
+        auto path = std::make_shared<LightMotion>();
+        path->chain = {MotionStage{motionTo({2, 0, 0}, {0, 0, turnDegrees}), {}}};
+        light.motion = path;
+        scene.lights.push_back(light);
+        scene.camera.shutterOpen = 0;
+        scene.camera.shutterClose = 1;
+        for (const Vec3& p : {Vec3{0, 0, 0}, Vec3{-1, 0, 0.5}, Vec3{1.2, 0, -1}}) {
+            double exact = 0;
+            constexpr int steps = 2000;
+            for (int k = 0; k < steps; ++k)
+                exact += lambertIrradiance(p, {0, 1, 0}, cornersAt((k + 0.5) / steps), radiance) / steps;
+            const Measure m = measureAt(scene, p, 256, "sobol", 36);
+            const double z = (m.mean - exact) / std::sqrt(m.variance);
+            std::printf("  %s area light moving, at (%.1f, %.1f): E %.5f, rendered %.5f, z %.2f\n",
+                        sampling == AreaSampling::SolidAngle ? "solid angle" : "stratified ", p.x, p.z, exact, m.mean,
+                        z);
+            EXPECT_LT(std::fabs(z), 3.0);
+            EXPECT_GT(m.variance, 0.0);
+            // The motion is real: the still light's irradiance is far off
+            // (by 15% to 65% of E at these points, over 5 standard deviations).
+            const double still = lambertIrradiance(p, {0, 1, 0}, cornersAt(0), radiance);
+            EXPECT_GT(std::fabs(still - exact), 0.1 * exact);
+            EXPECT_GT(std::fabs(still - exact) / std::sqrt(m.variance), 5.0);
+        }
+    }
 }
 
 } // namespace

@@ -13,7 +13,7 @@ syn keyword drtFunction sinh sqr sqrt str strcmp strlen strlwr strupr
 syn keyword drtFunction substr tan tanh trace val vaxis_rotate vcross vdot
 syn keyword drtFunction vlength vnormalize vrotate vstr
 syn keyword drtBoolean false no off on true yes
-syn keyword drtConstant clock image_height image_width pi tau x y z
+syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background blob box camera clipped_by cone cubic cylinder
 syn keyword drtBlock density disc finish fog global_settings image_map interior lathe
 syn keyword drtBlock light_source media mesh motion normal object pigment pigment_map
@@ -23,25 +23,26 @@ syn keyword drtBlock torus triangle
 syn keyword drtKeyword absorption adaptive adc_bailout agate all ambient ambient_light angle
 syn keyword drtKeyword aperture area_illumination area_light area_sampling array assumed_gamma at average
 syn keyword drtKeyword bezier_spline blue bozo brick brick_size brilliance bumps checker
-syn keyword drtKeyword circular color color_map colour colour_map confidence conic_sweep conserve_energy
-syn keyword drtKeyword crackle crand cubic_spline cubic_wave dents difference diffuse direction
-syn keyword drtKeyword distance eccentricity emission error extinction fade_color fade_colour fade_distance
-syn keyword drtKeyword fade_power falloff filter fisheye focal_distance focal_point fog_alt fog_offset
-syn keyword drtKeyword fog_type font frequency fresnel gamma gradient granite green
-syn keyword drtKeyword grid height hexagon hierarchy hollow interpolate intersection intervals
-syn keyword drtKeyword inverse inverse_square ior jitter lambda leopard linear_spline linear_sweep
-syn keyword drtKeyword location look_at map_type marble matrix max_samples max_trace_level media_attenuation
-syn keyword drtKeyword media_interaction merge metallic method min_samples mortar no_shadow octaves
-syn keyword drtKeyword offset omega once onion open orient orthographic panoramic
-syn keyword drtKeyword perspective phase phong phong_size point_at poly_wave pov_grid quadratic_spline
-syn keyword drtKeyword radial radius ramp_wave ratio red reflection reflection_blur refraction_blur
-syn keyword drtKeyword rgb rgbf rgbft rgbt right ripples rotate roughness
-syn keyword drtKeyword sampler samples scale scallop_wave shadowless shutter_close shutter_open sine_wave
-syn keyword drtKeyword sky solid_angle specular spherical spline spotlight srgb srgbf
-syn keyword drtKeyword srgbft srgbt stratified strength string sturm thickness threshold
-syn keyword drtKeyword tightness tile2 translate transmit triangle_wave turb_depth turbulence u
-syn keyword drtKeyword ultra_wide_angle union up v variance waves width wood
-syn keyword drtKeyword wrinkles
+syn keyword drtKeyword circular clock clock_delta clock_on color color_map colour colour_map
+syn keyword drtKeyword confidence conic_sweep conserve_energy crackle crand cubic_spline cubic_wave dents
+syn keyword drtKeyword difference diffuse direction distance eccentricity emission error extinction
+syn keyword drtKeyword fade_color fade_colour fade_distance fade_power falloff file filter final_clock
+syn keyword drtKeyword final_frame fisheye focal_distance focal_point fog_alt fog_offset fog_type font
+syn keyword drtKeyword frame_number frequency fresnel gamma gradient granite green grid
+syn keyword drtKeyword height hexagon hierarchy hollow initial_clock initial_frame interpolate intersection
+syn keyword drtKeyword intervals inverse inverse_square ior jitter lambda leopard linear_spline
+syn keyword drtKeyword linear_sweep location look_at map_type marble matrix max_samples max_trace_level
+syn keyword drtKeyword media_attenuation media_interaction merge metallic method min_samples mortar no_shadow
+syn keyword drtKeyword octaves offset omega once onion open orient orthographic
+syn keyword drtKeyword panoramic perspective phase phong phong_size point_at poly_wave pov_grid
+syn keyword drtKeyword quadratic_spline radial radius ramp_wave ratio red reflection reflection_blur
+syn keyword drtKeyword refraction_blur rgb rgbf rgbft rgbt right ripples rotate
+syn keyword drtKeyword roughness sampler samples scale scallop_wave shadowless shutter_close shutter_open
+syn keyword drtKeyword sine_wave sky solid_angle specular spherical spline spotlight srgb
+syn keyword drtKeyword srgbf srgbft srgbt stratified strength string sturm thickness
+syn keyword drtKeyword threshold tightness tile2 translate transmit triangle_wave turb_depth turbulence
+syn keyword drtKeyword u ultra_wide_angle union up uv_mapping v variance waves
+syn keyword drtKeyword width wood wrinkles
 syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|switch\|undef\|version\|warning\|while\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape

@@ -1,0 +1,205 @@
+// Model files (OBJ, PLY ASCII and binary, glTF 2.0) read through assimp into
+// a compact mesh (scene/indexed_mesh.h).
+//
+// Why assimp: one Debian package (libassimp-dev) reads all three formats and
+// many more, triangulates polygons, bakes the node hierarchy's transforms and
+// reports malformed files as errors; tinyobjloader would have read OBJ alone.
+//
+// What is kept: positions; normals where the file has them (none: flat
+// faces); the first UV channel; and per material its diffuse colour (glTF's
+// base colour) and diffuse texture map. A material becomes a texture of the
+// mesh (Mesh::textures): a copy of the object's texture whose pigment is the
+// material's colour, or an image_map of its texture file, uv-mapped, planar,
+// bilinear and repeating (as OBJ and glTF renderers show it). So the object's
+// finish and normal apply to every material, and triangles of a file without
+// materials show the object's texture.
+#include "assets/loaders.h"
+#include "core/limits.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+
+namespace drt {
+
+namespace {
+
+// The pigment of one assimp material, or nothing when the file gives it no
+// colour of its own (assimp's default material).
+std::optional<Pigment> materialPigment(const aiMaterial& material, double workingGamma,
+                                       const MeshSource& source, Diagnostics& diags) {
+    // assimp gives a file without materials a default one (OBJ: "DefaultMaterial",
+    // grey; PLY, which has no materials at all: a nameless white one).
+    const std::string name = material.GetName().C_Str();
+    std::string extension = std::filesystem::path(source.path).extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (name == AI_DEFAULT_MATERIAL_NAME || (name.empty() && extension == ".ply")) return std::nullopt;
+    aiString file;
+    aiColor4D color(0.6f, 0.6f, 0.6f, 1.0f);
+    const bool hasColor = material.Get(AI_MATKEY_BASE_COLOR, color) == AI_SUCCESS ||
+                          material.Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS;
+    const bool hasMap = material.GetTexture(aiTextureType_BASE_COLOR, 0, &file) == AI_SUCCESS ||
+                        material.GetTexture(aiTextureType_DIFFUSE, 0, &file) == AI_SUCCESS;
+    Pigment pigment;
+    if (hasMap && file.length > 0 && file.C_Str()[0] == '*') {
+        diags.warning(source.loc, "'" + source.path +
+                                      "': a texture embedded in the file is not supported; the "
+                                      "material's colour is used");
+    } else if (hasMap && file.length > 0) {
+        auto map = std::make_shared<ImageMap>();
+        map->file = file.C_Str();
+        map->path = (std::filesystem::path(source.path).parent_path() / map->file).string();
+        map->loc = source.loc;
+        map->projection = ImageMap::Projection::Planar;
+        map->interpolation = ImageMap::Interpolation::Bilinear;
+        map->workingGamma = workingGamma;
+        pigment.pattern = PatternKind::ImageMap;
+        pigment.imageMap = std::move(map);
+        pigment.uvMapping = true;
+        return pigment;
+    }
+    if (!hasColor)
+        return std::nullopt;
+    pigment.color = ColorFT{Color(color.r, color.g, color.b), 0, std::clamp(1.0 - double(color.a), 0.0, 1.0)};
+    return pigment;
+}
+
+// "" if the file can be read, else why not.
+std::string unreadable(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        return "no such file";
+    if (std::filesystem::is_directory(path, ec))
+        return "it is a directory";
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        return "it cannot be opened";
+    if (std::filesystem::file_size(path, ec) == 0)
+        return "the file is empty";
+    return "";
+}
+
+} // namespace
+
+std::string loadModelFile(const MeshSource& source, double workingGamma, LoadedModel& model,
+                          Diagnostics& diags) {
+    const std::string prefix = "cannot read the model '" + source.path + "': ";
+    if (const std::string why = unreadable(source.path); !why.empty())
+        return prefix + why;
+    Assimp::Importer importer;
+    // Points and lines are dropped (a mesh is triangles); no normals are made
+    // up (a file without them shows flat faces); UVs keep OpenGL's v-up
+    // convention, the image map's.
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                           aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure;
+    const aiScene* scene = importer.ReadFile(source.path, flags);
+    if (!scene) {
+        const std::string why = importer.GetErrorString();
+        // SortByPType removed every point and line: nothing was left.
+        if (why.find("No meshes remaining") != std::string::npos)
+            return prefix + "the file holds no triangles";
+        return prefix + "the file is malformed or truncated" + (why.empty() ? "" : " (" + why + ")");
+    }
+    if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
+        return prefix + "the file is incomplete";
+
+    auto built = std::make_shared<IndexedMesh>();
+    IndexedMesh& out = *built;
+    size_t vertexTotal = 0, triangleTotal = 0;
+    bool anyNormals = false, anyUvs = false;
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+        const aiMesh& m = *scene->mMeshes[i];
+        if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+            continue;
+        vertexTotal += m.mNumVertices;
+        triangleTotal += m.mNumFaces;
+        anyNormals = anyNormals || m.HasNormals();
+        anyUvs = anyUvs || m.HasTextureCoords(0);
+    }
+    if (triangleTotal == 0)
+        return prefix + "the file holds no triangles";
+    if (vertexTotal >= kObjectTexture || triangleTotal >= kObjectTexture / 3)
+        return prefix + "too many triangles";
+    out.positions.reserve(vertexTotal + 1); // + 1: padForEmbree
+    out.indices.reserve(3 * triangleTotal);
+    if (anyNormals)
+        out.normals.reserve(vertexTotal);
+    if (anyUvs)
+        out.uvs.reserve(vertexTotal);
+
+    std::map<unsigned, uint32_t> textureOfMaterial;
+    std::vector<uint32_t> faceTextures;
+    bool anyTexture = false;
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+        const aiMesh& m = *scene->mMeshes[i];
+        if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+            continue;
+        const uint32_t base = uint32_t(out.positions.size());
+        for (unsigned v = 0; v < m.mNumVertices; ++v) {
+            const aiVector3D& p = m.mVertices[v];
+            out.positions.push_back({p.x, p.y, p.z});
+            if (anyNormals) {
+                // A part without normals in a file with some gets zero normals:
+                // the accelerator falls back to the flat face there.
+                const aiVector3D n = m.HasNormals() ? m.mNormals[v] : aiVector3D(0, 0, 0);
+                out.normals.push_back({n.x, n.y, n.z});
+            }
+            if (anyUvs) {
+                const aiVector3D t = m.HasTextureCoords(0) ? m.mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+                out.uvs.push_back({t.x, t.y});
+            }
+        }
+        uint32_t texture = kObjectTexture;
+        if (m.mMaterialIndex < scene->mNumMaterials) {
+            auto [it, fresh] = textureOfMaterial.try_emplace(m.mMaterialIndex, kObjectTexture);
+            if (fresh) {
+                if (auto pigment =
+                        materialPigment(*scene->mMaterials[m.mMaterialIndex], workingGamma, source, diags)) {
+                    model.materials.push_back(std::move(*pigment));
+                    it->second = uint32_t(model.materials.size() - 1);
+                }
+            }
+            texture = it->second;
+        }
+        anyTexture = anyTexture || texture != kObjectTexture;
+        for (unsigned f = 0; f < m.mNumFaces; ++f) {
+            const aiFace& face = m.mFaces[f];
+            if (face.mNumIndices != 3)
+                continue;
+            for (int k = 0; k < 3; ++k)
+                out.indices.push_back(base + face.mIndices[k]);
+            for (int k = 0; k < 3; ++k)
+                faceTextures.push_back(texture);
+        }
+    }
+    if (anyTexture)
+        out.faceTextures = std::move(faceTextures);
+    if (const std::string error = validateIndexedMesh(out, model.materials.size()); !error.empty())
+        return prefix + error;
+    padForEmbree(out);
+    model.mesh = std::move(built);
+    return "";
+}
+
+void showModel(const LoadedModel& model, const Texture& objectTexture, Mesh& mesh) {
+    mesh.indexed = model.mesh;
+    mesh.textures.clear();
+    for (const Pigment& pigment : model.materials) {
+        Texture texture = objectTexture;
+        texture.pigment = pigment;
+        texture.map.clear();
+        texture.layersAbove.clear();
+        mesh.textures.push_back(std::move(texture));
+    }
+}
+
+} // namespace drt
