@@ -5,13 +5,18 @@
 #include "accel/accel.h"
 #include "accel/built_scene.h"
 
+#include <cstdint>
 #include <map>
 #include <optional>
 
 namespace drt {
 
 namespace accel {
+// A number no other accelerator of this process has had (caches key on it).
+uint64_t nextAcceleratorGeneration();
+
 struct AcceleratorState {
+    const uint64_t generation = nextAcceleratorGeneration();
     EmbreeDevice device;
     Level top;
     std::vector<Instance> instances; // moving objects and compact-mesh placements, by GeometryRef::index

@@ -4,6 +4,8 @@
 #include "core/error.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -87,6 +89,33 @@ static void boundsCallback(const RTCBoundsFunctionArguments* args) {
     b->upper_z = roundUp(p.upper.z);
 }
 
+uint64_t nextAcceleratorGeneration() {
+    static std::atomic<uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+// A moving object's level -> world transform at `time`, kept per thread. The
+// rays of one camera sample (camera, shadow, reflected, refracted) share its
+// time, so each moving object's transform is interpolated once per sample
+// rather than once per ray; the result is the same to the bit.
+static const Transform& cachedToWorld(const AcceleratorState& state, unsigned index, double time) {
+    struct Entry {
+        uint64_t generation = 0; // no accelerator has generation 0
+        unsigned index = 0;
+        double time = 0;
+        Transform toWorld;
+    };
+    thread_local std::array<Entry, 8> cache;
+    Entry& e = cache[index % cache.size()];
+    if (e.generation != state.generation || e.index != index || e.time != time) {
+        e.toWorld = state.instances[index].toWorld(time);
+        e.generation = state.generation;
+        e.index = index;
+        e.time = time;
+    }
+    return e.toWorld;
+}
+
 RayQuery::RayQuery(const AcceleratorState& accelerator, const Vec3& rayOrigin, const Vec3& rayDirection)
     : state(&accelerator), worldOrigin(rayOrigin),
       origin(accelerator.shifted ? rayOrigin - accelerator.frameOrigin : rayOrigin), direction(rayDirection) {
@@ -101,7 +130,7 @@ void RayQuery::levelRay(unsigned instID, double time, Vec3& o, Vec3& d) {
     }
     if (instance != instID) {
         instance = instID;
-        instanceToWorld.emplace(state->instances[state->top.geometries[instID].index].toWorld(time));
+        instanceToWorld.emplace(cachedToWorld(*state, state->top.geometries[instID].index, time));
         instanceOrigin = instanceToWorld->inversePoint(worldOrigin);
         instanceDirection = instanceToWorld->inverseVector(direction);
     }

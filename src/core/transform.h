@@ -35,6 +35,8 @@ public:
     // Returns nothing when the matrix is singular.
     static std::optional<Transform> fromPovMatrix(const std::array<double, 12>& v);
     static std::optional<Transform> fromMatrix(const Mat4& m);
+    // A matrix with an inverse the caller computed in closed form (trusted).
+    static Transform fromMatrixAndInverse(const Mat4& m, const Mat4& inv) { return Transform(m, inv); }
 
     // this followed by `next` (next applied after this).
     Transform then(const Transform& next) const;

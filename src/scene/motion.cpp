@@ -210,14 +210,31 @@ Transform composeParts(const AffineParts& parts) {
     double r[3][3];
     matrixOf(parts.rotation, r);
     const auto& u = parts.upper;
+    if (u[0] == 0 || u[3] == 0 || u[5] == 0 || !std::isfinite(u[0] * u[3] * u[5]))
+        return Transform(); // a singular interpolated step (a scale through zero): never asked for by drt's paths
     const double um[3][3] = {{u[0], u[1], u[2]}, {0, u[3], u[4]}, {0, 0, u[5]}};
     Mat4 m;
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) m.m[i][j] = r[i][0] * um[0][j] + r[i][1] * um[1][j] + r[i][2] * um[2][j];
         m.m[i][3] = r[i][0] * parts.shift.x + r[i][1] * parts.shift.y + r[i][2] * parts.shift.z + parts.translation[i];
     }
-    if (std::optional<Transform> t = Transform::fromMatrix(m)) return *t;
-    return Transform(); // a singular interpolated step (a scale through zero): never asked for by drt's paths
+    // x' = R (U x + shift) + translation, so x = U^-1 (R^T (x' - translation) - shift):
+    // the inverse in closed form (U is upper triangular, R^T = R^-1), rather than
+    // a general 4x4 elimination for every ray that meets a moving object.
+    const double i0 = 1 / u[0], i3 = 1 / u[3], i5 = 1 / u[5];
+    const double ui[3][3] = {{i0, -u[1] * i0 * i3, (u[1] * u[4] - u[2] * u[3]) * i0 * i3 * i5},
+                             {0, i3, -u[4] * i3 * i5},
+                             {0, 0, i5}};
+    Mat4 inv;
+    double back[3]; // R^T translation + shift
+    for (int i = 0; i < 3; ++i)
+        back[i] = r[0][i] * parts.translation.x + r[1][i] * parts.translation.y + r[2][i] * parts.translation.z +
+                  parts.shift[i];
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) inv.m[i][j] = ui[i][0] * r[j][0] + ui[i][1] * r[j][1] + ui[i][2] * r[j][2];
+        inv.m[i][3] = -(ui[i][0] * back[0] + ui[i][1] * back[1] + ui[i][2] * back[2]);
+    }
+    return Transform::fromMatrixAndInverse(m, inv);
 }
 
 AffineParts interpolateParts(const AffineParts& a, const AffineParts& b, double s) {
