@@ -20,16 +20,8 @@ namespace {
 using test::makeObject;
 using test::buildAccelerator;
 using test::sceneOf;
+using test::trace;
 
-std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction, double time = 0) {
-    Ray ray;
-    ray.origin = origin;
-    ray.direction = direction;
-    ray.time = time;
-    Hit hit;
-    if (!accel.intersect(ray, hit)) return std::nullopt;
-    return hit;
-}
 
 void expectNear(const Vec3& a, const Vec3& b, double tolerance = 1e-9) {
     EXPECT_NEAR(a.x, b.x, tolerance);

@@ -14,15 +14,8 @@ namespace {
 using test::makeObject;
 using test::buildAccelerator;
 using test::sceneOf;
+using test::trace;
 
-std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction) {
-    Ray ray;
-    ray.origin = origin;
-    ray.direction = direction;
-    Hit hit;
-    if (!accel.intersect(ray, hit)) return std::nullopt;
-    return hit;
-}
 
 void expectHit(const std::optional<Hit>& hit, double t, const Vec3& point, const Vec3& normal) {
     ASSERT_TRUE(hit.has_value());

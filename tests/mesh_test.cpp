@@ -18,16 +18,8 @@ namespace {
 
 using test::makeObject;
 using test::sceneOf;
+using test::trace;
 
-std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction) {
-    Ray ray;
-    ray.origin = origin;
-    ray.direction = direction;
-    Hit hit;
-    if (!accel.intersect(ray, hit))
-        return std::nullopt;
-    return hit;
-}
 
 Mesh compact(std::shared_ptr<IndexedMesh> indexed) {
     Mesh m;

@@ -4,6 +4,7 @@
 #include "accel/accel.h"
 #include "scene/scene.h"
 
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -95,6 +96,17 @@ inline void countSelfHits(const Accelerator& accel, const Hit& hit, const Vec3& 
             dot(again.geometricNormal, hit.geometricNormal) > 0.99)
             ++selfHits;
     }
+}
+
+// The first hit of the ray from `origin` along `direction` at `time`, if any.
+inline std::optional<Hit> trace(const Accelerator& accel, Vec3 origin, Vec3 direction, double time = 0) {
+    Ray ray;
+    ray.origin = origin;
+    ray.direction = direction;
+    ray.time = time;
+    Hit hit;
+    if (!accel.intersect(ray, hit)) return std::nullopt;
+    return hit;
 }
 
 } // namespace drt::test

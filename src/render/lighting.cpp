@@ -198,15 +198,17 @@ public:
             // PovGrid: the k-th point. Grid: the cell holding this sample's
             // 2-D light value, the value's place within the cell its jitter,
             // so the pixel's samples stratify the grid as they do the area.
-            int i = k % n1_, j = k / n1_;
+            int i, j;
             Vec2 jitter = {0.5, 0.5};
             if (sampling_ == AreaSampling::Grid) {
                 const Vec2 w = sampler.get2D(dimension_);
                 i = std::min(static_cast<int>(w.x * n1_), n1_ - 1);
                 j = std::min(static_cast<int>(w.y * n2_), n2_ - 1);
                 jitter = {w.x * n1_ - i, w.y * n2_ - j};
-            } else if (area_.jitter) {
-                jitter = uniform(sampler, k);
+            } else {
+                i = k % n1_;
+                j = k / n1_;
+                if (area_.jitter) jitter = uniform(sampler, k);
             }
             // Edge to edge: i / (n1 - 1); a single row sits on the centre line.
             double u = n1_ > 1 ? double(i) / (n1_ - 1) : 0.5;
