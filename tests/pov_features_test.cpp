@@ -1,6 +1,7 @@
 // Smaller POV-Ray front-end features: finish crand, the bounds behind
-// min_extent / max_extent, and files a scene writes.
+// min_extent / max_extent, trace() and inside(), and files a scene writes.
 #include "pov/load.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -69,6 +70,50 @@ TEST(PovFeatures, WrittenFilesAreDroppedAndReadingIsAnError) {
         EXPECT_NE(bad.all()[0].message.find(c.message), std::string::npos) << bad.formatAll();
         EXPECT_EQ(bad.all()[0].loc.column, c.column) << c.text;
     }
+}
+
+// trace() and inside() ask the scene's geometry while the scene is read (drt
+// check and render give it): the hit point and normal, a miss as <0, 0, 0>.
+TEST(PovFeatures, TraceAndInsideAnswerFromTheObjectsGeometry) {
+    const std::string scene = test::writeFile(test::tempDir() + "/trace.pov", R"(#version 3.7;
+#declare S = sphere { <0, 0, 5>, 1 }
+#declare N = <9, 9, 9>;
+#declare P = trace(S, <0, 0, 0>, <0, 0, 1>, N);
+#warning concat("P=", vstr(3, P, ",", 0, 3), " N=", vstr(3, N, ",", 0, 3))
+#warning concat("I=", str(inside(S, <0, 0, 5>), 0, 0), str(inside(S, <0, 0, 0>), 0, 0))
+#warning concat("M=", vstr(3, trace(S, <0, 0, 0>, <0, 1, 0>), ",", 0, 3))
+)");
+    const test::CommandResult r = test::runDrt("check '" + scene + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("P=0.000,0.000,4.000 N=0.000,0.000,-1.000"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("I=10"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("M=0.000,0.000,0.000"), std::string::npos) << r.err;
+}
+
+// A shape drt leaves out (isosurface) is not in the scene: trace() misses it and
+// inside() is 0, each with a warning at the call; the scene still renders as
+// the rest of it. A light has no surface: a located error.
+TEST(PovFeatures, TraceOfALeftOutShapeMissesWithAWarningAndOfALightIsAnError) {
+    const std::string dir = test::tempDir();
+    const std::string leftOut = test::writeFile(dir + "/iso.pov", R"(#declare Iso = isosurface { function { x * x + y * y + z * z - 1 } }
+#declare Q = trace(Iso, <0, 0, -5>, <0, 0, 1>);
+#declare J = inside(Iso, <0, 0, 0>);
+#warning concat("Q=", vstr(3, Q, ",", 0, 3), " J=", str(J, 0, 0))
+)");
+    const test::CommandResult r = test::runDrt("check '" + leftOut + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("iso.pov:2:20: warning: 'trace' is given an object drt leaves out"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("iso.pov:3:21: warning: 'inside' is given an object drt leaves out"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("Q=0.000,0.000,0.000 J=0"), std::string::npos) << r.err;
+
+    const std::string light = test::writeFile(dir + "/light.pov", "#declare L = light_source { 0, 1 }\n#declare P = trace(L, 0, z);\n");
+    const test::CommandResult e = test::runDrt("check '" + light + "'");
+    EXPECT_EQ(e.exitCode, 1) << e.err;
+    EXPECT_NE(e.err.find("light.pov:2:20: error: 'trace' needs an object with a surface, not a light_source\n"
+                         "  #declare P = trace(L, 0, z);\n"
+                         "                     ^"),
+              std::string::npos)
+        << e.err;
 }
 
 } // namespace

@@ -413,8 +413,13 @@ Value Evaluator::traceOrInside(const Token& name) {
     expectSymbol("(", "after '" + w + "'");
     const SourceLoc at = peek().loc;
     const Value object = rvalue();
-    if (object.kind != Kind::Object || object.object->lightOnly)
+    if (object.kind != Kind::Object)
         fail(at, "'" + w + "' needs an object, not " + kindName(object));
+    // A light has no surface to meet; a shape drt leaves out (warned about
+    // where it was made) is not in the scene, so the ray misses it.
+    const bool leftOut = object.object->lightOnly && object.object->lights.empty();
+    if (object.object->lightOnly && !leftOut)
+        fail(at, "'" + w + "' needs an object with a surface, not a light_source");
     acceptSymbol(",");
     const Vec3 a = vectorExpr(w == "trace" ? "the ray's start" : "the point");
     Vec3 direction;
@@ -434,6 +439,12 @@ Value Evaluator::traceOrInside(const Token& name) {
     expectSymbol(")", "to close the arguments of '" + w + "'");
     if (!options_.geometry)
         fail(name.loc, "'" + w + "' needs the scene's geometry while the scene is read; this loader gives none");
+    if (leftOut) {
+        warn(at, "'" + w + "' is given an object drt leaves out (see the warning where it was made): " +
+                     (w == "trace" ? "the ray misses, <0, 0, 0>" : "no point is inside, 0"));
+        if (normalOut) *normalOut = Value::makeVector(Vec3(0));
+        return w == "inside" ? Value::makeFloat(0) : Value::makeVector(Vec3(0));
+    }
     ObjectValue copy = *object.object;
     const Object model = placed(std::move(copy));
     if (w == "inside") return Value::makeFloat(options_.geometry->inside(model, a) ? 1 : 0);
