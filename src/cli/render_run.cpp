@@ -384,6 +384,9 @@ std::string frameFigures(const FrameDistributionReport& report) {
 // the frame finishes, so a frame's lines stay together.
 int renderWholeFrames(MpiJob& mpi, const std::vector<AnimationFrame>& frames, bool quiet, std::ostream& err,
                       const InterruptHandler& interrupt) {
+    // Every rank writes images: its dynamic linking (half a second of CPU)
+    // overlaps the start of the job rather than stalling the first frame's render.
+    loadImageIoInBackground();
     const auto render = [&](int index) {
         RenderCommand command = frames[size_t(index)].command;
         command.progress = false; // one progress line cannot show frames rendered at once

@@ -6,10 +6,9 @@
 //                        "here is frame `frame` (-1: none yet), send me another"
 //   0 -> worker  kFrame  int frame: render it
 //   0 -> worker  kDone   int status: no more frames; the job's status
-// A worker renders on its main thread (it has nothing else to do meanwhile) and
-// asks for the next frame when it has finished one: a frame takes seconds to
-// hours, so the round trip between frames does not matter, and holding no
-// frame in reserve keeps the last frames free for whichever rank is idle.
+// A worker asks for the next frame when it has finished one: a frame takes
+// seconds to hours, so the round trip between frames does not matter, and
+// holding no frame in reserve keeps the last frames for whichever rank is idle.
 // Rank 0 answers the last asks only when every frame is finished, so that
 // kDone carries the job's status and every rank exits with it.
 #include "distributed/frame_distribution.h"
@@ -193,6 +192,26 @@ int coordinate(MpiJob& job, int count, const std::function<FrameOutcome(int)>& r
     return failure;
 }
 
+// A worker's frame, rendered on a thread while the main thread waits (and
+// keeps MPI's sends going), as rank 0 and the tile path render too. Rendered on
+// the main thread itself, a worker's frames took 2 to 4 times longer on the
+// development machine (6 frames on 2 ranks: rank 0 rendered 5 of them, the job
+// took 1.35x as long).
+FrameOutcome renderBeside(Outbox& traffic, const std::function<FrameOutcome(int)>& render, int index) {
+    std::atomic<bool> done{false};
+    FrameOutcome outcome;
+    std::thread thread([&] {
+        outcome = renderSafely(render, index);
+        done.store(true);
+    });
+    while (!done.load()) {
+        traffic.progress();
+        pauseBriefly();
+    }
+    thread.join();
+    return outcome;
+}
+
 int work(const std::function<FrameOutcome(int)>& render) {
     Outbox traffic;
     int index = -1;
@@ -217,7 +236,7 @@ int work(const std::function<FrameOutcome(int)>& render) {
         if (tag != kFrame)
             throw RenderError("unexpected message between ranks");
         index = readAt<int>(message, 0);
-        outcome = renderSafely(render, index);
+        outcome = renderBeside(traffic, render, index);
     }
 }
 
