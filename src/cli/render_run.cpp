@@ -1,7 +1,9 @@
 // `drt render`'s render: in this process, or over the ranks of an MPI job
 // (distributed/mpi_render.h); from the start or from a checkpoint (--resume);
 // with periodic checkpoints (--checkpoint-every) and, on SIGINT or SIGTERM,
-// the finished tiles and a checkpoint saved before exiting 128 + signal.
+// the finished tiles and a checkpoint saved before exiting 128 + signal. An
+// animation's frames are rendered one after another, or under MPI, when there
+// are enough of them, whole frames per rank (distributed/frame_distribution.h).
 //
 // Under MPI every rank parses the scene itself (from the same files, which a
 // cluster shares): a scene model holds meshes, images and closures that have no
