@@ -4,7 +4,11 @@
 // for fixed and adaptive sampling, crops and PNG output; a scene error or a
 // different scene on one rank, and a rank that dies, end the job with a clear
 // error and a non-zero exit, never a hang; an interrupted job resumes on
-// another number of ranks. Built only with MPI (CMake DRT_MPI).
+// another number of ranks. An animation's frames go whole to ranks (or split
+// into tiles) and every frame file equals the single-process one byte for
+// byte; a scene error in one frame, a dying rank and an interruption end such a
+// job too, and --resume finishes it on another number of ranks. Built only with
+// MPI (CMake DRT_MPI).
 #include "image/image.h"
 #include "test_support.h"
 
@@ -123,20 +127,24 @@ TEST(Mpi, ASceneErrorOnOneRankEndsTheJobWithItsMessage) {
     fs::remove_all(dir);
 }
 
-TEST(Mpi, ARankThatDiesEndsTheJobNonZeroWithoutAHang) {
-    const std::string dir = test::tempDir();
-    // Rank 1 is killed (SIGKILL) half a second into a render of several seconds.
+// Runs `render` (a drt command line) on 3 ranks, rank 1 killed (SIGKILL) half
+// a second in: the job ends non-zero, naming rank 1, long before the time limit.
+void expectAKilledRankToEndTheJob(const std::string& render) {
     const std::string command = "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then exec timeout -s KILL 0.5 " +
-                                test::drtExecutable() + " render " + test::sourcePath("examples/soft_shadows.drt") +
-                                " -o " + dir + "/out.exr --width 200 --height 150 --spp 64 --threads 1; else exec " +
-                                test::drtExecutable() + " render " + test::sourcePath("examples/soft_shadows.drt") + " -o " +
-                                dir + "/out.exr --width 200 --height 150 --spp 64 --threads 1; fi'";
+                                render + "; else exec " + render + "; fi'";
     const auto start = std::chrono::steady_clock::now();
     const test::CommandResult r = mpirun(3, command, 120);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_NE(r.exitCode, 0);
     EXPECT_LT(seconds, 100) << "the job ran into the test's time limit: it hung";
     EXPECT_NE(r.err.find("rank 1"), std::string::npos) << r.err;
+}
+
+TEST(Mpi, ARankThatDiesEndsTheJobNonZeroWithoutAHang) {
+    const std::string dir = test::tempDir();
+    // A render of several seconds.
+    expectAKilledRankToEndTheJob(test::drtExecutable() + " render " + test::sourcePath("examples/soft_shadows.drt") +
+                                 " -o " + dir + "/out.exr --width 200 --height 150 --spp 64 --threads 1");
     EXPECT_FALSE(fs::exists(dir + "/out.exr") && !fs::exists(dir + "/out.exr.drt-checkpoint"))
         << "no complete image can come from a job that lost a rank";
     fs::remove_all(dir);
@@ -245,16 +253,9 @@ TEST(Mpi, ASceneErrorInOneFrameEndsAWholeFrameJobWithItsMessage) {
 
 TEST(Mpi, ARankThatDiesEndsAWholeFrameJobNonZeroWithoutAHang) {
     const std::string dir = test::tempDir();
-    const std::string render = test::drtExecutable() + " render " + test::sourcePath("examples/pendulum.drt") +
-                               " -o " + dir + "/f_%02d.exr --frames 0..5 --width 160 --height 120 --spp 64 --threads 1";
-    const std::string command = "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then exec timeout -s KILL 0.5 " +
-                                render + "; else exec " + render + "; fi'";
-    const auto start = std::chrono::steady_clock::now();
-    const test::CommandResult r = mpirun(3, command, 120);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_NE(r.exitCode, 0);
-    EXPECT_LT(seconds, 100) << "the job ran into the test's time limit: it hung";
-    EXPECT_NE(r.err.find("rank 1"), std::string::npos) << r.err;
+    expectAKilledRankToEndTheJob(test::drtExecutable() + " render " + test::sourcePath("examples/pendulum.drt") +
+                                 " -o " + dir + "/f_%02d.exr --frames 0..5 --width 160 --height 120 --spp 64 " +
+                                 "--threads 1");
     fs::remove_all(dir);
 }
 
