@@ -251,6 +251,23 @@ TEST(Mpi, ASceneErrorInOneFrameEndsAWholeFrameJobWithItsMessage) {
     fs::remove_all(dir);
 }
 
+TEST(Mpi, AnAnimationOneRankCannotReadStopsEveryRankWithItsMessage) {
+    const std::string dir = test::tempDir();
+    animatedScene(dir);
+    const std::string ini = test::writeFile(dir + "/anim.ini", "Input_File_Name=" + dir +
+                                                                   "/anim.drt\nInitial_Frame=0\nFinal_Frame=4\n");
+    // Rank 2 is given an .ini file that is not there (as if its node lacked it).
+    const std::string command = "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 2 ]; then i=" + dir +
+                                "/missing.ini; else i=" + ini + "; fi; exec " + test::drtExecutable() +
+                                " render \"$i\" -o " + dir + "/f_%02d.exr -q'";
+    const test::CommandResult r = mpirun(3, command, 120);
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("drt (rank 2 of 3): "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("missing.ini"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(frameName(dir + "/f", 0)));
+    fs::remove_all(dir);
+}
+
 TEST(Mpi, ARankThatDiesEndsAWholeFrameJobNonZeroWithoutAHang) {
     const std::string dir = test::tempDir();
     expectAKilledRankToEndTheJob(test::drtExecutable() + " render " + test::sourcePath("examples/pendulum.drt") +

@@ -440,7 +440,17 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
     const bool rank0 = !mpi || mpi->rank() == 0;
     std::ostringstream held; // the same usage errors on every rank are printed once
     std::vector<AnimationFrame> frames;
-    if (int status = planAnimation(command, rank0 ? err : held, frames); status != kSuccess) return status;
+    int status = planAnimation(command, rank0 ? err : held, frames);
+    if (mpi) { // every rank stops, or none (an .ini file that differs between nodes)
+        const int worst = mpi->agree(status);
+        if (status != kSuccess && !rank0 && worst != kSuccess) {
+            std::istringstream lines(held.str());
+            for (std::string line; std::getline(lines, line);)
+                err << fmt::format("drt (rank {} of {}): {}\n", mpi->rank(), mpi->size(), line);
+        }
+        status = worst;
+    }
+    if (status != kSuccess) return status;
     const std::string& split = command.animation.distribute;
     if (mpi && (split == "frames" || (split == "auto" && wholeFramesPerRank(int(frames.size()), mpi->size()))))
         return renderWholeFrames(*mpi, frames, command.quiet, err, interrupt);
