@@ -26,6 +26,14 @@ const IndexedMesh& indexedOf(const Scene& scene, size_t i = 0) {
     return *mesh.indexed;
 }
 
+// 8 x 8 pixels, one sample each.
+RenderResult render8x8(const Scene& scene) {
+    RenderOptions options;
+    options.width = options.height = 8;
+    options.samplesPerPixel = 1;
+    return render(scene, options);
+}
+
 // A unit square in x-y facing -z (two faces) seen by an orthographic camera
 // that fills 8 x 8 pixels with it; ambient-only finishes show the pigments.
 const char* kCamera = "camera { orthographic location <0.5, 0.5, -5> direction z right x up y }\n";
@@ -89,10 +97,7 @@ mesh2 {
 })",
                                  diags, std::string("faces.") + dialect);
         ASSERT_TRUE(scene && !diags.hasErrors()) << dialect << diags.formatAll();
-        RenderOptions options;
-        options.width = options.height = 8;
-        options.samplesPerPixel = 1;
-        const RenderResult r = render(*scene, options);
+        const RenderResult r = render8x8(*scene);
         for (int y = 0; y < 8; ++y)
             for (int x = 0; x < 8; ++x) {
                 if (x == 7 - y)
@@ -119,10 +124,7 @@ mesh2 {
 })",
                              diags);
     ASSERT_TRUE(scene && !diags.hasErrors()) << diags.formatAll();
-    RenderOptions options;
-    options.width = options.height = 8;
-    options.samplesPerPixel = 1;
-    const RenderResult r = render(*scene, options);
+    const RenderResult r = render8x8(*scene);
     // The one sample of pixel (px, py) lies within the pixel (jittered): at
     // x = (px + a) / 8, y = 1 - (py + b) / 8 with a, b in [0, 1), weights
     // (1 - x - y, x, y). So red + green + blue = 1 exactly, green is x and
@@ -157,10 +159,7 @@ mesh2 {
 })",
                              diags);
     ASSERT_TRUE(scene && !diags.hasErrors()) << diags.formatAll();
-    RenderOptions options;
-    options.width = options.height = 8;
-    options.samplesPerPixel = 1;
-    const RenderResult r = render(*scene, options);
+    const RenderResult r = render8x8(*scene);
     // Pixel (0, 7): x = 0.0625, y = 0.0625: uv (0.9375, 0.0625): cell (3, 0): blue.
     EXPECT_NEAR(r.color.at(0, 7, 2), 1, 1e-6);
     // Pixel (7, 7): uv (0.0625, 0.0625): cell (0, 0): red.
@@ -188,10 +187,7 @@ mesh {
         // The triangle without uv_vectors has POV-Ray's <0,0>, <1,0>, <1,1>.
         EXPECT_EQ(m.uvs[4].u, 1.0f);
         EXPECT_EQ(m.uvs[4].v, 0.0f);
-        RenderOptions options;
-        options.width = options.height = 8;
-        options.samplesPerPixel = 1;
-        const RenderResult r = render(*scene, options);
+        const RenderResult r = render8x8(*scene);
         EXPECT_NEAR(r.color.at(6, 6, 0), 1, 1e-6) << name; // lower right: its own red
         EXPECT_NEAR(r.color.at(1, 1, 2), 1, 1e-6) << name; // upper left: the object's blue
     }
@@ -208,9 +204,6 @@ mesh2 {
   face_indices { 2, <0,2,1>, 0, <0,3,2>, 0 }
   translate <TX, 0, 0>
 })";
-    RenderOptions options;
-    options.width = options.height = 8;
-    options.samplesPerPixel = 1;
     std::array<double, 2> red{};
     for (int moved = 0; moved < 2; ++moved) {
         std::string text = std::string(kCamera) + "#declare TX = " + (moved ? "0.5" : "0") + ";\n" + mesh;
@@ -218,7 +211,7 @@ mesh2 {
         const auto scene = parse(text, diags);
         ASSERT_TRUE(scene && !diags.hasErrors()) << diags.formatAll();
         // Pixel (5, 6): x = 0.6875, y = 0.1875 in the image; on the mesh at x - TX.
-        red[size_t(moved)] = render(*scene, options).color.at(5, 6, 0);
+        red[size_t(moved)] = render8x8(*scene).color.at(5, 6, 0);
     }
     EXPECT_NE(red[0], red[1]); // one red, one blue
 }
