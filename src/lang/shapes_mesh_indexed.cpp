@@ -233,13 +233,13 @@ std::string indexedMeshHead(const Mesh& m, ShapeText& text) {
     const std::string pad(size_t(text.indent + 1) * 2, ' '), inner = pad + "  ";
     std::string out = "mesh2 {";
     const auto list = [&](const char* name, size_t n, const auto& item) {
-        out += "\n" + pad + name + " { " + std::to_string(n);
+        out += fmt::format("\n{}{} {{ {}", pad, name, n);
         for (size_t i = 0; i < n; ++i)
-            out += ",\n" + inner + item(i);
-        out += "\n" + pad + "}";
+            out += fmt::format(",\n{}{}", inner, item(i));
+        out += fmt::format("\n{}}}", pad);
     };
     const auto float3 = [](const Float3& v) {
-        return "<" + floatText(v.x) + ", " + floatText(v.y) + ", " + floatText(v.z) + ">";
+        return fmt::format("<{}, {}, {}>", floatText(v.x), floatText(v.y), floatText(v.z));
     };
     const auto triple = [](const std::vector<uint32_t>& v, size_t t) {
         return fmt::format("<{}, {}, {}>", v[3 * t], v[3 * t + 1], v[3 * t + 2]);
@@ -249,7 +249,7 @@ std::string indexedMeshHead(const Mesh& m, ShapeText& text) {
         list("normal_vectors", mesh.normals.size(), [&](size_t i) { return float3(mesh.normals[i]); });
     if (!mesh.uvs.empty())
         list("uv_vectors", mesh.uvs.size(), [&](size_t i) {
-            return "<" + floatText(mesh.uvs[i].u) + ", " + floatText(mesh.uvs[i].v) + ">";
+            return fmt::format("<{}, {}>", floatText(mesh.uvs[i].u), floatText(mesh.uvs[i].v));
         });
     if (!m.textures.empty()) {
         // Written before the object's transforms, which move them as they move the object's texture.
