@@ -250,5 +250,53 @@ TEST(Interrupt, ResumeRefusesAMissingCheckpointOrOneOfAnotherRender) {
     fs::remove_all(dir);
 }
 
+// An animation resumed: a frame with a checkpoint continues from it, a frame an
+// earlier run wrote whole is kept, any other frame is rendered from the start;
+// a frame or checkpoint made at another clock is not taken for this frame's.
+TEST(Interrupt, AnAnimationResumedKeepsTheFramesWrittenWholeAndRendersTheRest) {
+    const std::string dir = test::tempDir();
+    const std::string scene =
+        test::writeFile(dir + "/anim.drt", "render { width 24 height 18 samples 4 }\n"
+                                           "camera { location <0, 1, -5> look_at <0, 0.5, 0> }\n"
+                                           "light_source { <-3, 5, -3>, rgb 1 }\n"
+                                           "sphere { <0, 0.5, 0>, 0.5 pigment { rgb <1, 0.4, 0.2> } "
+                                           "translate <clock * 2 - 1, 0, 0> }\n");
+    const std::string frames = " --frames 0..3 --clock 0..1";
+    ASSERT_EQ(test::runDrt("render '" + scene + "' -o '" + dir + "/one_%d.exr' -q" + frames).exitCode, 0);
+    ASSERT_EQ(test::runDrt("render '" + scene + "' -o '" + dir + "/f_%d.exr' -q" + frames).exitCode, 0);
+    fs::remove(dir + "/f_2.exr");
+    // Frame 1 of another clock range: the same scene and settings, another image.
+    ASSERT_EQ(test::runDrt("render '" + scene + "' -o '" + dir + "/f_%d.exr' -q --frames 0..3 --clock 0..2 " +
+                           "--subset 1..1")
+                  .exitCode,
+              0);
+    const test::CommandResult resumed = test::runDrt("render '" + scene + "' -o '" + dir + "/f_%d.exr'" + frames +
+                                                     " --resume");
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    for (int frame : {0, 3})
+        EXPECT_NE(resumed.err.find("f_" + std::to_string(frame) + ".exr' was written whole by an earlier run"),
+                  std::string::npos)
+            << resumed.err;
+    for (int frame : {1, 2}) EXPECT_EQ(resumed.err.find("f_" + std::to_string(frame) + ".exr' was"), std::string::npos);
+    for (int frame = 0; frame <= 3; ++frame) {
+        const std::string number = std::to_string(frame);
+        EXPECT_TRUE(pixelsOf(dir + "/f_" + number + ".exr").pixels == pixelsOf(dir + "/one_" + number + ".exr").pixels)
+            << frame;
+    }
+    // A checkpoint saved at one clock is refused at another.
+    const std::string out = dir + "/clock.exr";
+    {
+        Child child(with(renderArgs(out, false), {"--clock", "0.25", "--checkpoint-every", "0.05"}), dir + "/c.err");
+        ASSERT_TRUE(waitForWrites(child, out + ".drt-checkpoint", 1));
+        child.signal(SIGTERM);
+        EXPECT_EQ(child.wait(), 143);
+    }
+    Child other(with(renderArgs(out, false), {"--clock", "0.5", "--resume"}), dir + "/refused.err");
+    EXPECT_EQ(other.wait(), 2);
+    EXPECT_NE(test::readFile(dir + "/refused.err").find("clock=0.25 there, clock=0.5 here"), std::string::npos)
+        << test::readFile(dir + "/refused.err");
+    fs::remove_all(dir);
+}
+
 } // namespace
 } // namespace drt

@@ -4,7 +4,11 @@
 // for fixed and adaptive sampling, crops and PNG output; a scene error or a
 // different scene on one rank, and a rank that dies, end the job with a clear
 // error and a non-zero exit, never a hang; an interrupted job resumes on
-// another number of ranks. Built only with MPI (CMake DRT_MPI).
+// another number of ranks. An animation's frames go whole to ranks (or split
+// into tiles) and every frame file equals the single-process one byte for
+// byte; a scene error in one frame, a dying rank and an interruption end such a
+// job too, and --resume finishes it on another number of ranks. Built only with
+// MPI (CMake DRT_MPI).
 #include "image/image.h"
 #include "test_support.h"
 
@@ -123,20 +127,24 @@ TEST(Mpi, ASceneErrorOnOneRankEndsTheJobWithItsMessage) {
     fs::remove_all(dir);
 }
 
-TEST(Mpi, ARankThatDiesEndsTheJobNonZeroWithoutAHang) {
-    const std::string dir = test::tempDir();
-    // Rank 1 is killed (SIGKILL) half a second into a render of several seconds.
+// Runs `render` (a drt command line) on 3 ranks, rank 1 killed (SIGKILL) half
+// a second in: the job ends non-zero, naming rank 1, long before the time limit.
+void expectAKilledRankToEndTheJob(const std::string& render) {
     const std::string command = "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then exec timeout -s KILL 0.5 " +
-                                test::drtExecutable() + " render " + test::sourcePath("examples/soft_shadows.drt") +
-                                " -o " + dir + "/out.exr --width 200 --height 150 --spp 64 --threads 1; else exec " +
-                                test::drtExecutable() + " render " + test::sourcePath("examples/soft_shadows.drt") + " -o " +
-                                dir + "/out.exr --width 200 --height 150 --spp 64 --threads 1; fi'";
+                                render + "; else exec " + render + "; fi'";
     const auto start = std::chrono::steady_clock::now();
     const test::CommandResult r = mpirun(3, command, 120);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_NE(r.exitCode, 0);
     EXPECT_LT(seconds, 100) << "the job ran into the test's time limit: it hung";
     EXPECT_NE(r.err.find("rank 1"), std::string::npos) << r.err;
+}
+
+TEST(Mpi, ARankThatDiesEndsTheJobNonZeroWithoutAHang) {
+    const std::string dir = test::tempDir();
+    // A render of several seconds.
+    expectAKilledRankToEndTheJob(test::drtExecutable() + " render " + test::sourcePath("examples/soft_shadows.drt") +
+                                 " -o " + dir + "/out.exr --width 200 --height 150 --spp 64 --threads 1");
     EXPECT_FALSE(fs::exists(dir + "/out.exr") && !fs::exists(dir + "/out.exr.drt-checkpoint"))
         << "no complete image can come from a job that lost a rank";
     fs::remove_all(dir);
@@ -162,6 +170,139 @@ TEST(Mpi, AnInterruptedJobResumesOnAnotherNumberOfRanks) {
         mpirun(3, drt() + " render " + scene() + " -o '" + out + "'" + options + " --resume");
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
     expectSamePixels(out, dir + "/full.exr");
+    fs::remove_all(dir);
+}
+
+// ---------------------------------------------------------------- animations: whole frames per rank
+
+// A small scene that moves with the clock; frame 3 stops with #error when `broken`.
+std::string animatedScene(const std::string& dir, bool broken = false) {
+    return test::writeFile(dir + (broken ? "/broken_anim.drt" : "/anim.drt"),
+                           std::string("render { width 24 height 18 samples 4 }\n"
+                                       "camera { location <0, 1, -5> look_at <0, 0.5, 0> }\n"
+                                       "light_source { <-3, 5, -3>, rgb 1 }\n"
+                                       "sphere { <0, 0.5, 0>, 0.5 pigment { rgb <1, 0.4, 0.2> } "
+                                       "translate <clock * 2 - 1, 0, 0> }\n"
+                                       "box { <-2, -0.1, -1>, <2, 0, 3> pigment { checker rgb 1, rgb 0.3 } "
+                                       "rotate y * 90 * clock }\n") +
+                               (broken ? "#if (frame_number = 3)\n#error \"frame three is broken\"\n#end\n" : ""));
+}
+
+std::string frameName(const std::string& prefix, int frame) {
+    return prefix + (frame < 10 ? "_0" : "_") + std::to_string(frame) + ".exr";
+}
+
+// How often `text` holds `part`.
+int occurrences(const std::string& text, const std::string& part) {
+    int n = 0;
+    for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+    return n;
+}
+
+TEST(Mpi, AnimationFramesGoWholeToRanksAndEqualOneProcessByteForByte) {
+    const std::string dir = test::tempDir();
+    const std::string scene = animatedScene(dir);
+    const std::string frames = " --frames 0..4 --clock 0..1 --reproducible";
+    ASSERT_EQ(test::runDrt("render '" + scene + "' -o '" + dir + "/one_%02d.exr' -q" + frames).exitCode, 0);
+    // (ranks, threads per rank, --distribute): 5 frames on 3 ranks go whole (auto), or split into tiles when asked;
+    // 5 frames on 6 ranks are split into tiles (auto).
+    const struct {
+        int ranks, threads;
+        std::string distribute, expected;
+    } runs[] = {{3, 1, "", "whole frames; frames per rank"},
+                {2, 2, "frames", "whole frames; frames per rank"},
+                {3, 1, "tiles", "drt: MPI: 3 ranks; tasks per rank"},
+                {6, 1, "", "drt: MPI: 6 ranks; tasks per rank"}};
+    for (const auto& run : runs) {
+        const std::string prefix = dir + "/n" + std::to_string(run.ranks) + run.distribute;
+        SCOPED_TRACE(prefix);
+        const test::CommandResult r =
+            mpirun(run.ranks, drt() + " render '" + scene + "' -o '" + prefix + "_%02d.exr' --threads " +
+                                  std::to_string(run.threads) + frames +
+                                  (run.distribute.empty() ? "" : " --distribute " + run.distribute));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.err.find(run.expected), std::string::npos) << r.err;
+        for (int frame = 0; frame <= 4; ++frame) {
+            // The same file, byte for byte (--reproducible leaves the run's details out of the metadata).
+            EXPECT_EQ(test::readFile(frameName(prefix, frame)), test::readFile(frameName(dir + "/one", frame)))
+                << frame;
+            if (run.expected.find("whole") != std::string::npos) { // rendered, and written, by exactly one rank
+                EXPECT_EQ(occurrences(r.err, "frame " + std::to_string(frame) + " (clock "), 1) << r.err;
+            }
+        }
+    }
+    fs::remove_all(dir);
+}
+
+TEST(Mpi, ASceneErrorInOneFrameEndsAWholeFrameJobWithItsMessage) {
+    const std::string dir = test::tempDir();
+    const std::string scene = animatedScene(dir, true);
+    const auto start = std::chrono::steady_clock::now();
+    const test::CommandResult r =
+        mpirun(3, drt() + " render '" + scene + "' -o '" + dir + "/f_%02d.exr' --frames 0..5 --threads 1", 120);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_LT(seconds, 100) << "the job ran into the test's time limit: it hung";
+    EXPECT_NE(r.err.find("broken_anim.drt:7:1: error: #error: frame three is broken"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("frame 3 (clock 0.6) failed on rank "), std::string::npos) << r.err;
+    EXPECT_EQ(occurrences(r.err, "frame three is broken\n"), 1) << r.err;
+    EXPECT_FALSE(fs::exists(frameName(dir + "/f", 3)));
+    EXPECT_FALSE(fs::exists(frameName(dir + "/f", 3) + ".drt-checkpoint"));
+    fs::remove_all(dir);
+}
+
+TEST(Mpi, AnAnimationOneRankCannotReadStopsEveryRankWithItsMessage) {
+    const std::string dir = test::tempDir();
+    animatedScene(dir);
+    const std::string ini = test::writeFile(dir + "/anim.ini", "Input_File_Name=" + dir +
+                                                                   "/anim.drt\nInitial_Frame=0\nFinal_Frame=4\n");
+    // Rank 2 is given an .ini file that is not there (as if its node lacked it).
+    const std::string command = "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 2 ]; then i=" + dir +
+                                "/missing.ini; else i=" + ini + "; fi; exec " + test::drtExecutable() +
+                                " render \"$i\" -o " + dir + "/f_%02d.exr -q'";
+    const test::CommandResult r = mpirun(3, command, 120);
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("drt (rank 2 of 3): "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("missing.ini"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(frameName(dir + "/f", 0)));
+    fs::remove_all(dir);
+}
+
+TEST(Mpi, ARankThatDiesEndsAWholeFrameJobNonZeroWithoutAHang) {
+    const std::string dir = test::tempDir();
+    expectAKilledRankToEndTheJob(test::drtExecutable() + " render " + test::sourcePath("examples/pendulum.drt") +
+                                 " -o " + dir + "/f_%02d.exr --frames 0..5 --width 160 --height 120 --spp 64 " +
+                                 "--threads 1");
+    fs::remove_all(dir);
+}
+
+TEST(Mpi, AnInterruptedWholeFrameJobResumesOnAnotherNumberOfRanks) {
+    const std::string dir = test::tempDir();
+    const std::string options = " --frames 0..9 --width 80 --height 60 --spp 40 --threads 1 -q";
+    const std::string scene = test::sourcePath("examples/pendulum.drt");
+    ASSERT_EQ(test::runDrt("render '" + scene + "' -o '" + dir + "/one_%02d.exr'" + options).exitCode, 0);
+    // Every rank is sent SIGTERM once the first frame is written (as Slurm's --signal does).
+    const std::string out = dir + "/f_%02d.exr";
+    const std::string command = "sh -c '" + test::drtExecutable() + " render " + scene + " -o " + out + options +
+                                " & pid=$!; while [ ! -e " + frameName(dir + "/f", 0) +
+                                " ] && kill -0 $pid 2>/dev/null; do sleep 0.01; done; kill -TERM $pid; wait $pid'";
+    const test::CommandResult interrupted = mpirun(3, command, 120);
+    EXPECT_EQ(interrupted.exitCode, 143) << interrupted.err;
+    int missing = 0, checkpoints = 0;
+    for (int frame = 0; frame <= 9; ++frame) {
+        missing += !fs::exists(frameName(dir + "/f", frame));
+        checkpoints += fs::exists(frameName(dir + "/f", frame) + ".drt-checkpoint");
+    }
+    EXPECT_GT(missing, 0) << "frames were started after the interruption";
+    EXPECT_GT(checkpoints, 0) << "the frames in progress saved no checkpoint";
+    // Resumed on 2 ranks: the frames written whole are kept, the checkpointed ones continue, the rest are rendered.
+    const test::CommandResult resumed =
+        mpirun(2, drt() + " render '" + scene + "' -o '" + out + "'" + options + " --resume");
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    for (int frame = 0; frame <= 9; ++frame) {
+        expectSamePixels(frameName(dir + "/f", frame), frameName(dir + "/one", frame));
+        EXPECT_FALSE(fs::exists(frameName(dir + "/f", frame) + ".drt-checkpoint")) << frame;
+    }
     fs::remove_all(dir);
 }
 

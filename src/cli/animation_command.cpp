@@ -44,8 +44,8 @@ FrameClock stillFrameClock(const RenderCommand& command) {
 
 FrameOptions frameOptions(const RenderCommand& command) { return {command.animation.shutter}; }
 
-int runAnimation(const RenderCommand& given, std::ostream& err,
-                 const std::function<int(const RenderCommand& frame)>& renderFrame) {
+int planAnimation(const RenderCommand& given, std::ostream& err, std::vector<AnimationFrame>& frames) {
+    frames.clear();
     RenderCommand command = given;
     const AnimationRequest& request = given.animation;
     if (std::string problem = shutterProblem(request); !problem.empty()) {
@@ -124,8 +124,27 @@ int runAnimation(const RenderCommand& given, std::ostream& err,
         frameCommand.animation = AnimationRequest{};
         frameCommand.animation.shutter = request.shutter;
         frameCommand.animation.frame = clock;
-        if (!command.quiet) err << fmt::format("drt: frame {} (clock {:g})\n", frame, clock.clock);
-        if (int status = renderFrame(frameCommand); status != kSuccess) return status;
+        frames.push_back({frame, clock.clock, std::move(frameCommand)});
+    }
+    return kSuccess;
+}
+
+std::string describeFrame(const AnimationFrame& frame) {
+    return fmt::format("frame {} (clock {:g})", frame.number, frame.clock);
+}
+
+int runAnimation(const RenderCommand& command, std::ostream& err,
+                 const std::function<int(const RenderCommand& frame)>& renderFrame) {
+    std::vector<AnimationFrame> frames;
+    if (int status = planAnimation(command, err, frames); status != kSuccess) return status;
+    return renderFramesInTurn(frames, command.quiet, err, renderFrame);
+}
+
+int renderFramesInTurn(const std::vector<AnimationFrame>& frames, bool quiet, std::ostream& err,
+                       const std::function<int(const RenderCommand& frame)>& renderFrame) {
+    for (const AnimationFrame& frame : frames) {
+        if (!quiet) err << "drt: " << describeFrame(frame) << "\n";
+        if (int status = renderFrame(frame.command); status != kSuccess) return status;
     }
     return kSuccess;
 }

@@ -121,6 +121,11 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
                        "Motion blur: the shutter opens at the frame's clock for this fraction of the frame "
                        "interval (overrides the camera's)")
         ->check(CLI::Range(0.0, 1.0));
+    render
+        ->add_option("--distribute", a.command.animation.distribute,
+                     "Under mpirun, an animation's frames: 'frames' (each rank renders whole frames), 'tiles' (each "
+                     "frame split over every rank) or 'auto' (frames when there are at least as many as ranks)")
+        ->check(CLI::IsMember({"auto", "frames", "tiles"}));
     render->add_option("--ini", a.command.animation.ini,
                        "POV-Ray .ini file with the animation options (a SCENE ending in .ini is read so too)");
     render->add_option("--dialect", a.command.pov.dialect,

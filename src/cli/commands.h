@@ -50,7 +50,11 @@ struct AnimationRequest {
     bool cyclic = false;                                 // --cyclic: POV-Ray's Cyclic_Animation
     std::optional<double> shutter;                       // --shutter F: fraction of the frame interval
     std::string ini;                                     // --ini FILE (also a SCENE ending in .ini)
-    std::optional<FrameClock> frame;                     // one frame of an animation (set by runAnimation)
+    std::optional<FrameClock> frame;                     // one frame of an animation (set by planAnimation)
+    // Under MPI, how an animation's frames are shared (--distribute): "frames"
+    // whole per rank, "tiles" each over every rank, "auto" (frames when there
+    // are at least as many as ranks).
+    std::string distribute = "auto";
 };
 
 struct RenderCommand {
@@ -89,7 +93,22 @@ int runMerge(const MergeCommand& command, std::ostream& out, std::ostream& err);
 CLI::App* addMergeSubcommand(CLI::App& app, MergeCommand& command);
 // Animation (animation_command.cpp): a frame range, or a scene given as an .ini file.
 bool wantsAnimation(const RenderCommand& command);
-// Each frame is rendered by `renderFrame` (cli/render_run.cpp: in this process or over MPI ranks).
+// One frame of an animation: its number, clock and the one-image render that makes it.
+struct AnimationFrame {
+    int number = 0;
+    double clock = 0;
+    RenderCommand command;
+};
+// The frames an animation renders, in order (usage and .ini errors printed to
+// `err`). Returns kSuccess or the exit status to stop with.
+int planAnimation(const RenderCommand& command, std::ostream& err, std::vector<AnimationFrame>& frames);
+// "frame 3 (clock 0.3)".
+std::string describeFrame(const AnimationFrame& frame);
+// Renders the frames one after another with `renderFrame` (cli/render_run.cpp:
+// in this process, or each over the ranks of an MPI job), stopping at the first
+// that fails. runAnimation = planAnimation + renderFramesInTurn.
+int renderFramesInTurn(const std::vector<AnimationFrame>& frames, bool quiet, std::ostream& err,
+                       const std::function<int(const RenderCommand& frame)>& renderFrame);
 int runAnimation(const RenderCommand& command, std::ostream& err,
                  const std::function<int(const RenderCommand& frame)>& renderFrame);
 // The clock and shutter of a single render (--clock, --clock-delta, --shutter; or a frame of an animation).

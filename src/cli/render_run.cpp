@@ -1,7 +1,9 @@
 // `drt render`'s render: in this process, or over the ranks of an MPI job
 // (distributed/mpi_render.h); from the start or from a checkpoint (--resume);
 // with periodic checkpoints (--checkpoint-every) and, on SIGINT or SIGTERM,
-// the finished tiles and a checkpoint saved before exiting 128 + signal.
+// the finished tiles and a checkpoint saved before exiting 128 + signal. An
+// animation's frames are rendered one after another, or under MPI, when there
+// are enough of them, whole frames per rank (distributed/frame_distribution.h).
 //
 // Under MPI every rank parses the scene itself (from the same files, which a
 // cluster shares): a scene model holds meshes, images and closures that have no
@@ -16,18 +18,22 @@
 #include "cli/render_parts.h"
 #include "distributed/checkpoint.h"
 #include "distributed/crop_merge.h"
+#include "distributed/frame_distribution.h"
 #include "distributed/mpi_render.h"
 #include "sampling/filter.h"
 #include "image/image.h"
 
 #include <chrono>
 #include <condition_variable>
+#include <filesystem>
 #include <fmt/format.h>
 #include <functional>
 #include <mutex>
 #include <ostream>
 #include <sstream>
 #include <thread>
+
+namespace fs = std::filesystem;
 
 namespace drt::cli {
 
@@ -40,8 +46,34 @@ struct Prepared {
     RenderIdentity identity;
     RunRecord record; // for the files' metadata
     std::optional<Checkpoint> checkpoint; // --resume, rank 0
+    bool alreadyWritten = false;          // --resume, rank 0: a frame finished by an earlier run
     double loadSeconds = 0;               // parsing and the files the scene names (--stats)
 };
+
+// The frame's clock, in the render's identity when it is not a still image's
+// (a checkpoint or crop made at another clock is another image).
+std::string frameSettings(const RenderCommand& command) {
+    const FrameClock frame = stillFrameClock(command);
+    std::string settings;
+    if (frame.clockOn || frame.clock != 0 || frame.clockDelta != 1)
+        settings = fmt::format(" frame={} clock={:.17g} clock_delta={:.17g}", frame.frameNumber, frame.clock,
+                               frame.clockDelta);
+    if (command.animation.shutter) settings += fmt::format(" shutter={:.17g}", *command.animation.shutter);
+    return settings;
+}
+
+// Whether `output` is the whole image of this render (its identity, no crop
+// or the same one, not a partial image), written by an earlier run.
+bool writtenBefore(const std::string& output, const RenderIdentity& identity, const RenderOptions& options) {
+    std::error_code ec;
+    if (!fs::is_regular_file(output, ec)) return false;
+    Image image;
+    Metadata metadata;
+    if (!readImage(output, image, &metadata).empty()) return false;
+    if (metadataValue(metadata, "drt:partial") || readIdentity(metadata) != identity) return false;
+    const std::optional<std::string> crop = metadataValue(metadata, "drt:crop");
+    return options.crop ? crop == formatWindow(*options.crop) : !crop;
+}
 
 int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepared& p) {
     // Refused before anything is read: an output that would replace the scene
@@ -82,11 +114,19 @@ int prepare(const RenderCommand& command, bool writes, std::ostream& err, Prepar
         p.options.crop = window;
     }
     p.identity = renderIdentity(p.options, p.record.sceneSha1);
+    p.identity.settings += frameSettings(command);
     if (!writes) return kSuccess;
     // Every output is checked before the (possibly long) render starts.
     if (int status = checkOutputs(command, err); status != kSuccess) return status;
     if (!command.resume) return kSuccess;
     const std::string path = checkpointPathFor(command.output);
+    std::error_code ec;
+    if (command.animation.frame && !fs::exists(path, ec)) {
+        // A frame of an animation without a checkpoint: kept if an earlier run
+        // wrote it whole, else rendered from the start.
+        p.alreadyWritten = writtenBefore(command.output, p.identity, p.options);
+        return kSuccess;
+    }
     Checkpoint checkpoint;
     if (std::string problem = readCheckpoint(path, checkpoint); !problem.empty()) {
         err << "drt: cannot resume: " << problem << "\n";
@@ -224,8 +264,16 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
             return worst;
         }
         p.options.tileSize = int(mpi->broadcast(uint64_t(p.options.tileSize))); // a resumed render's
+        p.alreadyWritten = mpi->broadcast(uint64_t(p.alreadyWritten)) != 0;
     } else if (status != kSuccess) {
         return status;
+    }
+    if (p.alreadyWritten) {
+        if (rank0 && !command.quiet)
+            err << fmt::format("drt: '{}' was written whole by an earlier run (same scene, frame and settings): "
+                               "kept\n",
+                               command.output);
+        return kSuccess;
     }
     if (!mpi && interrupt.interrupted()) {
         err << "drt: interrupted before the render started: nothing to save\n";
@@ -325,6 +373,46 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
     return kSuccess;
 }
 
+std::string frameFigures(const FrameDistributionReport& report) {
+    std::string frames;
+    for (size_t rank = 0; rank < report.framesPerRank.size(); ++rank)
+        frames += fmt::format("{}{}", rank ? ", " : "", report.framesPerRank[rank]);
+    return fmt::format("drt: MPI: {} ranks, whole frames; frames per rank {}; {} messages, {:.3f} MB\n",
+                       report.ranks, frames, report.messages, double(report.bytes) / 1e6);
+}
+
+// Each rank renders whole frames, as one process would, and writes them
+// (distributed/frame_distribution.h); rank 0 prints every frame's messages as
+// the frame finishes, so a frame's lines stay together.
+int renderWholeFrames(MpiJob& mpi, const std::vector<AnimationFrame>& frames, bool quiet, std::ostream& err,
+                      const InterruptHandler& interrupt) {
+    // Every rank writes images: its dynamic linking (half a second of CPU)
+    // overlaps the start of the job rather than stalling the first frame's render.
+    loadImageIoInBackground();
+    const auto render = [&](int index) {
+        RenderCommand command = frames[size_t(index)].command;
+        command.progress = false; // one progress line cannot show frames rendered at once
+        std::ostringstream messages;
+        FrameOutcome outcome;
+        outcome.status = renderProcess(command, messages, interrupt, nullptr);
+        outcome.messages = messages.str();
+        return outcome;
+    };
+    const auto finished = [&](int index, int rank, const FrameOutcome& outcome) {
+        const std::string frame = describeFrame(frames[size_t(index)]);
+        if (!quiet) err << fmt::format("drt: {}, rendered by rank {} of {}\n", frame, rank, mpi.size());
+        err << outcome.messages;
+        if (outcome.status != kSuccess)
+            err << fmt::format("drt: {} failed on rank {} of {} (exit status {}): no more frames are started\n",
+                               frame, rank, mpi.size(), outcome.status);
+    };
+    FrameDistributionReport report;
+    const int status =
+        renderFramesDistributed(mpi, int(frames.size()), render, finished, interrupt.flag(), &report);
+    if (mpi.rank() == 0 && !quiet) err << frameFigures(report);
+    return status;
+}
+
 } // namespace
 
 int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err) {
@@ -345,9 +433,28 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
     }
     const InterruptHandler interrupt;
     const auto renderOne = [&](const RenderCommand& c) { return renderProcess(c, err, interrupt, mpi ? &*mpi : nullptr); };
-    // An animation renders its frames one after another, each as a render of its own.
-    if (wantsAnimation(command)) return runAnimation(command, err, renderOne);
-    return renderOne(command);
+    if (!wantsAnimation(command)) return renderOne(command);
+    // An animation: every frame is a render of its own. Under MPI with enough
+    // frames each rank renders whole frames; else the frames are rendered one
+    // after another, each over every rank.
+    const bool rank0 = !mpi || mpi->rank() == 0;
+    std::ostringstream held; // the same usage errors on every rank are printed once
+    std::vector<AnimationFrame> frames;
+    int status = planAnimation(command, rank0 ? err : held, frames);
+    if (mpi) { // every rank stops, or none (an .ini file that differs between nodes)
+        const int worst = mpi->agree(status);
+        if (status != kSuccess && !rank0 && worst != kSuccess) {
+            std::istringstream lines(held.str());
+            for (std::string line; std::getline(lines, line);)
+                err << fmt::format("drt (rank {} of {}): {}\n", mpi->rank(), mpi->size(), line);
+        }
+        status = worst;
+    }
+    if (status != kSuccess) return status;
+    const std::string& split = command.animation.distribute;
+    if (mpi && (split == "frames" || (split == "auto" && wholeFramesPerRank(int(frames.size()), mpi->size()))))
+        return renderWholeFrames(*mpi, frames, command.quiet, err, interrupt);
+    return renderFramesInTurn(frames, command.quiet || !rank0, err, renderOne);
 }
 
 } // namespace drt::cli

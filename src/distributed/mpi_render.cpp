@@ -16,15 +16,13 @@
 // threads need.
 #include "distributed/mpi_render.h"
 
-#include <chrono>
 #include <cstdlib>
-#include <cstring>
 #include <deque>
-#include <list>
 #include <exception>
 #include <thread>
 
 #ifdef DRT_HAVE_MPI
+#include "distributed/mpi_messages.h"
 #include <mpi.h>
 #endif
 
@@ -94,76 +92,9 @@ void MpiJob::abort(int status) {
 
 namespace {
 
+using namespace mpi_wire;
+
 enum Tag { kRequest = 1, kTask = 2, kResult = 3, kStop = 4, kReport = 5 };
-
-using Clock = std::chrono::steady_clock;
-
-void pause() { std::this_thread::sleep_for(std::chrono::microseconds(200)); }
-
-// What a rank sends, without blocking: a blocking send of a large message
-// waits for the receiver to take it, and two ranks each sending to the other
-// would wait for ever. Each message keeps its bytes until MPI is done with them.
-class Outbox {
-public:
-    ~Outbox() { flush(); }
-    void send(std::vector<std::byte> bytes, int to, Tag tag) {
-        ++messages;
-        this->bytes += bytes.size();
-        pending_.push_back({std::move(bytes), MPI_REQUEST_NULL});
-        Pending& p = pending_.back();
-        MPI_Isend(p.bytes.data(), int(p.bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD, &p.request);
-        progress();
-    }
-    // Forgets the messages MPI has sent.
-    void progress() {
-        for (auto it = pending_.begin(); it != pending_.end();) {
-            int done = 0;
-            MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
-            it = done ? pending_.erase(it) : std::next(it);
-        }
-    }
-    // Waits until every message is sent.
-    void flush() {
-        while (progress(), !pending_.empty()) pause();
-    }
-    uint64_t messages = 0, bytes = 0;
-
-private:
-    struct Pending {
-        std::vector<std::byte> bytes;
-        MPI_Request request;
-    };
-    std::list<Pending> pending_; // a list: MPI holds pointers into the bytes
-};
-
-// The next message from `source` (or anyone), if one is waiting: its bytes,
-// sender and tag.
-bool receive(int source, std::vector<std::byte>& bytes, int& from, int& tag) {
-    int flag = 0;
-    MPI_Status status;
-    MPI_Iprobe(source, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
-    if (!flag) return false;
-    int size = 0;
-    MPI_Get_count(&status, MPI_BYTE, &size);
-    bytes.resize(size_t(size));
-    MPI_Recv(bytes.data(), size, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    from = status.MPI_SOURCE;
-    tag = status.MPI_TAG;
-    return true;
-}
-
-template <class T> void append(std::vector<std::byte>& out, const T& value) {
-    const size_t at = out.size();
-    out.resize(at + sizeof value);
-    std::memcpy(out.data() + at, &value, sizeof value);
-}
-
-template <class T> T readAt(const std::vector<std::byte>& bytes, size_t offset) {
-    if (offset + sizeof(T) > bytes.size()) throw RenderError("malformed message between ranks");
-    T value;
-    std::memcpy(&value, bytes.data() + offset, sizeof value);
-    return value;
-}
 
 // Forwards to another scheduler, counting the tasks and the time spent on them.
 class CountingScheduler : public TileScheduler {
@@ -360,7 +291,7 @@ TileRenderInfo renderAsRank0(MpiJob& job, const Scene& scene, const RenderOption
         }
         serve();
         if (pool.over()) break;
-        if (!busy) pause();
+        if (!busy) pauseBriefly();
     }
     pool.wake();
     for (int rank = 1; rank < job.size(); ++rank) traffic.send({}, rank, kStop);
@@ -381,7 +312,7 @@ TileRenderInfo renderAsRank0(MpiJob& job, const Scene& scene, const RenderOption
     while (reported < job.size()) {
         traffic.progress();
         if (!receive(MPI_ANY_SOURCE, message, from, tag)) {
-            pause();
+            pauseBriefly();
             continue;
         }
         if (tag != kReport) continue; // a request or result that crossed kStop
@@ -435,7 +366,7 @@ TileRenderInfo renderAsWorker(MpiJob& job, const Scene& scene, const RenderOptio
                 scheduler.push(task);
             }
         }
-        if (!busy) pause();
+        if (!busy) pauseBriefly();
     }
     scheduler.stop();
     const TileRenderInfo info = thread.join();
