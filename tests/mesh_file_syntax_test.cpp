@@ -177,5 +177,33 @@ TEST(MeshFileSyntax, EveryFrontEndErrorIsLocated) {
     EXPECT_NE(folder.err.find("it is a directory"), std::string::npos) << folder.err;
 }
 
+// drt convert keeps a model as `mesh { file }` with the file's absolute path,
+// which resolves from wherever the output is written; the converted scene
+// renders the same image (drt compare: no pixel differs).
+TEST(MeshFileSyntax, ConvertKeepsTheModelFileReference) {
+    const std::string dir = test::tempDir();
+    test::writeFile(dir + "/in/models/square.obj", kSquareObj);
+    test::writeFile(dir + "/in/scene.pov", R"(
+camera { orthographic location <1, 1, -5> direction z right 2 * x up 2 * y }
+light_source { <1, 3, -5> color rgb 1 }
+mesh { file "models/square.obj"
+  pigment { uv_mapping checker color rgb <1, 0, 0>, color rgb <0, 0, 1> scale 0.25 }
+  rotate 10 * y }
+)");
+    std::filesystem::create_directories(dir + "/out");
+    const test::CommandResult c = test::runDrt("convert " + dir + "/in/scene.pov -o " + dir + "/out/converted.drt");
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    const std::string text = test::readFile(dir + "/out/converted.drt");
+    const std::string absolute = std::filesystem::canonical(dir + "/in/models/square.obj").string();
+    EXPECT_NE(text.find("mesh { file \"" + absolute + "\""), std::string::npos) << text;
+    EXPECT_EQ(text.find("mesh2"), std::string::npos) << text; // the reference, not the triangles
+    const std::string size = " --width 16 --height 16 --spp 1";
+    ASSERT_EQ(test::runDrt("render " + dir + "/in/scene.pov -o " + dir + "/a.png" + size).exitCode, 0);
+    ASSERT_EQ(test::runDrt("render " + dir + "/out/converted.drt -o " + dir + "/b.png" + size).exitCode, 0);
+    const test::CommandResult same =
+        test::runDrt("compare " + dir + "/b.png " + dir + "/a.png --fail 0 --fail-percent 0");
+    EXPECT_EQ(same.exitCode, 0) << same.out << same.err;
+}
+
 } // namespace
 } // namespace drt

@@ -252,8 +252,8 @@ TEST(Parser, EveryShape) {
     const Mesh& smooth = std::get<Mesh>(s.objects[6].shape);
     ASSERT_EQ(smooth.normalIndices.size(), 1u);
     expectNear(smooth.normals[smooth.normalIndices[0][1]], {0, 0, 1});
-    const Mesh& m = std::get<Mesh>(s.objects[7].shape);
-    EXPECT_EQ(m.triangles.size(), 2u);
+    const IndexedMesh& m = *std::get<Mesh>(s.objects[7].shape).indexed;
+    EXPECT_EQ(m.triangleCount(), 2u);
     EXPECT_TRUE(m.normals.empty());
 }
 

@@ -189,10 +189,10 @@ TEST(PovScene, PrimitivesAndMeshes) {
     EXPECT_EQ(std::get<Disc>(s.objects[1].shape).holeRadius, 1);
     EXPECT_EQ(std::get<Torus>(s.objects[2].shape).majorRadius, 3);
     EXPECT_EQ(std::get<Mesh>(s.objects[4].shape).normals.size(), 3u);
-    EXPECT_EQ(std::get<Mesh>(s.objects[5].shape).triangles.size(), 2u);
-    const Mesh& m2 = std::get<Mesh>(s.objects[6].shape);
-    EXPECT_EQ(m2.vertices.size(), 4u);
-    EXPECT_EQ(m2.triangles[1], (std::array<int, 3>{1, 2, 3}));
+    EXPECT_EQ(std::get<Mesh>(s.objects[5].shape).indexed->triangleCount(), 2u);
+    const IndexedMesh& m2 = *std::get<Mesh>(s.objects[6].shape).indexed;
+    EXPECT_EQ(m2.positions.size(), 4u);
+    EXPECT_EQ(m2.triangle(1), (std::array<uint32_t, 3>{1, 2, 3}));
 }
 
 TEST(PovScene, FinishInteriorAndColourMaps) {

@@ -78,7 +78,11 @@ bool sameShape(const Shape& a, const Shape& b) {
         }
         bool operator()(const Mesh& s) const {
             const auto& o = std::get<Mesh>(other);
-            return s.source == o.source && s.vertices == o.vertices && s.triangles == o.triangles &&
+            const bool sameIndexed = s.indexed == o.indexed ||
+                                     (s.indexed && o.indexed && sameIndexedMesh(*s.indexed, *o.indexed));
+            const bool sameSource = s.source == o.source || (s.source && o.source && s.source->kind == o.source->kind &&
+                                                               s.source->path == o.source->path);
+            return sameSource && sameIndexed && s.vertices == o.vertices && s.triangles == o.triangles &&
                    s.normals == o.normals && s.normalIndices == o.normalIndices;
         }
         bool operator()(const Csg& s) const {

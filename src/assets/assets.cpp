@@ -12,13 +12,15 @@ bool resolveAssets(Scene& scene, Diagnostics& diags) {
     // Meshes first: a model file's materials may name image maps.
     // Copies of one model (a declared mesh used many times) share one
     // MeshSource: the file is read once and its triangles shared (instancing).
+    // A model keeps its MeshSource beside the triangles, so that a scene
+    // written back (drt convert) names the file instead of its triangles.
     std::map<const MeshSource*, LoadedModel> models;
     forEachObject(scene, [&](Object& object) {
         Mesh* mesh = std::get_if<Mesh>(&object.shape);
-        if (!mesh || !mesh->source) return;
+        if (!mesh || !mesh->source || mesh->indexed) return;
         const std::shared_ptr<const MeshSource> source = mesh->source;
-        mesh->source.reset();
         if (source->kind != MeshSource::Kind::ModelFile) {
+            mesh->source.reset();
             if (const std::string error = loadMeshSource(*source, *mesh, diags); !error.empty())
                 diags.error(source->loc, error);
             return;
@@ -53,7 +55,8 @@ bool assetsResolved(const Scene& scene) {
         if (pigment.imageMap && pigment.imageMap->rgbt.empty()) resolved = false;
     });
     forEachObject(scene, [&](const Object& object) {
-        if (const Mesh* mesh = std::get_if<Mesh>(&object.shape); mesh && mesh->source) resolved = false;
+        if (const Mesh* mesh = std::get_if<Mesh>(&object.shape); mesh && mesh->source && !mesh->indexed)
+            resolved = false;
     });
     return resolved;
 }

@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -40,8 +41,10 @@ std::optional<Pigment> materialPigment(const aiMaterial& material, double workin
     // grey; PLY, which has no materials at all: a nameless white one).
     const std::string name = material.GetName().C_Str();
     std::string extension = std::filesystem::path(source.path).extension().string();
-    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (name == AI_DEFAULT_MATERIAL_NAME || (name.empty() && extension == ".ply")) return std::nullopt;
+    for (char& c : extension)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (name == AI_DEFAULT_MATERIAL_NAME || (name.empty() && extension == ".ply"))
+        return std::nullopt;
     aiString file;
     aiColor4D color(0.6f, 0.6f, 0.6f, 1.0f);
     const bool hasColor = material.Get(AI_MATKEY_BASE_COLOR, color) == AI_SUCCESS ||
@@ -72,6 +75,55 @@ std::optional<Pigment> materialPigment(const aiMaterial& material, double workin
     return pigment;
 }
 
+// The vertices of one aiMesh with identical position, normal and uv (bit for
+// bit) merged: remap[v] is vertex v's index among the distinct ones,
+// firstOfEach[i] the first vertex of distinct vertex i.
+struct WeldedVertices {
+    std::vector<uint32_t> remap, firstOfEach;
+};
+
+WeldedVertices weld(const aiMesh& m, bool withNormals, bool withUvs) {
+    // The bytes that make a vertex: position, then normal and uv when kept.
+    const auto key = [&](uint32_t v, float(&k)[8]) {
+        const aiVector3D& p = m.mVertices[v];
+        const aiVector3D n = withNormals && m.HasNormals() ? m.mNormals[v] : aiVector3D(0, 0, 0);
+        const aiVector3D t = withUvs && m.HasTextureCoords(0) ? m.mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+        const float values[8] = {p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y};
+        std::memcpy(k, values, sizeof values);
+    };
+    // Open addressing, linear probing, at most half full.
+    size_t slots = 16;
+    while (slots < 2 * size_t(m.mNumVertices))
+        slots *= 2;
+    constexpr uint32_t kEmpty = 0xFFFFFFFFu;
+    std::vector<uint32_t> table(slots, kEmpty); // distinct-vertex index
+    WeldedVertices out;
+    out.remap.resize(m.mNumVertices);
+    float k[8], other[8];
+    for (uint32_t v = 0; v < m.mNumVertices; ++v) {
+        key(v, k);
+        uint64_t words[4], hash = 0;
+        std::memcpy(words, k, sizeof k);
+        for (const uint64_t w : words) // multiply-xorshift over the key's four 64-bit words
+            hash = ((hash ^ w) * 0x9E3779B97F4A7C15ull) ^ (hash >> 29);
+        hash ^= hash >> 32;
+        for (size_t slot = hash & (slots - 1);; slot = (slot + 1) & (slots - 1)) {
+            if (table[slot] == kEmpty) {
+                table[slot] = uint32_t(out.firstOfEach.size());
+                out.remap[v] = table[slot];
+                out.firstOfEach.push_back(v);
+                break;
+            }
+            key(out.firstOfEach[table[slot]], other);
+            if (std::memcmp(k, other, sizeof k) == 0) {
+                out.remap[v] = table[slot];
+                break;
+            }
+        }
+    }
+    return out;
+}
+
 // "" if the file can be read, else why not.
 std::string unreadable(const std::string& path) {
     std::error_code ec;
@@ -99,8 +151,9 @@ std::string loadModelFile(const MeshSource& source, double workingGamma, LoadedM
     // up (a file without them shows flat faces); UVs keep OpenGL's v-up
     // convention, the image map's.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-                           aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure;
+    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_PreTransformVertices |
+                           aiProcess_ValidateDataStructure;
+    // No aiProcess_JoinIdenticalVertices: weld() below does it for a fraction of the time and memory.
     const aiScene* scene = importer.ReadFile(source.path, flags);
     if (!scene) {
         const std::string why = importer.GetErrorString();
@@ -112,23 +165,37 @@ std::string loadModelFile(const MeshSource& source, double workingGamma, LoadedM
     if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
         return prefix + "the file is incomplete";
 
-    auto built = std::make_shared<IndexedMesh>();
-    IndexedMesh& out = *built;
-    size_t vertexTotal = 0, triangleTotal = 0;
+    // Which aiMeshes are triangles, and for each its vertices welded
+    // (assimp's OBJ importer gives every corner of every face a vertex of its
+    // own; assimp's JoinIdenticalVertices step costs seconds and hundreds of
+    // bytes per triangle on a million triangles, this a fraction of both).
     bool anyNormals = false, anyUvs = false;
+    size_t triangleTotal = 0;
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
         const aiMesh& m = *scene->mMeshes[i];
         if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
             continue;
-        vertexTotal += m.mNumVertices;
         triangleTotal += m.mNumFaces;
         anyNormals = anyNormals || m.HasNormals();
         anyUvs = anyUvs || m.HasTextureCoords(0);
     }
     if (triangleTotal == 0)
         return prefix + "the file holds no triangles";
-    if (vertexTotal >= kObjectTexture || triangleTotal >= kObjectTexture / 3)
+    if (triangleTotal >= kObjectTexture / 3)
         return prefix + "too many triangles";
+    std::vector<WeldedVertices> welded(scene->mNumMeshes);
+    size_t vertexTotal = 0;
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+        if (scene->mMeshes[i]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) {
+            welded[i] = weld(*scene->mMeshes[i], anyNormals, anyUvs);
+            vertexTotal += welded[i].firstOfEach.size();
+        }
+    }
+    if (vertexTotal >= kObjectTexture)
+        return prefix + "too many vertices";
+
+    auto built = std::make_shared<IndexedMesh>();
+    IndexedMesh& out = *built;
     out.positions.reserve(vertexTotal + 1); // + 1: padForEmbree
     out.indices.reserve(3 * triangleTotal);
     if (anyNormals)
@@ -137,14 +204,31 @@ std::string loadModelFile(const MeshSource& source, double workingGamma, LoadedM
         out.uvs.reserve(vertexTotal);
 
     std::map<unsigned, uint32_t> textureOfMaterial;
-    std::vector<uint32_t> faceTextures;
-    bool anyTexture = false;
+    std::vector<uint32_t> textureOfMesh(scene->mNumMeshes, kObjectTexture);
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+        const aiMesh& m = *scene->mMeshes[i];
+        if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || m.mMaterialIndex >= scene->mNumMaterials)
+            continue;
+        auto [it, fresh] = textureOfMaterial.try_emplace(m.mMaterialIndex, kObjectTexture);
+        if (fresh) {
+            if (auto pigment =
+                    materialPigment(*scene->mMaterials[m.mMaterialIndex], workingGamma, source, diags)) {
+                model.materials.push_back(std::move(*pigment));
+                it->second = uint32_t(model.materials.size() - 1);
+            }
+        }
+        textureOfMesh[i] = it->second;
+    }
+    const bool anyTexture = std::any_of(textureOfMesh.begin(), textureOfMesh.end(),
+                                        [](uint32_t t) { return t != kObjectTexture; });
+    if (anyTexture)
+        out.faceTextures.reserve(3 * triangleTotal);
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
         const aiMesh& m = *scene->mMeshes[i];
         if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
             continue;
         const uint32_t base = uint32_t(out.positions.size());
-        for (unsigned v = 0; v < m.mNumVertices; ++v) {
+        for (const uint32_t v : welded[i].firstOfEach) {
             const aiVector3D& p = m.mVertices[v];
             out.positions.push_back({p.x, p.y, p.z});
             if (anyNormals) {
@@ -158,31 +242,19 @@ std::string loadModelFile(const MeshSource& source, double workingGamma, LoadedM
                 out.uvs.push_back({t.x, t.y});
             }
         }
-        uint32_t texture = kObjectTexture;
-        if (m.mMaterialIndex < scene->mNumMaterials) {
-            auto [it, fresh] = textureOfMaterial.try_emplace(m.mMaterialIndex, kObjectTexture);
-            if (fresh) {
-                if (auto pigment =
-                        materialPigment(*scene->mMaterials[m.mMaterialIndex], workingGamma, source, diags)) {
-                    model.materials.push_back(std::move(*pigment));
-                    it->second = uint32_t(model.materials.size() - 1);
-                }
-            }
-            texture = it->second;
-        }
-        anyTexture = anyTexture || texture != kObjectTexture;
+        const std::vector<uint32_t>& remap = welded[i].remap;
+        std::vector<uint32_t>().swap(welded[i].firstOfEach);
         for (unsigned f = 0; f < m.mNumFaces; ++f) {
             const aiFace& face = m.mFaces[f];
             if (face.mNumIndices != 3)
                 continue;
             for (int k = 0; k < 3; ++k)
-                out.indices.push_back(base + face.mIndices[k]);
-            for (int k = 0; k < 3; ++k)
-                faceTextures.push_back(texture);
+                out.indices.push_back(base + remap[face.mIndices[k]]);
+            if (anyTexture)
+                out.faceTextures.insert(out.faceTextures.end(), 3, textureOfMesh[i]);
         }
+        std::vector<uint32_t>().swap(welded[i].remap);
     }
-    if (anyTexture)
-        out.faceTextures = std::move(faceTextures);
     if (const std::string error = validateIndexedMesh(out, model.materials.size()); !error.empty())
         return prefix + error;
     padForEmbree(out);

@@ -158,7 +158,7 @@ void Evaluator::applyTransform(ObjectValue& po, const Transform& t, SourceLoc) {
     if (o.motion.empty())
         for (Object& clip : o.clippedBy) clip.transform = clip.transform.then(t);
     appendTransform(o.transform, o.motion, t);
-    transformTextureSpaces(o.texture, t);
+    transformObjectTextures(o, t);
     transformInteriorSpaces(o.interior, t);
     for (Light& l : po.lights) transformLight(l, t);
 }
@@ -172,7 +172,7 @@ std::vector<Object> csgChildren(Evaluator& e, ObjectValue& po, const Transform& 
     std::vector<Object> children;
     for (ObjectValue& child : po.children) {
         Object o = std::move(child.object);
-        transformTextureSpaces(o.texture, csgToWorld);
+        transformObjectTextures(o, csgToWorld);
         transformInteriorSpaces(o.interior, csgToWorld);
         if (child.isCsg()) std::get<Csg>(o.shape).children = csgChildren(e, child, o.transform.then(csgToWorld));
         children.push_back(std::move(o));
@@ -540,7 +540,7 @@ struct Flattener {
         }
         o.transform = before;
         o.motion = std::move(chain);
-        transformTextureSpaces(o.texture, parentRest);
+        transformObjectTextures(o, parentRest);
         transformInteriorSpaces(o.interior, parentRest);
         o.noShadow = noShadow;
         o.hollow = hollow;

@@ -23,6 +23,7 @@ struct Token;
 struct ShapeText {
     int indent = 0;                    // of the shape's line, for entries written over several lines
     std::set<std::string>& problems;   // what .drt cannot express, one line per kind
+    const Object* object = nullptr;    // the object the shape belongs to (a mesh's textures are placed by it)
 };
 
 // ShapeSyntax<T> for each T in Shape:

@@ -1,12 +1,11 @@
 // Triangle meshes:
 //   triangle { a, b, c }    smooth_triangle { a, na, b, nb, c, nc }
-//   mesh { triangle {...} smooth_triangle {...} ... }
+//   mesh { triangle {...} smooth_triangle {...} ... }  (shapes_mesh_indexed.cpp)
 //   mesh { file "model.obj" }  (OBJ, PLY, glTF 2.0; the file is read after parsing)
-//   mesh2 { vertex_vectors { n, v... } [normal_vectors {...}] face_indices { n, <i,j,k>... } [normal_indices {...}] }
+//   mesh2 { vertex_vectors ... face_indices ... }  (shapes_mesh_indexed.cpp)
 //   polygon { n, p1, ..., pn }   (triangulated as a fan: exact for convex outlines)
 //   height_field { [type] "file" [smooth] [water_level w] }  (the image is read after parsing)
-#include "lang/evaluator.h"
-#include "lang/shape_syntax.h"
+#include "lang/mesh_syntax.h"
 #include "lang/writer_detail.h"
 
 #include <filesystem>
@@ -16,65 +15,45 @@ namespace drt::lang {
 
 using writer::vector;
 
-namespace {
-
-// Sets a flag for one expression, cleared again even if it fails.
-struct FlagFor {
-    bool& flag;
-    explicit FlagFor(bool& f) : flag(f) { flag = true; }
-    ~FlagFor() { flag = false; }
-};
-
-void separator(Evaluator& e, const char* context) {
+void meshSeparator(Evaluator& e, const char* context) {
     if (e.syntax().requireCommas) e.expectSymbol(",", context);
     else e.acceptSymbol(",");
 }
+
+TriangleCorners readTriangleCorners(Evaluator& e, bool smooth) {
+    TriangleCorners c;
+    for (int i = 0; i < 3; ++i) {
+        if (i > 0) meshSeparator(e, "between triangle corners");
+        c.corners[i] = e.vectorExpr("a triangle corner <x, y, z>");
+        if (smooth) {
+            meshSeparator(e, "after the corner");
+            const SourceLoc loc = e.peek().loc;
+            c.normals[i] = e.vectorExpr("a corner normal <x, y, z>");
+            if (!(length(c.normals[i]) > 0)) {
+                e.error(loc, "smooth_triangle normal must not be a zero-length vector");
+                c.normals[i] = {0, 1, 0};
+            }
+            c.normals[i] = normalize(c.normals[i]);
+        }
+    }
+    return c;
+}
+
+namespace {
 
 Vec3 faceNormal(const Vec3& a, const Vec3& b, const Vec3& c) {
     Vec3 n = cross(b - a, c - a);
     return length(n) > 0 ? normalize(n) : n;
 }
 
-// One triangle's corners (and normals) into `mesh`. Normals are per triangle
-// once any triangle has them: flat triangles in a mixed mesh get their face
-// normal at all three corners.
+// A lone triangle or smooth_triangle (outside a mesh).
 void triangle(Evaluator& e, Mesh& mesh, bool smooth) {
-    Vec3 corners[3], normals[3];
-    for (int i = 0; i < 3; ++i) {
-        if (i > 0) separator(e, "between triangle corners");
-        corners[i] = e.vectorExpr("a triangle corner <x, y, z>");
-        if (smooth) {
-            separator(e, "after the corner");
-            const SourceLoc loc = e.peek().loc;
-            normals[i] = e.vectorExpr("a corner normal <x, y, z>");
-            if (!(length(normals[i]) > 0)) {
-                e.error(loc, "smooth_triangle normal must not be a zero-length vector");
-                normals[i] = {0, 1, 0};
-            }
-        }
-    }
-    const int base = static_cast<int>(mesh.vertices.size());
-    for (const Vec3& c : corners) mesh.vertices.push_back(c);
-    mesh.triangles.push_back({base, base + 1, base + 2});
-    const bool hadNormals = !mesh.normalIndices.empty();
-    if (smooth && !hadNormals) {
-        for (size_t t = 0; t + 1 < mesh.triangles.size(); ++t) {
-            const auto& tri = mesh.triangles[t];
-            const int ni = static_cast<int>(mesh.normals.size());
-            mesh.normals.push_back(faceNormal(mesh.vertices[size_t(tri[0])], mesh.vertices[size_t(tri[1])],
-                                              mesh.vertices[size_t(tri[2])]));
-            mesh.normalIndices.push_back({ni, ni, ni});
-        }
-    }
-    if (smooth || hadNormals) {
-        const int ni = static_cast<int>(mesh.normals.size());
-        if (smooth) {
-            for (const Vec3& n : normals) mesh.normals.push_back(normalize(n));
-            mesh.normalIndices.push_back({ni, ni + 1, ni + 2});
-        } else {
-            mesh.normals.push_back(faceNormal(corners[0], corners[1], corners[2]));
-            mesh.normalIndices.push_back({ni, ni, ni});
-        }
+    const TriangleCorners c = readTriangleCorners(e, smooth);
+    mesh.vertices.assign(std::begin(c.corners), std::end(c.corners));
+    mesh.triangles.push_back({0, 1, 2});
+    if (smooth) {
+        mesh.normals.assign(std::begin(c.normals), std::end(c.normals));
+        mesh.normalIndices.push_back({0, 1, 2});
     }
 }
 
@@ -102,98 +81,7 @@ void readMesh(Evaluator& e, const Token& keyword, Mesh& m) {
         readModelFile(e, m);
         return;
     }
-    for (;;) {
-        const Token t = e.peek();
-        if (!(t.isWord("triangle") || t.isWord("smooth_triangle"))) break;
-        e.next();
-        const bool smooth = t.text == "smooth_triangle";
-        e.expectSymbol("{", "after '" + t.text + "'");
-        triangle(e, m, smooth);
-        for (;;) {
-            const Token s = e.next();
-            if (s.is("}")) break;
-            if (s.isWord("texture")) {
-                e.unsupported("mesh-texture", s.loc, "per-triangle textures in a mesh are not supported; ignored");
-                e.texture(Texture{});
-            } else {
-                e.failExpected(s, "'}' to close the triangle");
-            }
-        }
-    }
-    if (m.triangles.empty()) e.error(keyword.loc, "mesh has no triangles");
-}
-
-void readMesh2(Evaluator& e, const Token& keyword, Mesh& m) {
-    // `{ n, item, ... }`: the count, then the items; `14 <-1, ...` is a count and a vector.
-    auto count = [&](const char* what) {
-        e.expectSymbol("{", "to open the list");
-        const SourceLoc at = e.peek().loc;
-        const double n = [&] {
-            FlagFor flag(e.countBeforeVector_);
-            return e.floatExpr("the number of items");
-        }();
-        if (std::isfinite(n) && n != std::floor(n) && e.syntax().strictValues)
-            e.fail(at, "the number of items must be a whole number" + e.got(n));
-        return e.countValue(n, at, what, 0, double(e.diags().limits().meshTriangles));
-    };
-    auto vectorList = [&](std::vector<Vec3>& out) {
-        const int n = count("mesh2 vector count");
-        for (int i = 0; i < n; ++i) {
-            e.acceptSymbol(",");
-            out.push_back(e.vectorExpr());
-        }
-        e.acceptSymbol(",");
-        e.expectSymbol("}", "after the listed count of items");
-    };
-    auto indexList = [&](std::vector<std::array<int, 3>>& out, int maxIndex, const char* what) {
-        const int n = count("mesh2 index count");
-        const std::string indexName = std::string(what) + " index";
-        for (int i = 0; i < n; ++i) {
-            e.acceptSymbol(",");
-            const SourceLoc at = e.peek().loc;
-            const Vec3 v = e.vectorExpr();
-            std::array<int, 3> tri{};
-            for (int k = 0; k < 3; ++k)
-                tri[size_t(k)] = e.countValue(v[k], at, indexName.c_str(), 0, double(maxIndex) - 1);
-            out.push_back(tri);
-            // Optional texture indices after a face.
-            while (e.peekOperator().is(",")) {
-                e.next();
-                if (e.peek().is("<") || e.peek().is("}")) {
-                    e.pushBack(Token{TokenKind::Symbol, ",", 0, at});
-                    break;
-                }
-                e.floatExpr();
-            }
-        }
-        e.acceptSymbol(",");
-        e.expectSymbol("}", "after the listed count of items");
-    };
-    for (;;) {
-        const Token t = e.peek();
-        if (t.isWord("vertex_vectors")) e.next(), vectorList(m.vertices);
-        else if (t.isWord("normal_vectors")) e.next(), vectorList(m.normals);
-        else if (t.isWord("face_indices")) e.next(), indexList(m.triangles, int(m.vertices.size()), "vertex");
-        else if (t.isWord("normal_indices")) e.next(), indexList(m.normalIndices, int(m.normals.size()), "normal");
-        else if (t.isWord("uv_vectors") || t.isWord("uv_indices") || t.isWord("texture_list")) {
-            e.next();
-            if (t.text == "texture_list")
-                e.unsupported("mesh-texture", t.loc, "per-triangle textures in a mesh are not supported; ignored");
-            e.expectSymbol("{", "after '" + t.text + "'");
-            e.skipBlock();
-        } else {
-            break;
-        }
-    }
-    if (m.triangles.empty()) e.fail(keyword.loc, "mesh2 has no face_indices");
-    if (!m.normals.empty() && m.normalIndices.empty()) {
-        // Without normal_indices, normals pair with vertices one to one.
-        if (m.normals.size() != m.vertices.size())
-            e.fail(keyword.loc, "mesh2: normal_vectors needs normal_indices or one normal per vertex");
-        m.normalIndices = m.triangles;
-    }
-    if (!m.normalIndices.empty() && m.normalIndices.size() != m.triangles.size())
-        e.fail(keyword.loc, "mesh2: normal_indices and face_indices have different counts");
+    readTriangleMesh(e, keyword, m);
 }
 
 void readPolygon(Evaluator& e, const Token& keyword, Mesh& m) {
@@ -283,6 +171,7 @@ std::string ShapeSyntax<Mesh>::head(const Mesh& m, ShapeText& text) {
     // A model file not read yet: its name, which reads back to the same mesh.
     if (m.source && m.source->kind == MeshSource::Kind::ModelFile)
         return "mesh { file " + writer::quoted(m.source->path);
+    if (m.indexed) return indexedMeshHead(m, text);
     if (m.triangles.empty()) {
         text.problems.insert("a mesh with no triangles (left out)");
         return "";

@@ -303,7 +303,7 @@ void SceneWriter::object(const Object& o, int indent) {
             baked.transform = child.transform.then(o.transform);
             for (Object& clip : baked.clippedBy) clip.transform = clip.transform.then(o.transform);
             if (!o.motion.empty()) {
-                transformTextureSpaces(baked.texture, undoAfterMotions);
+                transformObjectTextures(baked, undoAfterMotions);
                 transformInteriorSpaces(baked.interior, undoAfterMotions);
             }
             object(baked, indent + 1);
@@ -460,7 +460,7 @@ std::string SceneWriter::motionText(const Motion& m) {
 // The opening of an object's block, through its fixed arguments (each
 // shape's entry in shapes_*.cpp).
 std::string SceneWriter::shapeHead(const Object& o, int indent) {
-    lang::ShapeText text{indent, problems_};
+    lang::ShapeText text{indent, problems_, &o};
     return lang::shapeHead(o.shape, text);
 }
 

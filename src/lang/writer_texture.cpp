@@ -97,18 +97,21 @@ bool isDefaultInterior(const Interior& i) {
 // that own-then-suffix composes to p.toWorld.
 std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool& exact,
                         std::set<std::string>& problems) {
-    const Transform after = writer::compose(suffix);
+    // A uv-mapped pattern lives in uv space, which the transforms after it
+    // (the object's) do not move: it is written with its own transform only.
+    const std::vector<Step> placedBy = p.uvMapping ? std::vector<Step>{} : suffix;
+    const Transform after = writer::compose(placedBy);
     std::vector<Step> own;
     // A solid colour has no pattern space: its transform is never used, so it
     // is not written.
     if (p.pattern != PatternKind::Solid && !writer::sameTransform(p.toWorld, after)) {
         own = decompose(p.toWorld.then(after.inverted()));
-        exact = exact && writer::sameTransform(writer::compose(suffix, writer::compose(own)), p.toWorld);
+        exact = exact && writer::sameTransform(writer::compose(placedBy, writer::compose(own)), p.toWorld);
     }
     std::vector<Step> childSuffix = own;
-    childSuffix.insert(childSuffix.end(), suffix.begin(), suffix.end());
+    childSuffix.insert(childSuffix.end(), placedBy.begin(), placedBy.end());
 
-    std::string text;
+    std::string text = p.uvMapping && p.pattern != PatternKind::Solid ? " uv_mapping" : "";
     auto subPigment = [&](const Pigment& child) {
         const std::string body = pigmentBody(child, childSuffix, exact, problems);
         if (child.pattern == PatternKind::Solid && body.find(" matrix") == std::string::npos &&

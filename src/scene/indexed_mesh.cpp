@@ -1,6 +1,7 @@
 #include "scene/indexed_mesh.h"
 
 #include <cmath>
+#include <cstring>
 
 namespace drt {
 
@@ -67,6 +68,20 @@ std::string validateIndexedMesh(const IndexedMesh& mesh, size_t textureCount) {
                        std::to_string(textureCount) + " textures)";
     }
     return "";
+}
+
+namespace {
+
+template <class T> bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+} // namespace
+
+bool sameIndexedMesh(const IndexedMesh& a, const IndexedMesh& b) {
+    return sameBytes(a.positions, b.positions) && sameBytes(a.indices, b.indices) && sameBytes(a.normals, b.normals) &&
+           sameBytes(a.normalIndices, b.normalIndices) && sameBytes(a.uvs, b.uvs) &&
+           sameBytes(a.uvIndices, b.uvIndices) && sameBytes(a.faceTextures, b.faceTextures);
 }
 
 bool indexedMeshBounds(const IndexedMesh& mesh, Vec3& lower, Vec3& upper) {

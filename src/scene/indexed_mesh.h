@@ -78,6 +78,9 @@ inline void padForEmbree(IndexedMesh& mesh) {
     mesh.positions.reserve(mesh.positions.size() + 1);
 }
 
+// Whether two meshes hold the same arrays, bit for bit.
+bool sameIndexedMesh(const IndexedMesh& a, const IndexedMesh& b);
+
 // Object-space bounds; false for a mesh without triangles.
 bool indexedMeshBounds(const IndexedMesh& mesh, Vec3& lower, Vec3& upper);
 

@@ -293,7 +293,7 @@ struct MeshSource {
 };
 
 struct Mesh {
-    // Set while the triangles are still to be read from a file (src/assets).
+    // The file of the triangles: to be read while `indexed` is empty (src/assets); a model file's stays set.
     std::shared_ptr<const MeshSource> source;
     std::vector<Vec3> vertices;
     std::vector<std::array<int, 3>> triangles;
@@ -343,6 +343,14 @@ struct Object {
     std::vector<Object> clippedBy;
     SourceLoc loc;
 };
+
+// Moves an object's textures by `t`: its own and its mesh triangles' (both
+// are placed like the object).
+inline void transformObjectTextures(Object& o, const Transform& t) {
+    transformTextureSpaces(o.texture, t);
+    if (Mesh* mesh = std::get_if<Mesh>(&o.shape))
+        for (Texture& own : mesh->textures) transformTextureSpaces(own, t);
+}
 
 // ---------------------------------------------------------------- lights
 

@@ -15,11 +15,12 @@ syn keyword drtFunction vlength vnormalize vrotate vstr
 syn keyword drtBoolean false no off on true yes
 syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background blob box camera clipped_by cone cubic cylinder
-syn keyword drtBlock density disc finish fog global_settings image_map interior lathe
-syn keyword drtBlock light_source media mesh motion normal object pigment pigment_map
-syn keyword drtBlock plane poly prism quadric quartic render scattering sky_sphere
-syn keyword drtBlock smooth_triangle sor sphere superellipsoid text texture texture_map tiles
-syn keyword drtBlock torus triangle
+syn keyword drtBlock density disc face_indices finish fog global_settings image_map interior
+syn keyword drtBlock lathe light_source media mesh mesh2 motion normal normal_indices
+syn keyword drtBlock normal_vectors object pigment pigment_map plane poly prism quadric
+syn keyword drtBlock quartic render scattering sky_sphere smooth_triangle sor sphere superellipsoid
+syn keyword drtBlock text texture texture_list texture_map tiles torus triangle uv_indices
+syn keyword drtBlock uv_vectors vertex_vectors
 syn keyword drtKeyword absorption adaptive adc_bailout agate all ambient ambient_light angle
 syn keyword drtKeyword aperture area_illumination area_light area_sampling array assumed_gamma at average
 syn keyword drtKeyword bezier_spline blue bozo brick brick_size brilliance bumps checker

@@ -1,12 +1,18 @@
-// drt_mesh_bench: the mesh figures of docs/performance-meshes.md, measured in
-// one run. For each size it generates a height-field grid (never a download),
-// writes it as .drt text, OBJ and binary PLY, and measures in child processes
-// (so each peak memory is its own):
-//   text    parse of `mesh { triangle ... }` text by drt's front end (MB/s)
-//   obj/ply loading the model file into a compact mesh
-//   raw     raw Embree: the same float arrays as a triangle geometry, committed
-//   compact drt: the compact mesh in a scene, Accelerator built, image traced
-//   empty   the bare process, whose peak memory the others subtract
+// drt_mesh_bench: the mesh figures of docs/meshes.md, measured in one run.
+// For each size it generates a mesh (a height-field grid, or with --shape
+// sphere a UV sphere with smooth normals; never a download), writes it as
+// .drt text, OBJ and binary PLY (above 2M triangles PLY only: text and OBJ
+// would be gigabytes) and measures in child processes (so each peak memory
+// is its own):
+//   text      parse of `mesh { triangle ... }` text by drt's front end (MB/s)
+//   obj/ply   loading the model file into a compact mesh
+//   raw       raw Embree: the same float arrays as a triangle geometry, committed
+//   compact   drt: the compact mesh (made in memory) in a scene, built, traced
+//   file      drt: `mesh { file }` of the PLY, loaded, built, traced: peak
+//             memory all included (assimp's copy while reading, the mesh,
+//             Embree's BVH, the renderer)
+//   instances drt: 100 placements of the one mesh (Embree instances)
+//   empty     the bare process, whose peak memory the others subtract
 // and, when given drt binaries (--drt LABEL=PATH), the whole `drt render` of
 // the text scene (and of `mesh { file }` where the binary reads it) with its
 // wall time and peak memory per triangle.
@@ -47,8 +53,15 @@ long peakKiB() {
     return usage.ru_maxrss;
 }
 
-// A grid of about `triangles` triangles (2 n^2).
+bool sphereShape = false; // --shape sphere
+
+// A mesh of about `triangles` triangles: a grid of 2 n^2, or a sphere of
+// 2 r (2 r - 1) (r rings, 2 r segments).
 std::shared_ptr<IndexedMesh> grid(long triangles) {
+    if (sphereShape) {
+        const int rings = std::max(2, int(std::lround(std::sqrt(triangles / 4.0))));
+        return test::sphereMesh(rings, 2 * rings, true);
+    }
     return test::gridMesh(std::max(1, int(std::lround(std::sqrt(triangles / 2.0)))));
 }
 
@@ -59,43 +72,68 @@ std::string file(const std::string& dir, long n, const char* ext) {
 const char* kSceneHead = "camera { location <0.5, 1.2, -0.4> look_at <0.5, 0, 0.5> angle 50 }\n"
                          "light_source { <3, 5, -2> color rgb 1 }\n";
 
-void writeFiles(const std::string& dir, long n) {
+// `withText`: also the .drt text and the OBJ (small sizes only).
+void writeFiles(const std::string& dir, long n, bool withText) {
     const auto m = grid(n);
     const auto v = [&](uint32_t i) { return m->positions[i]; };
-    std::string text = kSceneHead;
-    text += "mesh {\n";
-    for (size_t t = 0; t < m->triangleCount(); ++t) {
-        const auto tri = m->triangle(t);
-        text += fmt::format("  triangle {{ <{},{},{}>, <{},{},{}>, <{},{},{}> }}\n", v(tri[0]).x, v(tri[0]).y,
-                            v(tri[0]).z, v(tri[1]).x, v(tri[1]).y, v(tri[1]).z, v(tri[2]).x, v(tri[2]).y,
-                            v(tri[2]).z);
-    }
-    text += "  pigment { color rgb <0.8, 0.7, 0.6> }\n}\n";
-    std::ofstream(file(dir, n, "drt")) << text;
     std::ofstream(file(dir, n, "file.drt")) << kSceneHead << "mesh { file \"" << file(dir, n, "ply")
                                             << "\" pigment { color rgb <0.8, 0.7, 0.6> } }\n";
-    std::string obj;
-    for (const Float3& p : m->positions)
-        obj += fmt::format("v {} {} {}\n", p.x, p.y, p.z);
-    for (size_t t = 0; t < m->triangleCount(); ++t) {
-        const auto tri = m->triangle(t);
-        obj += fmt::format("f {} {} {}\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
-    }
-    std::ofstream(file(dir, n, "obj")) << obj;
+    const bool normals = !m->normals.empty();
     std::ofstream ply(file(dir, n, "ply"), std::ios::binary);
     ply << "ply\nformat binary_little_endian 1.0\nelement vertex " << m->positions.size()
-        << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << m->triangleCount()
-        << "\nproperty list uchar int vertex_indices\nend_header\n";
-    ply.write(reinterpret_cast<const char*>(m->positions.data()),
-              std::streamsize(m->positions.size() * sizeof(Float3)));
+        << "\nproperty float x\nproperty float y\nproperty float z\n"
+        << (normals ? "property float nx\nproperty float ny\nproperty float nz\n" : "") << "element face "
+        << m->triangleCount() << "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (size_t i = 0; i < m->positions.size(); ++i) {
+        ply.write(reinterpret_cast<const char*>(&m->positions[i]), sizeof(Float3));
+        if (normals)
+            ply.write(reinterpret_cast<const char*>(&m->normals[i]), sizeof(Float3));
+    }
     for (size_t t = 0; t < m->triangleCount(); ++t) {
         const char three = 3;
         ply.write(&three, 1);
         ply.write(reinterpret_cast<const char*>(&m->indices[3 * t]), 3 * sizeof(uint32_t));
     }
+    if (!withText)
+        return;
+    std::string text = kSceneHead;
+    text += "mesh {\n";
+    for (size_t t = 0; t < m->triangleCount(); ++t) {
+        const auto tri = m->triangle(t);
+        if (normals) {
+            const auto n = [&](uint32_t i) { return m->normals[i]; };
+            text += fmt::format(
+                "  smooth_triangle {{ <{},{},{}>, <{},{},{}>, <{},{},{}>, <{},{},{}>, <{},{},{}>, "
+                "<{},{},{}> }}\n",
+                v(tri[0]).x, v(tri[0]).y, v(tri[0]).z, n(tri[0]).x, n(tri[0]).y, n(tri[0]).z, v(tri[1]).x,
+                v(tri[1]).y, v(tri[1]).z, n(tri[1]).x, n(tri[1]).y, n(tri[1]).z, v(tri[2]).x, v(tri[2]).y,
+                v(tri[2]).z, n(tri[2]).x, n(tri[2]).y, n(tri[2]).z);
+        } else {
+            text += fmt::format("  triangle {{ <{},{},{}>, <{},{},{}>, <{},{},{}> }}\n", v(tri[0]).x,
+                                v(tri[0]).y, v(tri[0]).z, v(tri[1]).x, v(tri[1]).y, v(tri[1]).z, v(tri[2]).x,
+                                v(tri[2]).y, v(tri[2]).z);
+        }
+    }
+    text += "  pigment { color rgb <0.8, 0.7, 0.6> }\n}\n";
+    std::ofstream(file(dir, n, "drt")) << text;
+    std::string obj;
+    for (const Float3& p : m->positions)
+        obj += fmt::format("v {} {} {}\n", p.x, p.y, p.z);
+    for (const Float3& p : m->normals)
+        obj += fmt::format("vn {} {} {}\n", p.x, p.y, p.z);
+    for (size_t t = 0; t < m->triangleCount(); ++t) {
+        const auto tri = m->triangle(t);
+        if (normals)
+            obj += fmt::format("f {0}//{0} {1}//{1} {2}//{2}\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
+        else
+            obj += fmt::format("f {} {} {}\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
+    }
+    std::ofstream(file(dir, n, "obj")) << obj;
 }
 
-Scene gridScene(std::shared_ptr<const IndexedMesh> mesh) {
+// The mesh placed `copies` times (1, or a 10 x 10 layout of copies scaled to
+// a tenth, covering what one covers), or read from `modelFile`.
+Scene gridScene(std::shared_ptr<const IndexedMesh> mesh, int copies = 1, const std::string& modelFile = "") {
     Scene scene;
     scene.camera.location = {0.5, 1.2, -0.4};
     scene.camera.lookAt = Vec3{0.5, 0, 0.5};
@@ -105,11 +143,45 @@ Scene gridScene(std::shared_ptr<const IndexedMesh> mesh) {
     scene.lights.push_back(light);
     Object o;
     Mesh m;
-    m.indexed = std::move(mesh);
+    if (modelFile.empty()) {
+        m.indexed = std::move(mesh);
+    } else {
+        auto source = std::make_shared<MeshSource>();
+        source->kind = MeshSource::Kind::ModelFile;
+        source->path = modelFile;
+        m.source = source;
+    }
     o.shape = m;
     o.texture.pigment.color = ColorFT{Color(0.8, 0.7, 0.6), 0, 0};
-    scene.objects.push_back(o);
+    if (copies == 1) {
+        scene.objects.push_back(o);
+        return scene;
+    }
+    for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < copies / 10; ++j) {
+            o.transform = Transform::scale({0.1, 0.1, 0.1}).then(Transform::translate({0.1 * i, 0, 0.1 * j}));
+            scene.objects.push_back(o);
+        }
     return scene;
+}
+
+// Renders `scene` three times at 320 x 240, 2 spp; prints the median build and
+// trace times.
+void renderThrice(const Scene& scene, int threads) {
+    RenderOptions options;
+    options.width = 320;
+    options.height = 240;
+    options.samplesPerPixel = 2;
+    options.threads = threads;
+    std::vector<double> build, trace;
+    for (int r = 0; r < 3; ++r) {
+        const RenderResult result = render(scene, options);
+        build.push_back(result.stats.buildSeconds);
+        trace.push_back(result.stats.renderSeconds);
+    }
+    std::sort(build.begin(), build.end());
+    std::sort(trace.begin(), trace.end());
+    std::printf("build_seconds %.6f\ntrace_seconds %.6f\n", build[1], trace[1]);
 }
 
 // One measurement in this (child) process; prints "key value" lines.
@@ -159,22 +231,16 @@ int measure(const std::string& mode, long n, const std::string& dir, int threads
         std::printf("build_seconds %.6f\n", secondsSince(start));
         rtcReleaseScene(scene);
         rtcReleaseDevice(device);
-    } else if (mode == "compact") {
-        const Scene scene = gridScene(grid(n));
-        RenderOptions options;
-        options.width = 320;
-        options.height = 240;
-        options.samplesPerPixel = 2;
-        options.threads = threads;
-        std::vector<double> build, trace;
-        for (int r = 0; r < 3; ++r) {
-            const RenderResult result = render(scene, options);
-            build.push_back(result.stats.buildSeconds);
-            trace.push_back(result.stats.renderSeconds);
-        }
-        std::sort(build.begin(), build.end());
-        std::sort(trace.begin(), trace.end());
-        std::printf("build_seconds %.6f\ntrace_seconds %.6f\n", build[1], trace[1]);
+    } else if (mode == "compact" || mode == "instances") {
+        renderThrice(gridScene(grid(n), mode == "compact" ? 1 : 100), threads);
+    } else if (mode == "file") {
+        Scene scene = gridScene(nullptr, 1, file(dir, n, "ply"));
+        Diagnostics diags;
+        const auto start = Clock::now();
+        if (!resolveAssets(scene, diags))
+            return 1;
+        std::printf("load_seconds %.6f\n", secondsSince(start));
+        renderThrice(scene, threads);
     } else {
         std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
         return 2;
@@ -240,12 +306,14 @@ Child run(const std::vector<std::string>& args) {
             break;
         at = end + 1;
     }
-    // drt render's summary: "... (build N ms, trace M ms)".
+    // drt render's summary: "... (build N ms, trace M s)" (each in ms or s).
     if (const size_t b = err.find("(build "); b != std::string::npos) {
-        double buildMs = 0, traceMs = 0;
-        if (std::sscanf(err.c_str() + b, "(build %lf ms, trace %lf ms)", &buildMs, &traceMs) == 2) {
-            child.values["build_seconds"] = buildMs / 1000;
-            child.values["trace_seconds"] = traceMs / 1000;
+        double build = 0, trace = 0;
+        char buildUnit[4] = "", traceUnit[4] = "";
+        if (std::sscanf(err.c_str() + b, "(build %lf %3[ms], trace %lf %3[ms])", &build, buildUnit, &trace,
+                        traceUnit) == 4) {
+            child.values["build_seconds"] = buildUnit == std::string("ms") ? build / 1000 : build;
+            child.values["trace_seconds"] = traceUnit == std::string("ms") ? trace / 1000 : trace;
         }
     }
     return child;
@@ -277,11 +345,14 @@ int main(int argc, char** argv) {
             dir = argv[++i];
         } else if (a == "--threads" && i + 1 < argc) {
             threads = std::atoi(argv[++i]);
+        } else if (a == "--shape" && i + 1 < argc &&
+                   (argv[i + 1] == std::string("sphere") || argv[i + 1] == std::string("grid"))) {
+            sphereShape = argv[++i] == std::string("sphere");
         } else {
             std::fprintf(
                 stderr,
                 "usage: drt_mesh_bench [--sizes 1000,100000,1000000] [--drt LABEL=PATH]... [--dir DIR] "
-                "[--threads T]\n");
+                "[--threads T] [--shape grid|sphere]\n");
             return 2;
         }
     }
@@ -291,13 +362,20 @@ int main(int argc, char** argv) {
         return run({self, "--one", mode, std::to_string(n), dir, std::to_string(threads)});
     };
     const Child empty = one("empty", 0);
+    // Each drt binary's peak on a scene without the mesh (camera and light),
+    // which its rows subtract.
+    std::ofstream(dir + "/empty.drt") << kSceneHead;
+    std::map<std::string, long> emptyKiBOf;
+    for (const auto& [label, path] : drts)
+        emptyKiBOf[label] = run({path, "render", dir + "/empty.drt", "-o", dir + "/out.png", "--width", "32",
+                                 "--height", "24", "--spp", "1"})
+                                .peakKiB;
     std::printf(
         "| triangles | measure | seconds | peak bytes per triangle | note |\n|---|---|---|---|---|\n");
     std::map<long, double> traceOf;
     for (long n : sizes) {
-        const bool files = n <= 2'000'000; // text and OBJ of 10M triangles would be gigabytes
-        if (files)
-            writeFiles(dir, n);
+        const bool text = n <= 2'000'000; // text and OBJ of 10M triangles would be gigabytes
+        writeFiles(dir, n, text);
         const long triangles = long(grid(n)->triangleCount());
         const auto perTriangle = [&](const Child& c) {
             return double(c.peakKiB - empty.peakKiB) * 1024.0 / triangles;
@@ -306,42 +384,61 @@ int main(int argc, char** argv) {
             std::printf("| %ld | %s | %.3f | %.0f | %s |\n", triangles, what, seconds, bytes, note.c_str());
             std::fflush(stdout);
         };
-        if (files) {
-            const Child text = one("text", n);
-            row("parse .drt text (front end)", text.values["seconds"], perTriangle(text),
-                fmt::format("{:.1f} MB/s", text.values["mb_per_s"]));
-            for (const char* format : {"obj", "ply"}) {
-                const Child c = one(format, n);
-                row(format == std::string("obj") ? "load OBJ (assimp)" : "load binary PLY (assimp)",
-                    c.values["seconds"], perTriangle(c), c.ok ? "" : "failed: " + c.err);
-            }
+        const auto failed = [](const Child& c) { return c.ok ? std::string() : "failed: " + c.err; };
+        if (text) {
+            const Child c = one("text", n);
+            row("parse .drt text (front end)", c.values["seconds"], perTriangle(c),
+                fmt::format("{:.1f} MB/s", c.values["mb_per_s"]) + failed(c));
+        }
+        for (const char* format : {"obj", "ply"}) {
+            if (format == std::string("obj") && !text)
+                continue;
+            const Child c = one(format, n);
+            row(format == std::string("obj") ? "load OBJ (assimp)" : "load binary PLY (assimp)",
+                c.values["seconds"], perTriangle(c), failed(c));
         }
         const Child raw = one("raw", n);
-        row("BVH build, raw Embree", raw.values["build_seconds"], perTriangle(raw), "");
+        row("BVH build, raw Embree", raw.values["build_seconds"], perTriangle(raw), failed(raw));
         const Child compact = one("compact", n);
         traceOf[n] = compact.values["trace_seconds"];
-        row("BVH build, drt compact mesh", compact.values["build_seconds"], perTriangle(compact),
-            fmt::format("{:.2f}x raw Embree; all included (mesh, BVH, renderer)",
-                        compact.values["build_seconds"] / raw.values["build_seconds"]));
+        row("BVH build, drt (mesh made in memory)", compact.values["build_seconds"], perTriangle(compact),
+            fmt::format("{:.2f}x raw Embree; peak: mesh, BVH, renderer",
+                        compact.values["build_seconds"] / raw.values["build_seconds"]) +
+                failed(compact));
         row("trace 320x240, 2 spp", compact.values["trace_seconds"], 0,
             fmt::format("{:.2f}x the smallest size",
                         compact.values["trace_seconds"] / traceOf[sizes.front()]));
+        const Child fromFile = one("file", n);
+        row("render `mesh { file }` of the PLY: load + build + trace",
+            fromFile.values["load_seconds"] + fromFile.values["build_seconds"] +
+                fromFile.values["trace_seconds"],
+            perTriangle(fromFile),
+            fmt::format("load {:.3f} s, build {:.3f} s, trace {:.3f} s; peak all included",
+                        fromFile.values["load_seconds"], fromFile.values["build_seconds"],
+                        fromFile.values["trace_seconds"]) +
+                failed(fromFile));
+        const Child copies = one("instances", n);
+        row("100 placements of the mesh: build", copies.values["build_seconds"], perTriangle(copies),
+            fmt::format("peak {:.2f}x one placement's; trace {:.3f} s",
+                        double(copies.peakKiB - empty.peakKiB) / double(compact.peakKiB - empty.peakKiB),
+                        copies.values["trace_seconds"]) +
+                failed(copies));
         for (const auto& [label, path] : drts) {
-            if (!files)
-                continue;
             for (const char* scene : {"drt", "file.drt"}) {
+                if (scene == std::string("drt") && !text)
+                    continue;
                 const Child c =
                     run({path, "render", file(dir, n, scene), "-o", dir + "/out.png", "--width", "320",
                          "--height", "240", "--spp", "2", "--threads", std::to_string(threads)});
                 const std::string what = fmt::format(
-                    "{} render {}", label, scene == std::string("drt") ? "text mesh" : "mesh { file }");
+                    "`{} render` {}", label, scene == std::string("drt") ? "text mesh" : "mesh { file }");
                 if (!c.ok) {
                     row(what.c_str(), 0, 0, "cannot read it");
                     continue;
                 }
-                row(what.c_str(), c.wallSeconds, perTriangle(c),
-                    fmt::format("build {:.3f} s, trace {:.3f} s", c.values["build_seconds"],
-                                c.values["trace_seconds"]));
+                row(what.c_str(), c.wallSeconds, double(c.peakKiB - emptyKiBOf[label]) * 1024.0 / triangles,
+                    fmt::format("wall time; build {:.3f} s, trace {:.3f} s; peak over the empty scene's",
+                                c.values["build_seconds"], c.values["trace_seconds"]));
             }
         }
     }
