@@ -170,22 +170,17 @@ void fillOverrides(CLI::App& render, RenderArguments& a) {
 // The time options given as ranges; false (with a message) if one is not a range.
 bool fillTime(CLI::App& render, RenderArguments& a, std::ostream& err) {
     AnimationRequest& t = a.command.animation;
-    if (render.count("--frames")) {
+    const auto frameRange = [&](const char* option, const std::string& text, auto& target) {
+        if (!render.count(option)) return true;
         int first = 0, last = 0;
-        if (!parseRange(a.frames, first, last)) {
-            err << "drt render: --frames needs a frame range A..B, not '" << a.frames << "'\n";
+        if (!parseRange(text, first, last)) {
+            err << "drt render: " << option << " needs a frame range A..B, not '" << text << "'\n";
             return false;
         }
-        t.frames = std::make_pair(first, last);
-    }
-    if (render.count("--subset")) {
-        int first = 0, last = 0;
-        if (!parseRange(a.subset, first, last)) {
-            err << "drt render: --subset needs a frame range A..B, not '" << a.subset << "'\n";
-            return false;
-        }
-        t.subset = std::make_pair(first, last);
-    }
+        target = std::make_pair(first, last);
+        return true;
+    };
+    if (!frameRange("--frames", a.frames, t.frames) || !frameRange("--subset", a.subset, t.subset)) return false;
     if (render.count("--clock")) {
         double c0 = 0, c1 = 0;
         if (!parseRange(a.clock, c0, c1)) {
