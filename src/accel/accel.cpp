@@ -11,7 +11,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <optional>
+#include <new>
+#include <type_traits>
 
 namespace drt {
 
@@ -270,9 +271,11 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
     count = std::min(count, kPacketSize);
     // Each ray keeps its own query (its double-precision ray and crossing); the
     // callbacks find it by the ray's id through the first query's context.
-    std::optional<RayQuery> queries[kPacketSize];
-    RayQuery* lanes[kPacketSize] = {};
-    for (int i = 0; i < count; ++i) lanes[i] = &queries[i].emplace(*impl_, rays[i].origin, rays[i].direction);
+    // Built in place for the rays there are (a zeroed array of 8 costs more).
+    static_assert(std::is_trivially_destructible_v<RayQuery>, "the queries are never destroyed");
+    alignas(RayQuery) unsigned char storage[kPacketSize][sizeof(RayQuery)];
+    RayQuery* lanes[kPacketSize];
+    for (int i = 0; i < count; ++i) lanes[i] = new (storage[i]) RayQuery(*impl_, rays[i].origin, rays[i].direction);
     lanes[0]->lanes = lanes;
     lanes[0]->context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     alignas(32) RTCRayHit8 packet;

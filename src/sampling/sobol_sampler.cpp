@@ -42,9 +42,17 @@ public:
             jointShuffle_ = OwenSeed(static_cast<uint32_t>(key(kTagJoint, 0) >> 32));
             for (int d = 0; d < kSobolDimensions; ++d) jointSeeds_[d] = OwenSeed(seed32(kTagJoint, d, 0));
             ++generation_;
+            for (Recent& r : recent_) r.index = -1;
         }
         index_ = index;
-        jointIndex_ = shuffledIndex(jointShuffle_);
+        // The renderer starts each sample twice (its camera ray in a packet
+        // with the pixel's next samples, then the rest): the shuffle is kept.
+        Recent& r = recent_[static_cast<unsigned>(index) % kRecent];
+        if (r.index != index) {
+            r.index = index;
+            r.jointIndex = shuffledIndex(jointShuffle_);
+        }
+        jointIndex_ = r.jointIndex;
     }
 
     double get1D(int dimension) override {
@@ -117,6 +125,13 @@ private:
                 fractionToUnit(owenScramble(sobolValue(i, 1), s.seed[1]))};
     }
 
+    // The joint (shuffled) index of the pixel's recent sample indices.
+    struct Recent {
+        int index = -1;
+        uint32_t jointIndex = 0;
+    };
+    static constexpr int kRecent = 8;
+    Recent recent_[kRecent];
     bool havePixel_ = false;
     uint64_t generation_ = 0;
     OwenSeed jointShuffle_;
