@@ -37,6 +37,16 @@ const char* noisePatternWord(PatternKind kind); // nullptr for a kind that is no
 // The canonical words (for suggestions).
 std::vector<std::string> noisePatternNames();
 
+// Patterns of the point's place alone, with no parameters and a colour map
+// (radial, onion, spherical, planar, cylindrical, boxed): read and written by this one table.
+struct PlacePatternWord {
+    const char* word;
+    PatternKind kind;
+};
+const std::vector<PlacePatternWord>& placePatternWords();
+std::optional<PatternKind> placePatternNamed(const std::string& word);
+const char* placePatternWord(PatternKind kind); // nullptr for a kind that is not in the table
+
 // POV-Ray patterns drt does not have: read and approximated (pigments,
 // textures) or refused (.drt dialect).
 bool isApproximatedPattern(const std::string& word);
