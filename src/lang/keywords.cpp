@@ -162,17 +162,25 @@ const std::vector<NoisePatternWord>& noisePatternWords() {
     return words;
 }
 
-std::optional<PatternKind> noisePatternNamed(const std::string& word) {
-    for (const NoisePatternWord& w : noisePatternWords())
+namespace {
+
+std::optional<PatternKind> kindNamed(const std::vector<PatternWord>& words, const std::string& word) {
+    for (const PatternWord& w : words)
         if (word == w.word) return w.kind;
     return std::nullopt;
 }
 
-const char* noisePatternWord(PatternKind kind) {
-    for (const NoisePatternWord& w : noisePatternWords())
+const char* wordOfKind(const std::vector<PatternWord>& words, PatternKind kind) {
+    for (const PatternWord& w : words)
         if (w.kind == kind) return w.word;
     return nullptr;
 }
+
+} // namespace
+
+std::optional<PatternKind> noisePatternNamed(const std::string& word) { return kindNamed(noisePatternWords(), word); }
+
+const char* noisePatternWord(PatternKind kind) { return wordOfKind(noisePatternWords(), kind); }
 
 std::vector<std::string> noisePatternNames() {
     std::vector<std::string> names;
@@ -189,17 +197,9 @@ const std::vector<PlacePatternWord>& placePatternWords() {
     return words;
 }
 
-std::optional<PatternKind> placePatternNamed(const std::string& word) {
-    for (const PlacePatternWord& w : placePatternWords())
-        if (word == w.word) return w.kind;
-    return std::nullopt;
-}
+std::optional<PatternKind> placePatternNamed(const std::string& word) { return kindNamed(placePatternWords(), word); }
 
-const char* placePatternWord(PatternKind kind) {
-    for (const PlacePatternWord& w : placePatternWords())
-        if (w.kind == kind) return w.word;
-    return nullptr;
-}
+const char* placePatternWord(PatternKind kind) { return wordOfKind(placePatternWords(), kind); }
 
 bool isApproximatedPattern(const std::string& word) {
     static const std::set<std::string> words = {
