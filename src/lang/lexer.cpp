@@ -421,6 +421,14 @@ bool TokenStream::vector(LiteralVector& out) {
     return scanner_->vector(out);
 }
 
+bool TokenStream::item(LiteralVector& out) {
+    const Mark start = mark();
+    symbol(',');
+    if (vector(out)) return true;
+    reset(start);
+    return false;
+}
+
 bool TokenStream::number(double& out, SourceLoc& loc) {
     if (ended_) return false;
     scanner_->bind(text());

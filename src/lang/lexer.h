@@ -99,6 +99,8 @@ public:
     // expression (`,` `}` `<` `#`, a letter); with `requireCommas` false,
     // components may also be separated by blanks, as POV-Ray allows.
     bool vector(LiteralVector& out);
+    // A list item: an optional ',' then vector().
+    bool item(LiteralVector& out);
     // A plain unsigned number literal followed by `,` or `}` (after blanks).
     bool number(double& out, SourceLoc& loc);
     // The place of the next character after blanks (for messages).

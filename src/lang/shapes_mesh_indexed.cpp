@@ -115,20 +115,26 @@ void readTriangleMesh(Evaluator& e, const Token& keyword, Mesh& m) {
     // while the keywords are no macro names.
     const auto keywordsPlain = [&] { return !e.isMacro("triangle") && !e.isMacro("smooth_triangle"); };
     bool plain = keywordsPlain();
+    const auto literal = [&] {
+        if (!plain || double(out.triangleCount()) + 1 > limit)
+            return false;
+        TokenStream* s = e.rawStream();
+        TriangleCorners c;
+        bool smooth = false;
+        if (!s || !literalTriangle(e, *s, smooth, c))
+            return false;
+        add(c, smooth, nullptr, kObjectTexture);
+        return true;
+    };
     for (;;) {
-        if (plain && double(out.triangleCount()) + 1 <= limit) {
-            if (TokenStream* s = e.rawStream()) {
-                TriangleCorners c;
-                bool smooth = false;
-                if (literalTriangle(e, *s, smooth, c)) {
-                    add(c, smooth, nullptr, kObjectTexture);
-                    continue;
-                }
-            }
-        }
+        if (literal())
+            continue;
+        // Directives before the triangle run, and it may be plain after all.
         const Token t = e.peek();
         if (!(t.isWord("triangle") || t.isWord("smooth_triangle")))
             break;
+        if (literal())
+            continue;
         e.next();
         if (double(out.triangleCount()) + 1 > limit)
             e.countValue(double(out.triangleCount()) + 1, t.loc, "mesh triangle count", 0, limit);
@@ -192,21 +198,15 @@ void readMesh2(Evaluator& e, const Token& keyword, Mesh& m) {
         e.expectSymbol("}", "after the listed count of items");
     };
     // Runs of plain literal vectors `, <x, y, z>` are read from the text
-    // without tokens (literalVectors), the rest by the evaluator.
+    // without tokens, the rest by the evaluator.
     auto vectorList = [&](const char* what, auto add) {
         const int n = count(what);
         for (int i = 0; i < n; ++i) {
             if (TokenStream* s = e.rawStream()) {
                 LiteralVector v;
                 const int from = i;
-                for (TokenStream::Mark at = s->mark(); i < n; at = s->mark(), ++i) {
-                    s->symbol(',');
-                    if (!s->vector(v)) {
-                        s->reset(at);
-                        break;
-                    }
+                for (; i < n && s->item(v); ++i)
                     add(v.xyz());
-                }
                 if (i > from)
                     e.rawRead(v.end, ">");
                 if (i == n)
@@ -254,12 +254,10 @@ void readMesh2(Evaluator& e, const Token& keyword, Mesh& m) {
                 SourceLoc last;
                 std::vector<std::pair<double, SourceLoc>> read;
                 const int from = i;
-                for (TokenStream::Mark at = s->mark(); i < n; at = s->mark(), ++i) {
-                    s->symbol(',');
-                    if (!s->vector(v)) {
-                        s->reset(at);
+                for (; i < n; ++i) {
+                    const TokenStream::Mark at = s->mark();
+                    if (!s->item(v))
                         break;
-                    }
                     last = v.end;
                     read.clear();
                     // `, t`: a texture index unless a triple or the list's end follows the comma.
