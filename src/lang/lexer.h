@@ -115,7 +115,7 @@ private:
     std::string own_;
     int fileId_;
     std::unique_ptr<Scanner> scanner_;
-    static constexpr size_t kBlockBits = 12;
+    static constexpr size_t kBlockBits = 10;
     static constexpr size_t kBlock = size_t(1) << kBlockBits;
     mutable std::vector<std::unique_ptr<Token[]>> blocks_;
     mutable size_t count_ = 0;
