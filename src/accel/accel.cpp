@@ -5,11 +5,13 @@
 #include "accel/accel_impl.h"
 #include "core/error.h"
 
+#include <algorithm>
 #include <bit>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 namespace drt {
 
@@ -125,31 +127,22 @@ void meshSurface(const IndexedMesh& m, const Mesh& shape, uint32_t prim, const s
     }
 }
 
-} // namespace
-
-bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
-    RayQuery query(*impl_, ray.origin, ray.direction);
-    RTCRayHit rayhit;
-    fillRay(ray, *impl_, rayhit.ray, 0xFFFFFFFFu);
-    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl_->top.scene, &query.context, &rayhit);
-    impl_->device.throwIfFailed("tracing a ray");
-    if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+// The hit record of the hit Embree found for the query's ray (rayhit: its
+// ray and hit as Embree left them, geomID valid).
+void hitFromEmbree(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit) {
     hit.hasUv = false;
     hit.uv = {};
     hit.cornerTextures = {};
 
     // Find the level the hit geometry lives in and the ray in that level's space.
-    const Level* level = &impl_->top;
+    const Level* level = &state.top;
     const unsigned instID = rayhit.hit.instID[0];
     const Transform* motion = nullptr; // level space -> world, if the top level's is not world
     const Instance* instance = nullptr;
     hit.instance = -1;
     if (instID != RTC_INVALID_GEOMETRY_ID) {
-        const size_t index = impl_->top.geometries[instID].index;
-        instance = &impl_->instances[index];
+        const size_t index = state.top.geometries[instID].index;
+        instance = &state.instances[index];
         level = instance->level.get();
         Vec3 unusedO, unusedD;
         query.levelRay(instID, rayhit.ray.time, unusedO, unusedD); // the callback's transform, or solved now
@@ -157,7 +150,7 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
         // A compact mesh's placement is still: only moving objects have a rest pose (restToWorld).
         if (!instance->placed) hit.instance = static_cast<int>(index);
     }
-    const bool shiftedTop = !motion && impl_->shifted;
+    const bool shiftedTop = !motion && state.shifted;
     const Vec3& o = motion ? query.instanceOrigin : query.origin;
     const Vec3& d = motion ? query.instanceDirection : query.direction;
     // The normal of last resort, computed only when needed.
@@ -239,18 +232,90 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     if (motion) {
         hit.point = motion->point(point);
         if (instance->placed) hit.restPoint = hit.point;
-        else hit.restPoint = impl_->shifted ? point + impl_->frameOrigin : point;
+        else hit.restPoint = state.shifted ? point + state.frameOrigin : point;
         hit.geometricNormal = unitOrTowardOrigin(motion->normal(geometric));
         hit.shadingNormal = unitOr(motion->normal(shading), hit.geometricNormal);
     } else {
-        hit.point = shiftedTop ? point + impl_->frameOrigin : point;
+        hit.point = shiftedTop ? point + state.frameOrigin : point;
         hit.restPoint = hit.point;
         hit.geometricNormal = geometric;
         hit.shadingNormal = shading;
     }
-    hit.frameOrigin = impl_->shifted ? impl_->frameOrigin : Vec3{};
-    hit.frameUnit = frameUnit > 0 ? frameUnit : impl_->sceneUnit;
+    hit.frameOrigin = state.shifted ? state.frameOrigin : Vec3{};
+    hit.frameUnit = frameUnit > 0 ? frameUnit : state.sceneUnit;
+}
+
+} // namespace
+
+bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
+    RayQuery query(*impl_, ray.origin, ray.direction);
+    RTCRayHit rayhit;
+    fillRay(ray, *impl_, rayhit.ray, 0xFFFFFFFFu);
+    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->top.scene, &query.context, &rayhit);
+    impl_->device.throwIfFailed("tracing a ray");
+    if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hitFromEmbree(*impl_, query, rayhit, hit);
     return true;
+}
+
+void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* found) const {
+    static_assert(kPacketSize == 8, "rtcIntersect8 traces the packet");
+    if (count <= 1) { // nothing to share
+        if (count == 1) found[0] = intersect(rays[0], hits[0]);
+        return;
+    }
+    count = std::min(count, kPacketSize);
+    // Each ray keeps its own query (its double-precision ray and crossing); the
+    // callbacks find it by the ray's id through the first query's context.
+    std::optional<RayQuery> queries[kPacketSize];
+    RayQuery* lanes[kPacketSize] = {};
+    for (int i = 0; i < count; ++i) lanes[i] = &queries[i].emplace(*impl_, rays[i].origin, rays[i].direction);
+    lanes[0]->lanes = lanes;
+    lanes[0]->context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(32) RTCRayHit8 packet;
+    alignas(32) int valid[kPacketSize];
+    for (int i = 0; i < kPacketSize; ++i) {
+        valid[i] = i < count ? -1 : 0;
+        RTCRay r;
+        fillRay(rays[i < count ? i : 0], *impl_, r, 0xFFFFFFFFu);
+        packet.ray.org_x[i] = r.org_x;
+        packet.ray.org_y[i] = r.org_y;
+        packet.ray.org_z[i] = r.org_z;
+        packet.ray.tnear[i] = r.tnear;
+        packet.ray.dir_x[i] = r.dir_x;
+        packet.ray.dir_y[i] = r.dir_y;
+        packet.ray.dir_z[i] = r.dir_z;
+        packet.ray.time[i] = r.time;
+        packet.ray.tfar[i] = r.tfar;
+        packet.ray.mask[i] = r.mask;
+        packet.ray.id[i] = static_cast<unsigned>(i);
+        packet.ray.flags[i] = 0;
+        packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, impl_->top.scene, &lanes[0]->context, &packet);
+    impl_->device.throwIfFailed("tracing a ray packet");
+    for (int i = 0; i < count; ++i) {
+        found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        if (!found[i]) continue;
+        // Lane i as the single-ray record hitFromEmbree reads.
+        RTCRayHit rayhit;
+        rayhit.ray.time = packet.ray.time[i];
+        rayhit.ray.tfar = packet.ray.tfar[i];
+        rayhit.hit.Ng_x = packet.hit.Ng_x[i];
+        rayhit.hit.Ng_y = packet.hit.Ng_y[i];
+        rayhit.hit.Ng_z = packet.hit.Ng_z[i];
+        rayhit.hit.u = packet.hit.u[i];
+        rayhit.hit.v = packet.hit.v[i];
+        rayhit.hit.primID = packet.hit.primID[i];
+        rayhit.hit.geomID = packet.hit.geomID[i];
+        rayhit.hit.instID[0] = packet.hit.instID[0][i];
+        hitFromEmbree(*impl_, *lanes[i], rayhit, hits[i]);
+    }
 }
 
 bool Accelerator::occluded(const Ray& ray) const {

@@ -36,6 +36,12 @@ struct AcceleratorState {
     std::optional<double> onlyTime; // motion baked at this time (Accelerator(scene, onlyTime))
 };
 
+inline RayQuery::RayQuery(const AcceleratorState& accelerator, const Vec3& rayOrigin, const Vec3& rayDirection)
+    : state(&accelerator), worldOrigin(rayOrigin),
+      origin(accelerator.shifted ? rayOrigin - accelerator.frameOrigin : rayOrigin), direction(rayDirection) {
+    rtcInitIntersectContext(&context);
+}
+
 // Hit::frameUnit for an object of this size: the smallest power of two at
 // least `extent`, at most 1 (1 for no or an infinite extent).
 double frameUnitFor(double extent);

@@ -16,6 +16,7 @@
 #include <embree3/rtcore.h>
 
 #include <atomic>
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -152,8 +153,13 @@ struct AcceleratorState; // accel_impl.h
 // they reach the ray in double precision: each analytic shape is solved once,
 // in double, by the callback, and the crossing Embree accepted last (the
 // nearest, once the query ends) is kept here for the hit record.
+//
+// A packet of rays (Accelerator::intersectPacket) has one query per ray; the
+// first one's context goes to Embree, its `lanes` lists them all, and a
+// callback finds a ray's query by the ray's id (lane()).
 struct RayQuery {
     RTCIntersectContext context; // first, so a context pointer is a query pointer
+    RayQuery* const* lanes = nullptr; // a packet's queries by ray id; null for a single ray
     const AcceleratorState* state = nullptr;
     Vec3 worldOrigin;
     Vec3 origin; // in the top level's frame (world minus the frame origin)
@@ -172,11 +178,23 @@ struct RayQuery {
     Crossing objectCrossing;
     SurfaceCrossing crossing;
 
-    RayQuery(const AcceleratorState& accelerator, const Vec3& rayOrigin, const Vec3& rayDirection);
+    RayQuery(const AcceleratorState& accelerator, const Vec3& rayOrigin, const Vec3& rayDirection); // accel_impl.h
     static RayQuery& of(RTCIntersectContext* context) { return *reinterpret_cast<RayQuery*>(context); }
+    // The query of the ray with this id (RTCRay::id) in the query's packet.
+    RayQuery& lane(unsigned id) { return lanes ? *lanes[id] : *this; }
     // The ray in the space of the level the callback runs in: the top level's
     // (instID invalid) or a moving object's at `time` (Instance::toWorld).
-    void levelRay(unsigned instID, double time, Vec3& o, Vec3& d);
+    void levelRay(unsigned instID, double time, Vec3& o, Vec3& d) {
+        if (instID == RTC_INVALID_GEOMETRY_ID) {
+            o = origin;
+            d = direction;
+            return;
+        }
+        instanceRay(instID, time, o, d);
+    }
+
+private:
+    void instanceRay(unsigned instID, double time, Vec3& o, Vec3& d); // levelRay in a moving object's level
 };
 
 // Nearest crossing of a primitive with t in (tMin, tMax); the ray is in
@@ -186,12 +204,24 @@ bool nearestCrossing(const Primitive& primitive, const Vec3& o, const Vec3& d, d
                      SurfaceCrossing& out);
 // The first crossing with t in (tMin, tMax) of a plain primitive
 // (Primitive::plain), in its object space (normal not normalised); the ray is
-// in level space.
-bool firstPlainCrossing(const Primitive& primitive, const Vec3& o, const Vec3& d, double tMin, double tMax,
-                        Crossing& out);
+// in level space. Inline, as levelCrossing: every analytic hit passes here.
+inline bool firstPlainCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tMin, double tMax,
+                               Crossing& out) {
+    return p.identity ? firstCrossing(p.shape, o, d, tMin, tMax, out)
+                      : firstCrossing(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), tMin, tMax, out);
+}
+// A unit vector along v, or zero if v has no finite length.
+inline Vec3 unitOrZero(const Vec3& v) {
+    const double len = length(v);
+    return len > 0 && std::isfinite(len) ? v / len : Vec3{};
+}
 // A plain primitive's object-space crossing in level space: the same as
 // nearestCrossing reports for it.
-SurfaceCrossing levelCrossing(const Primitive& primitive, const Crossing& crossing);
+inline SurfaceCrossing levelCrossing(const Primitive& p, const Crossing& c) {
+    Vec3 n = unitOrZero(p.identity ? c.normal : p.toLevel.normal(c.normal));
+    if (p.inverse) n = -n;
+    return {c.t, n, p.object};
+}
 // The crossing of a primitive whose t is closest to `tGuess` (hit refinement).
 bool closestCrossingTo(const Primitive& primitive, const Vec3& o, const Vec3& d, double tGuess,
                        SurfaceCrossing& out);

@@ -11,10 +11,6 @@ namespace drt::accel {
 
 namespace {
 
-Vec3 unitOrZero(const Vec3& v) {
-    const double len = length(v);
-    return len > 0 && std::isfinite(len) ? v / len : Vec3{};
-}
 
 
 struct LeafEvent {
@@ -229,17 +225,6 @@ void primitiveCrossings(const Primitive& p, const Vec3& o, const Vec3& d, std::v
         std::erase_if(out, [&](const SurfaceCrossing& c) { return !insideClips(p, o, d, c.t); });
 }
 } // namespace
-
-SurfaceCrossing levelCrossing(const Primitive& p, const Crossing& c) {
-    Vec3 n = unitOrZero(p.identity ? c.normal : p.toLevel.normal(c.normal));
-    if (p.inverse) n = -n;
-    return {c.t, n, p.object};
-}
-
-bool firstPlainCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tMin, double tMax, Crossing& out) {
-    return p.identity ? firstCrossing(p.shape, o, d, tMin, tMax, out)
-                      : firstCrossing(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), tMin, tMax, out);
-}
 
 bool nearestCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tMin, double tMax,
                      SurfaceCrossing& out) {

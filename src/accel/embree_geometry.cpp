@@ -65,7 +65,9 @@ void Level::release() {
 // in: for a moving object's sub-scene, the ray already transformed by the
 // inverse instance transform at the ray's time. The intersect callback solves
 // with the double-precision ray of its RayQuery instead (the same ray, unrounded).
-// Only rtcIntersect1 and rtcOccluded1 are used, so N is always 1.
+// Camera rays are traced in packets (rtcIntersect8), so a callback may get N
+// rays at once: each valid one is solved on its own, and its query is found by
+// the ray's id (RayQuery::lane), whatever N Embree chose.
 
 // Bounds must stay conservative after rounding to float.
 static float roundDown(double v) {
@@ -116,18 +118,7 @@ static const Transform& cachedToWorld(const AcceleratorState& state, unsigned in
     return e.toWorld;
 }
 
-RayQuery::RayQuery(const AcceleratorState& accelerator, const Vec3& rayOrigin, const Vec3& rayDirection)
-    : state(&accelerator), worldOrigin(rayOrigin),
-      origin(accelerator.shifted ? rayOrigin - accelerator.frameOrigin : rayOrigin), direction(rayDirection) {
-    rtcInitIntersectContext(&context);
-}
-
-void RayQuery::levelRay(unsigned instID, double time, Vec3& o, Vec3& d) {
-    if (instID == RTC_INVALID_GEOMETRY_ID) {
-        o = origin;
-        d = direction;
-        return;
-    }
+void RayQuery::instanceRay(unsigned instID, double time, Vec3& o, Vec3& d) {
     if (instance != instID) {
         instance = instID;
         instanceToWorld.emplace(cachedToWorld(*state, state->top.geometries[instID].index, time));
@@ -138,57 +129,72 @@ void RayQuery::levelRay(unsigned instID, double time, Vec3& o, Vec3& d) {
     d = instanceDirection;
 }
 
-static void intersectCallback(const RTCIntersectFunctionNArguments* args) {
-    if (!args->valid[0]) return;
-    const auto* level = static_cast<const Level*>(args->geometryUserPtr);
-    const Primitive& p = level->primitives[args->primID];
-    auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-    RTCRay& ray = rayhit->ray;
-    RayQuery& query = RayQuery::of(args->context);
+// One ray (lane i of the callback's N) against the primitive: if it crosses it
+// within the ray's interval, the crossing goes into the ray's query and
+// Embree's hit record.
+static void intersectLane(const RTCIntersectFunctionNArguments* args, const Primitive& p, unsigned i) {
+    const unsigned N = args->N;
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, N);
+    RayQuery& query = RayQuery::of(args->context).lane(RTCRayN_id(ray, N, i));
     const unsigned instID = args->context->instID[0];
+    const float tnear = RTCRayN_tnear(ray, N, i);
+    float& tfar = RTCRayN_tfar(ray, N, i);
     Vec3 o, d;
-    query.levelRay(instID, ray.time, o, d);
+    query.levelRay(instID, RTCRayN_time(ray, N, i), o, d);
     Vec3 normal; // level or object space: only for Embree's record, the hit is rebuilt from the query
     if (p.plain) {
         Crossing& c = query.objectCrossing; // written only if found
-        if (!firstPlainCrossing(p, o, d, ray.tnear, ray.tfar, c)) return;
-        ray.tfar = float(c.t);
+        if (!firstPlainCrossing(p, o, d, tnear, tfar, c)) return;
+        tfar = float(c.t);
         normal = c.normal;
     } else {
         SurfaceCrossing c;
-        if (!nearestCrossing(p, o, d, ray.tnear, ray.tfar, c)) return;
+        if (!nearestCrossing(p, o, d, tnear, tfar, c)) return;
         query.crossing = c;
-        ray.tfar = float(c.t);
+        tfar = float(c.t);
         normal = c.normal;
     }
     query.hasCrossing = true;
     query.objectSpace = p.plain;
     query.primID = args->primID;
     query.instID = instID;
-    RTCHit& hit = rayhit->hit;
-    hit.Ng_x = float(normal.x);
-    hit.Ng_y = float(normal.y);
-    hit.Ng_z = float(normal.z);
-    hit.u = hit.v = 0;
-    hit.primID = args->primID;
-    hit.geomID = args->geomID;
-    hit.instID[0] = instID;
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, N);
+    RTCHitN_Ng_x(hit, N, i) = float(normal.x);
+    RTCHitN_Ng_y(hit, N, i) = float(normal.y);
+    RTCHitN_Ng_z(hit, N, i) = float(normal.z);
+    RTCHitN_u(hit, N, i) = RTCHitN_v(hit, N, i) = 0;
+    RTCHitN_primID(hit, N, i) = args->primID;
+    RTCHitN_geomID(hit, N, i) = args->geomID;
+    RTCHitN_instID(hit, N, i, 0) = instID;
+}
+
+static void intersectCallback(const RTCIntersectFunctionNArguments* args) {
+    const auto* level = static_cast<const Level*>(args->geometryUserPtr);
+    const Primitive& p = level->primitives[args->primID];
+    for (unsigned i = 0; i < args->N; ++i)
+        if (args->valid[i]) intersectLane(args, p, i);
 }
 
 static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
-    if (!args->valid[0]) return;
     const auto* level = static_cast<const Level*>(args->geometryUserPtr);
     const Primitive& p = level->primitives[args->primID];
     if (p.noShadow) return;
-    auto* ray = reinterpret_cast<RTCRay*>(args->ray);
-    const Vec3 o{ray->org_x, ray->org_y, ray->org_z}, d{ray->dir_x, ray->dir_y, ray->dir_z};
-    if (p.plain) { // any crossing blocks: no normal needed
-        Crossing c;
-        if (firstPlainCrossing(p, o, d, ray->tnear, ray->tfar, c)) ray->tfar = -INFINITY;
-        return;
+    const unsigned N = args->N;
+    RTCRayN* ray = args->ray;
+    for (unsigned i = 0; i < N; ++i) {
+        if (!args->valid[i]) continue;
+        const Vec3 o{RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)};
+        const Vec3 d{RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)};
+        const float tnear = RTCRayN_tnear(ray, N, i);
+        float& tfar = RTCRayN_tfar(ray, N, i);
+        if (p.plain) { // any crossing blocks: no normal needed
+            Crossing c;
+            if (firstPlainCrossing(p, o, d, tnear, tfar, c)) tfar = -INFINITY;
+            continue;
+        }
+        SurfaceCrossing c;
+        if (nearestCrossing(p, o, d, tnear, tfar, c) && !c.object->noShadow) tfar = -INFINITY;
     }
-    SurfaceCrossing c;
-    if (nearestCrossing(p, o, d, ray->tnear, ray->tfar, c) && !c.object->noShadow) ray->tfar = -INFINITY;
 }
 
 void attachPrimitives(RTCDevice device, Level& level) {

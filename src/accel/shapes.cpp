@@ -32,23 +32,6 @@ struct CrossingList {
     }
 };
 
-// Sphere: |o + t d - c|^2 = r^2. The discriminant is computed as
-// a (r^2 - |f - (f.d / d.d) d|^2) with f = o - c, which stays accurate when the
-// ray starts far away (Haines et al., Ray Tracing Gems ch. 7).
-bool sphereRoots(const AnalyticShape& s, const Vec3& o, const Vec3& d, double& t0, double& t1) {
-    const Vec3 f = o - s.center;
-    const double a = dot(d, d);
-    const double b = dot(f, d);
-    const Vec3 l = f - (b / a) * d;
-    const double discriminant = a * (s.radius * s.radius - dot(l, l));
-    if (discriminant < 0) return false;
-    const double q = -b - std::copysign(std::sqrt(discriminant), b);
-    const double c = dot(f, f) - s.radius * s.radius;
-    t0 = q / a;
-    t1 = q != 0 ? c / q : t0;
-    return true;
-}
-
 int intersectSphere(const AnalyticShape& s, const Vec3& o, const Vec3& d, CrossingList& list) {
     double t0, t1;
     if (!sphereRoots(s, o, d, t0, t1)) return 0;
@@ -319,43 +302,19 @@ int allCrossings(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossing 
     return intersectShape(s, o, d, fixed);
 }
 
-bool firstCrossing(const AnalyticShape& s, const Vec3& o, const Vec3& d, double tMin, double tMax, Crossing& out) {
-    const auto inside = [&](double t) { return std::isfinite(t) && t > tMin && t < tMax; };
-    switch (s.kind) {
-    case ShapeKind::Sphere: {
-        // The same roots, in the same order, as intersectSphere.
-        double t0, t1;
-        if (!sphereRoots(s, o, d, t0, t1)) return false;
-        if (std::isfinite(t0) && std::isfinite(t1) && t1 < t0) std::swap(t0, t1);
-        for (const double t : {t0, t1})
-            if (inside(t)) {
-                out = {t, o + t * d - s.center};
-                return true;
-            }
-        return false;
-    }
-    case ShapeKind::Plane: {
-        const double dn = dot(s.normal, d);
-        if (dn == 0) return false;
-        const double t = (s.distance - dot(s.normal, o)) / dn;
-        if (!inside(t)) return false;
-        out = {t, s.normal};
-        return true;
-    }
-    default: {
-        // Not zero-initialised per call: kMaxCrossings entries are a kilobyte.
-        thread_local Crossing fixed[kMaxCrossings];
-        thread_local std::vector<Crossing> many;
-        const Crossing* c = nullptr;
-        const int n = allCrossings(s, o, d, fixed, many, c);
-        for (int i = 0; i < n; ++i)
-            if (c[i].t > tMin && c[i].t < tMax) {
-                out = c[i];
-                return true;
-            }
-        return false;
-    }
-    }
+bool firstCrossingListed(const AnalyticShape& s, const Vec3& o, const Vec3& d, double tMin, double tMax,
+                         Crossing& out) {
+    // Not zero-initialised per call: kMaxCrossings entries are a kilobyte.
+    thread_local Crossing fixed[kMaxCrossings];
+    thread_local std::vector<Crossing> many;
+    const Crossing* c = nullptr;
+    const int n = allCrossings(s, o, d, fixed, many, c);
+    for (int i = 0; i < n; ++i)
+        if (c[i].t > tMin && c[i].t < tMax) {
+            out = c[i];
+            return true;
+        }
+    return false;
 }
 
 bool isSolidShape(const AnalyticShape& s) {

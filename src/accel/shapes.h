@@ -8,9 +8,12 @@
 #include "core/vec.h"
 #include "scene/scene.h"
 
+#include <cmath>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace drt::accel {
@@ -69,10 +72,56 @@ int intersectShape(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Cro
 int allCrossings(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Crossing fixed[kMaxCrossings],
                  std::vector<Crossing>& many, const Crossing*& first);
 
+// Sphere: |o + t d - c|^2 = r^2. The discriminant is computed as
+// a (r^2 - |f - (f.d / d.d) d|^2) with f = o - c, which stays accurate when the
+// ray starts far away (Haines et al., Ray Tracing Gems ch. 7).
+inline bool sphereRoots(const AnalyticShape& s, const Vec3& o, const Vec3& d, double& t0, double& t1) {
+    const Vec3 f = o - s.center;
+    const double a = dot(d, d);
+    const double b = dot(f, d);
+    const Vec3 l = f - (b / a) * d;
+    const double discriminant = a * (s.radius * s.radius - dot(l, l));
+    if (discriminant < 0) return false;
+    const double q = -b - std::copysign(std::sqrt(discriminant), b);
+    const double c = dot(f, f) - s.radius * s.radius;
+    t0 = q / a;
+    t1 = q != 0 ? c / q : t0;
+    return true;
+}
+
+// firstCrossing for the shapes without a shortcut: the first listed crossing.
+bool firstCrossingListed(const AnalyticShape& shape, const Vec3& o, const Vec3& d, double tMin, double tMax,
+                         Crossing& out);
+
 // The first crossing of the line o + t d with tMin < t < tMax: the same t
 // and normal as intersectShape's entry, found without listing the others
 // where the shape allows (spheres, planes). `out` is written only if found.
-bool firstCrossing(const AnalyticShape& shape, const Vec3& o, const Vec3& d, double tMin, double tMax, Crossing& out);
+// Inline: every ray that reaches a sphere or a plane comes here.
+inline bool firstCrossing(const AnalyticShape& s, const Vec3& o, const Vec3& d, double tMin, double tMax,
+                          Crossing& out) {
+    const auto inside = [&](double t) { return std::isfinite(t) && t > tMin && t < tMax; };
+    if (s.kind == ShapeKind::Sphere) {
+        // The same roots, in the same order, as intersectSphere.
+        double t0, t1;
+        if (!sphereRoots(s, o, d, t0, t1)) return false;
+        if (std::isfinite(t0) && std::isfinite(t1) && t1 < t0) std::swap(t0, t1);
+        for (const double t : {t0, t1})
+            if (inside(t)) {
+                out = {t, o + t * d - s.center};
+                return true;
+            }
+        return false;
+    }
+    if (s.kind == ShapeKind::Plane) {
+        const double dn = dot(s.normal, d);
+        if (dn == 0) return false;
+        const double t = (s.distance - dot(s.normal, o)) / dn;
+        if (!inside(t)) return false;
+        out = {t, s.normal};
+        return true;
+    }
+    return firstCrossingListed(s, o, d, tMin, tMax, out);
+}
 
 // Whether the shape encloses a volume (discs, open cones and open extrusions do not).
 bool isSolidShape(const AnalyticShape& shape);

@@ -6,19 +6,6 @@
 
 namespace drt {
 
-bool PixelAccumulator::add(const Color& sample) {
-    if (!isFinite(sample)) {
-        ++nonFinite_;
-        return false;
-    }
-    ++count_;
-    // Welford: mean += (x - mean)/n; M2 += (x - mean_old)(x - mean_new).
-    const Color delta = sample - mean_;
-    mean_ += delta / count_;
-    m2_ += delta * (sample - mean_);
-    return true;
-}
-
 Color PixelAccumulator::varianceOfMean() const {
     if (count_ < 2) return Color(0);
     return m2_ / (double(count_ - 1) * count_);

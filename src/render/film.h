@@ -15,7 +15,18 @@ namespace drt {
 class PixelAccumulator {
 public:
     // Returns false (and counts it) for a NaN or infinite sample, which is dropped.
-    bool add(const Color& sample);
+    bool add(const Color& sample) {
+        if (!isFinite(sample)) {
+            ++nonFinite_;
+            return false;
+        }
+        ++count_;
+        // Welford: mean += (x - mean)/n; M2 += (x - mean_old)(x - mean_new).
+        const Color delta = sample - mean_;
+        mean_ += delta / count_;
+        m2_ += delta * (sample - mean_);
+        return true;
+    }
     int count() const { return count_; }
     uint64_t nonFinite() const { return nonFinite_; }
     Color mean() const { return mean_; }

@@ -25,27 +25,43 @@ Integrator::Integrator(const Scene& scene, const Accelerator& accel)
 }
 
 Color Integrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounts& counts) const {
+    return traceFrom(cameraRay, nullptr, false, sampler, counts);
+}
+
+Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraFound, Sampler& sampler,
+                        RayCounts& counts) const {
+    return traceFrom(cameraRay, &cameraHit, cameraFound, sampler, counts);
+}
+
+Color Integrator::traceFrom(const Ray& cameraRay, const Hit* cameraHit, bool cameraFound, Sampler& sampler,
+                            RayCounts& counts) const {
     thread_local std::vector<PendingRay> stack;
     stack.clear();
-    stack.push_back({cameraRay, Color(1), 0});
+    // The camera ray is traced first without going through the stack.
+    PendingRay pending{cameraRay, Color(1), 0};
     Color result(0);
     int shaded = 0;
-    while (!stack.empty()) {
-        const PendingRay pending = stack.back();
-        stack.pop_back();
+    for (bool first = true;; first = false) {
+        if (!first) {
+            if (stack.empty()) break;
+            pending = stack.back();
+            stack.pop_back();
+        }
         if (pending.depth == 0)
             ++counts.camera;
         else
             ++counts.secondary;
-        Hit hit;
-        const bool found = accel_.intersect(pending.ray, hit);
-        PendingRay seen = pending;
+        Hit traced;
+        const bool given = first && cameraHit; // the camera ray's hit, found by the caller
+        const bool found = given ? cameraFound : accel_.intersect(pending.ray, traced);
+        const Hit& hit = given ? *cameraHit : traced;
+        Color seen = pending.weight; // what reaches the eye of what the ray sees
         if (!scene_.fogs.empty()) { // the fog in front of what the ray sees
             const double speed = length(pending.ray.direction);
             const FogEffect fog = fogEffect(scene_.fogs, pending.ray.origin, pending.ray.direction / speed,
                                             found ? hit.t * speed : kFogMissDistance);
             result += pending.weight * fog.add;
-            seen.weight = pending.weight * fog.scale;
+            seen = pending.weight * fog.scale;
         }
         if (hasMedia_) { // the media in front of what the ray sees
             thread_local MediaList media;
@@ -58,17 +74,17 @@ Color Integrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounts& count
             const MediaEffect effect = integrateMedia(media, pending.ray.origin, unit, distance,
                                                       {&scene_, &accel_, pending.ray.time}, sampler,
                                                       mediaDimension(pending.depth), counts);
-            result += seen.weight * effect.add;
-            seen.weight *= effect.scale;
+            result += seen * effect.add;
+            seen *= effect.scale;
         }
         if (!found) {
             const Color sky = scene_.sky.empty() ? scene_.background
                                                  : skyColor(scene_, normalize(pending.ray.direction));
-            result += seen.weight * sky;
+            result += seen * sky;
             continue;
         }
         if (++shaded > kMaxRaysPerSample) break;
-        shade(seen, hit, sampler, counts, result, stack);
+        shade(pending, seen, hit, sampler, counts, result, stack);
     }
     stack.clear();
     return result;
@@ -104,8 +120,8 @@ Vec3 Integrator::bumpNormal(const Normal& bumps, const Hit& hit, double time, co
     return normalize(toWorld.normal(perturbNormal(bumps, hit.restPoint, restNormal)));
 }
 
-void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
-                       std::vector<PendingRay>& stack) const {
+void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const Hit& hit, Sampler& sampler,
+                       RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const {
     const Object& object = *hit.object;
     thread_local PointLightSamples lights;
     lights.clear();
@@ -118,7 +134,7 @@ void Integrator::shade(const PendingRay& pending, const Hit& hit, Sampler& sampl
     const double ior = object.interior.ior > 0 && std::isfinite(object.interior.ior) ? object.interior.ior : 1.0;
     surface.eta = surface.entering ? 1.0 / ior : ior; // n_incident / n_transmitted
 
-    Color weight = pending.weight;
+    Color weight = seenWeight;
     if (!surface.entering) // the ray crossed the object's interior
         weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
     forEachSurfaceTexture(hit, [&](const Texture& texture, double share) {
@@ -181,7 +197,7 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         if (i == 0) topNormal = normal;
 
         ShadingPoint sp;
-        sp.hit = hit;
+        sp.hit = &hit;
         sp.normal = normal;
         sp.incoming = incoming;
         // Textures move with their object (restPoint); uv_mapping reads the surface's uv.

@@ -41,10 +41,16 @@ public:
     // sample (startPixelSample). Thread-safe: the only mutable state is the
     // sampler and `counts`, which each thread owns.
     Color trace(const Ray& cameraRay, Sampler& sampler, RayCounts& counts) const;
+    // The same, with the camera ray's intersection already found (cameraFound,
+    // cameraHit: what Accelerator::intersect gives for it, e.g. from a packet).
+    Color trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraFound, Sampler& sampler,
+                RayCounts& counts) const;
 
     int maxTraceLevel() const { return maxTraceLevel_; }
 
 private:
+    Color traceFrom(const Ray& cameraRay, const Hit* cameraHit, bool cameraFound, Sampler& sampler,
+                    RayCounts& counts) const;
     struct PendingRay {
         Ray ray;
         Color weight;
@@ -61,8 +67,9 @@ private:
         double eta = 1;    // n_incident / n_transmitted
         PointLightSamples* lights = nullptr; // the point's light samples, shared by its layers
     };
-    void shade(const PendingRay& pending, const Hit& hit, Sampler& sampler, RayCounts& counts, Color& result,
-               std::vector<PendingRay>& stack) const;
+    // seenWeight: the ray's weight after the fog and media in front of the hit.
+    void shade(const PendingRay& pending, const Color& seenWeight, const Hit& hit, Sampler& sampler,
+               RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
     void shadeTexture(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,
                       RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
     void shadePatterned(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,

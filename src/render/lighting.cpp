@@ -295,7 +295,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             if (!light->area) {
                 cache.samples_.push_back({light->position, 1.0, false, Color(0)});
             } else {
-                const AreaSampler points(*light, sp.hit.point, sp.depth, index);
+                const AreaSampler points(*light, sp.hit->point, sp.depth, index);
                 for (int k = 0; k < points.count(); ++k) {
                     const AreaSample a = points.sample(sampler, k);
                     cache.samples_.push_back({a.position, a.weight, false, Color(0)});
@@ -309,7 +309,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         const auto visibility = [&](PointLightSamples::Sample& s) -> const Color& {
             if (!s.tested) {
                 s.visibility = light->shadowless ? Color(1)
-                                                : shadowTransmittance(accel_, sp.hit, s.position, sp.time, counts,
+                                                : shadowTransmittance(accel_, *sp.hit, s.position, sp.time, counts,
                                                                       media, opaqueCasters_);
                 s.tested = true;
             }
@@ -319,13 +319,13 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         // is scaled by `scale` (and by 1/r^2 when `inverseSquare`), times `visible`.
         const auto pointLight = [&](const Vec3& position, double scale, bool inverseSquare,
                                     PointLightSamples::Sample* shadow) {
-            const Vec3 toLight = position - sp.hit.point;
+            const Vec3 toLight = position - sp.hit->point;
             const double distance = length(toLight);
             if (!(distance > 0)) return;
             const Vec3 l = toLight / distance;
             if (!(dot(sp.normal, l) > 0)) return;
             if (inverseSquare) scale /= distance * distance;
-            Color intensity = lightIntensityAt(*light, position, sp.hit.point) * scale;
+            Color intensity = lightIntensityAt(*light, position, sp.hit->point) * scale;
             if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
             if (shadow) {
                 intensity *= visibility(*shadow);
@@ -342,12 +342,12 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                 if (samples[k].weight > 0) pointLight(samples[k].position, samples[k].weight, false, samples + k);
         } else {
             // A point light at the centre times the mean visibility of the samples.
-            const Vec3 toCenter = light->position - sp.hit.point;
+            const Vec3 toCenter = light->position - sp.hit->point;
             const double distance = length(toCenter);
             if (!(distance > 0)) continue;
             const Vec3 l = toCenter / distance;
             if (!(dot(sp.normal, l) > 0)) continue;
-            Color intensity = lightIntensityAt(*light, light->position, sp.hit.point);
+            Color intensity = lightIntensityAt(*light, light->position, sp.hit->point);
             if (light->inverseSquare) intensity = intensity / (distance * distance);
             if (isBlack(intensity)) continue;
             if (!light->shadowless) {

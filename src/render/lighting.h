@@ -93,7 +93,7 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
 bool shadowsAreOpaque(const Scene& scene);
 
 struct ShadingPoint {
-    Hit hit;
+    const Hit* hit = nullptr; // the surface point, not copied
     Vec3 normal;   // unit, facing the incoming ray
     Vec3 incoming; // unit ray direction
     ColorFT pigment;

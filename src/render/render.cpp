@@ -237,25 +237,46 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
 
     const Integrator integrator(scene, accel);
 
-    // Samples first..last-1 of pixel (x, y), in index order.
+    // Samples first..last-1 of pixel (x, y), in index order. A pixel's camera
+    // rays are traced in packets of up to Accelerator::kPacketSize (they are
+    // coherent: one pixel, one lens); each sample's hit is exactly the one a
+    // ray alone finds, and the rest of the sample is traced after, in order.
+    // Every sample value is a function of (pixel, index, dimension), so drawing
+    // a packet's camera dimensions before the rest changes none of them.
     const bool cameraMoves = cameraPath.moving(), lensSampled = cameraPath.hasLens();
     const auto takeSamples = [&](Sampler& sampler, PixelAccumulator& pixel, int x, int y, int first, int last,
                                  RayCounts& counts) {
+        constexpr int kPacket = Accelerator::kPacketSize;
         ResolvedCamera moved; // a moving camera at the sample's time
-        for (int s = first; s < last; ++s) {
-            sampler.startPixelSample(x, y, s);
-            const Vec2 position = pixelSamplePosition(sampler, filter, x, y);
-            // Only the effects in use draw samples (a pinhole takes no lens sample).
-            const double time = camera.hasShutter() ? camera.timeAt(sampler.get1D(kDimTime)) : camera.shutterOpen;
-            const Vec2 lens = lensSampled ? sampler.get2D(kDimLens) : Vec2{0.5, 0.5};
-            if (cameraMoves) moved = cameraPath.at(time);
-            const ResolvedCamera& at = cameraMoves ? moved : camera;
-            if (!at.covers(position.x, position.y)) {
-                pixel.add(Color(0)); // no ray there (POV-Ray: black)
-                continue;
+        Ray rays[kPacket];
+        Hit hits[kPacket];
+        bool found[kPacket];
+        bool covered[kPacket];
+        for (int start = first; start < last; start += kPacket) {
+            const int n = std::min(kPacket, last - start);
+            int traced = 0;
+            for (int j = 0; j < n; ++j) {
+                sampler.startPixelSample(x, y, start + j);
+                const Vec2 position = pixelSamplePosition(sampler, filter, x, y);
+                // Only the effects in use draw samples (a pinhole takes no lens sample).
+                const double time =
+                    camera.hasShutter() ? camera.timeAt(sampler.get1D(kDimTime)) : camera.shutterOpen;
+                const Vec2 lens = lensSampled ? sampler.get2D(kDimLens) : Vec2{0.5, 0.5};
+                if (cameraMoves) moved = cameraPath.at(time);
+                const ResolvedCamera& at = cameraMoves ? moved : camera;
+                covered[j] = at.covers(position.x, position.y); // else no ray (POV-Ray: black)
+                if (covered[j]) rays[traced++] = at.generateRay(position.x, position.y, lens, time);
             }
-            const Ray ray = at.generateRay(position.x, position.y, lens, time);
-            pixel.add(integrator.trace(ray, sampler, counts));
+            accel.intersectPacket(rays, traced, hits, found);
+            for (int j = 0, k = 0; j < n; ++j) {
+                if (!covered[j]) {
+                    pixel.add(Color(0));
+                    continue;
+                }
+                sampler.startPixelSample(x, y, start + j);
+                pixel.add(integrator.trace(rays[k], hits[k], found[k], sampler, counts));
+                ++k;
+            }
         }
     };
 

@@ -85,7 +85,7 @@ double sample1D(const Filter& f, double u) {
 
 } // namespace
 
-Vec2 sampleFilter(const Filter& filter, Vec2 u) { return {sample1D(filter, u.x), sample1D(filter, u.y)}; }
+Vec2 sampleFilterShaped(const Filter& filter, Vec2 u) { return {sample1D(filter, u.x), sample1D(filter, u.y)}; }
 
 double filterPdf(const Filter& filter, Vec2 offset) { return pdf1D(filter, offset.x) * pdf1D(filter, offset.y); }
 

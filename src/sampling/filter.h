@@ -33,7 +33,13 @@ std::string defaultFilterName(); // "box"
 std::string filterName(const Filter& filter);
 
 // Offset from the pixel centre, in pixels, for a uniform u in [0, 1)^2.
-Vec2 sampleFilter(const Filter& filter, Vec2 u);
+// The offset from the pixel centre for uniform u in [0,1)^2, with the filter's
+// density. The box filter, the default, is inline: every camera sample asks.
+Vec2 sampleFilterShaped(const Filter& filter, Vec2 u); // tent, Gaussian (and box)
+inline Vec2 sampleFilter(const Filter& filter, Vec2 u) {
+    if (filter.type == FilterType::Box) return {(2.0 * u.x - 1.0) * filter.radius, (2.0 * u.y - 1.0) * filter.radius};
+    return sampleFilterShaped(filter, u);
+}
 // The normalised filter: the density of sampleFilter's offsets (per pixel^2).
 double filterPdf(const Filter& filter, Vec2 offset);
 

@@ -50,7 +50,7 @@ public:
     double get1D(int dimension) override {
         if (dimension < kSobolDimensions) return joint(dimension);
         const Seeds& s = seeds(kTagPadded1D, dimension);
-        return fractionToUnit(owenScramble(sobolValue(shuffledIndex(s.shuffle), 0), s.seed[0]));
+        return fractionToUnit(scrambledSobol0(shuffledIndex(s.shuffle), s.seed[0]));
     }
 
     Vec2 get2D(int dimension) override {
@@ -109,10 +109,11 @@ private:
         return (i & ~mask_) | (owenScramble(i, shuffleSeed) & mask_);
     }
     double joint(int dimension) const {
+        if (dimension == 0) return fractionToUnit(scrambledSobol0(jointIndex_, jointSeeds_[0]));
         return fractionToUnit(owenScramble(sobolValue(jointIndex_, dimension), jointSeeds_[dimension]));
     }
     static Vec2 padded2D(uint32_t i, const Seeds& s) {
-        return {fractionToUnit(owenScramble(sobolValue(i, 0), s.seed[0])),
+        return {fractionToUnit(scrambledSobol0(i, s.seed[0])),
                 fractionToUnit(owenScramble(sobolValue(i, 1), s.seed[1]))};
     }
 
