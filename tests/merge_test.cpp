@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fmt/format.h>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -16,7 +17,7 @@ namespace {
 
 const std::string kSettings = " --width 36 --height 27 --spp 2 --seed 3 --tile-size 8 -q";
 
-std::string scene() { return std::string(1, '\'') + test::sourcePath("examples/soft_shadows.drt") + "'"; }
+std::string scene() { return fmt::format("'{}'", test::sourcePath("examples/soft_shadows.drt")); }
 
 // Renders `name` (with extra options) into `dir`; expects success.
 void renderTo(const std::string& dir, const std::string& name, const std::string& options,

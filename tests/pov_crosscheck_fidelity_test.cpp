@@ -36,12 +36,14 @@ struct FidelityScene {
 //   interior_fade    0.028 (fade_power 1000+ taken as a power law; shadow rays not faded)
 //   leopard_normal   0.061 (normals tilted by the world-space gradient: steep at small scales)
 //   normal_gradient  0.077 (gradient normals were ignored)
+//   place_patterns   0.126 (planar, cylindrical and boxed were the average colour of their maps)
 //   waves            0.065 (invented wave sources and weights)
 const FidelityScene kScenes[] = {
     {"checker_edge", 0.01},
     {"interior_fade", 0.012},
     {"leopard_normal", 0.015},
     {"normal_gradient", 0.02},
+    {"place_patterns", 0.005},
     {"waves", 0.025},
 };
 

@@ -116,5 +116,43 @@ TEST(PovFeatures, TraceOfALeftOutShapeMissesWithAWarningAndOfALightIsAnError) {
         << e.err;
 }
 
+// `#local V = M()` whose `;` lies in M's body (tracevines.pov's FindTmp): the
+// name goes to the scope that was open when the directive began, not to M's,
+// and `#declare` there sets the outer name even when M has a local of it.
+TEST(PovFeatures, ADeclarationEndedInsideAMacroGoesToTheScopeWhereItBegan) {
+    const std::string scene = test::writeFile(test::tempDir() + "/scope.pov", R"(#macro Pick(A)
+  #local W = 100;
+  #if (A > 0) A; #else -A; #end
+#end
+#macro Outer()
+  #local V = Pick(-7)
+  #warning concat("V=", str(V, 0, 0))
+#end
+Outer()
+#declare W = 1;
+#declare W = Pick(5)
+#warning concat("W=", str(W, 0, 0))
+)");
+    const test::CommandResult r = test::runDrt("check '" + scene + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("V=7"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("W=5"), std::string::npos) << r.err;
+}
+
+// POV-Ray's commas between macro arguments are optional (incdemo/shapes.pov:
+// `Align_Object(Center_Object(...), x)\n -y, <0, 0, 0>)`); .drt requires them.
+TEST(PovFeatures, MacroArgumentsNeedNoCommasInPovButDoInDrt) {
+    const std::string dir = test::tempDir();
+    const char* body = "#macro Second(A, B, C) B #end\n#declare V = Second(sphere { 0, 1 } -y, 3);\n"
+                       "#warning concat(\"V=\", vstr(3, V, \",\", 0, 0))\n";
+    const test::CommandResult pov = test::runDrt("check '" + test::writeFile(dir + "/m.pov", body) + "'");
+    EXPECT_EQ(pov.exitCode, 0) << pov.err;
+    EXPECT_NE(pov.err.find("V=-0,-1,-0"), std::string::npos) << pov.err;
+    const test::CommandResult drt = test::runDrt("check '" + test::writeFile(dir + "/m.drt", body) + "'");
+    EXPECT_EQ(drt.exitCode, 1) << drt.err;
+    EXPECT_NE(drt.err.find("m.drt:2:37: error: expected ')' after the macro arguments, found '-'"), std::string::npos)
+        << drt.err;
+}
+
 } // namespace
 } // namespace drt

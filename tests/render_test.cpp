@@ -683,6 +683,25 @@ TEST(Pigment, ColourMapsAndPatternSpace) {
     EXPECT_NEAR(onionValue({0, 2.5, 0}), 0.5, 1e-12);
 }
 
+// POV-Ray's place patterns: 1 at the origin (plane, axis), falling linearly
+// to 0 one unit away, and 0 beyond.
+TEST(Pigment, PlanarCylindricalAndBoxedFallFromOneToZeroOverOneUnit) {
+    EXPECT_NEAR(planarValue({7, 0.25, -3}), 0.75, 1e-12);
+    EXPECT_NEAR(planarValue({0, -0.6, 0}), 0.4, 1e-12);
+    EXPECT_EQ(planarValue({0, 2, 0}), 0.0);
+    EXPECT_NEAR(cylindricalValue({0.3, 9, 0.4}), 0.5, 1e-12);
+    EXPECT_EQ(cylindricalValue({3, 0, 4}), 0.0);
+    EXPECT_NEAR(boxedValue({0.2, -0.6, 0.1}), 0.4, 1e-12);
+    EXPECT_NEAR(boxedValue({0, 0, 0}), 1.0, 1e-12);
+    EXPECT_EQ(boxedValue({0.5, 0.5, -1.5}), 0.0);
+    // Through a pigment: the colour map at the value, in pattern space.
+    Pigment p;
+    p.pattern = PatternKind::Planar;
+    p.colorMap = {{0, ColorFT{Color(0), 0, 0}}, {1, ColorFT{Color(1), 0, 0}}};
+    p.toWorld = Transform::scale(Vec3(2));
+    EXPECT_NEAR(evaluatePigment(p, {5, 0.5, 5}).rgb.g, 0.75, 1e-12);
+}
+
 // assumed_gamma G: pixel v becomes max(v, 0)^G and its variance of the mean
 // (G v^(G-1))^2 var (delta method); G = 1 changes nothing.
 TEST(Film, WorkingGammaDecodesPixelsAndPropagatesVariance) {

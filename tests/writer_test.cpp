@@ -406,6 +406,9 @@ box { <-1, 0, -1>, <1, 0.5, 1> translate x * 3 pigment { hexagon rgb 1, rgb 0.5,
 box { 0, 1 pigment { brick rgb 0.8, rgb <0.6, 0.2, 0.1> brick_size <0.5, 0.2, 0.3> mortar 0.02 } rotate <0, 0, 17> }
 cylinder { <0, 0, 0>, <0, 2, 0>, 0.5 open translate -x * 3 pigment { radial color_map { [0 rgb 1] [1 rgb 0] } } }
 cone { <0, 0, 0>, 1, <0, 2, 0>, 0.2 open pigment { onion } translate z * 3 }
+sphere { <2, 0, 2>, 0.5 pigment { planar color_map { [0 rgb 0] [1 rgb <1, 0.5, 0>] } scale 0.5 } }
+sphere { <2, 0, -2>, 0.5 pigment { cylindrical } }
+sphere { <-2, 0, 2>, 0.5 texture { boxed texture_map { [0 pigment { rgb 1 }] [1 pigment { rgb 0 }] } } }
 disc { <0, 0.01, 0>, <0, 1, 1>, 2, 1 }
 torus { 1, 0.25 translate y * 3 no_shadow hollow inverse }
 quadric { <1, 2, 3>, <0.5, -0.25, 0.125>, <0.1, 0.2, 0.3>, -1 translate <4, 1, 0> }

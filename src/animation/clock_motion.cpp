@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <concepts>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -42,97 +43,36 @@ bool sameChain(const MotionChain& a, const MotionChain& b) {
 
 bool sameObjectTree(const Object& a, const Object& b);
 
-// Shapes equal in every number that shapes them (textures aside).
+// Shapes equal in every number that shapes them (textures aside): each shape's
+// own operator== (scene/scene.h), and here the shapes that hold other objects
+// or shared data.
+struct SameShape {
+    const Shape& other;
+    template <class S>
+        requires std::equality_comparable<S>
+    bool operator()(const S& s) const {
+        return s == std::get<S>(other);
+    }
+    bool operator()(const Mesh& s) const {
+        const auto& o = std::get<Mesh>(other);
+        const bool sameIndexed = s.indexed == o.indexed ||
+                                 (s.indexed && o.indexed && sameIndexedMesh(*s.indexed, *o.indexed));
+        const bool sameSource = s.source == o.source || (s.source && o.source && s.source->kind == o.source->kind &&
+                                                           s.source->path == o.source->path);
+        return sameSource && sameIndexed && s.vertices == o.vertices && s.triangles == o.triangles &&
+               s.normals == o.normals && s.normalIndices == o.normalIndices;
+    }
+    bool operator()(const Csg& s) const {
+        const auto& o = std::get<Csg>(other);
+        if (s.op != o.op || s.children.size() != o.children.size()) return false;
+        for (size_t i = 0; i < s.children.size(); ++i)
+            if (!sameObjectTree(s.children[i], o.children[i])) return false;
+        return true;
+    }
+};
+
 bool sameShape(const Shape& a, const Shape& b) {
-    if (a.index() != b.index()) return false;
-    struct Visitor {
-        const Shape& other;
-        bool operator()(const Sphere& s) const {
-            const auto& o = std::get<Sphere>(other);
-            return s.center == o.center && s.radius == o.radius;
-        }
-        bool operator()(const Plane& s) const {
-            const auto& o = std::get<Plane>(other);
-            return s.normal == o.normal && s.distance == o.distance;
-        }
-        bool operator()(const Box& s) const {
-            const auto& o = std::get<Box>(other);
-            return s.corner1 == o.corner1 && s.corner2 == o.corner2;
-        }
-        bool operator()(const Cylinder& s) const {
-            const auto& o = std::get<Cylinder>(other);
-            return s.base == o.base && s.cap == o.cap && s.radius == o.radius && s.open == o.open;
-        }
-        bool operator()(const Cone& s) const {
-            const auto& o = std::get<Cone>(other);
-            return s.base == o.base && s.cap == o.cap && s.baseRadius == o.baseRadius && s.capRadius == o.capRadius &&
-                   s.open == o.open;
-        }
-        bool operator()(const Disc& s) const {
-            const auto& o = std::get<Disc>(other);
-            return s.center == o.center && s.normal == o.normal && s.radius == o.radius && s.holeRadius == o.holeRadius;
-        }
-        bool operator()(const Torus& s) const {
-            const auto& o = std::get<Torus>(other);
-            return s.majorRadius == o.majorRadius && s.minorRadius == o.minorRadius;
-        }
-        bool operator()(const Mesh& s) const {
-            const auto& o = std::get<Mesh>(other);
-            const bool sameIndexed = s.indexed == o.indexed ||
-                                     (s.indexed && o.indexed && sameIndexedMesh(*s.indexed, *o.indexed));
-            const bool sameSource = s.source == o.source || (s.source && o.source && s.source->kind == o.source->kind &&
-                                                               s.source->path == o.source->path);
-            return sameSource && sameIndexed && s.vertices == o.vertices && s.triangles == o.triangles &&
-                   s.normals == o.normals && s.normalIndices == o.normalIndices;
-        }
-        bool operator()(const Csg& s) const {
-            const auto& o = std::get<Csg>(other);
-            if (s.op != o.op || s.children.size() != o.children.size()) return false;
-            for (size_t i = 0; i < s.children.size(); ++i)
-                if (!sameObjectTree(s.children[i], o.children[i])) return false;
-            return true;
-        }
-        bool operator()(const Algebraic& s) const {
-            const auto& o = std::get<Algebraic>(other);
-            return s.form == o.form && s.order == o.order && s.coefficients == o.coefficients;
-        }
-        bool operator()(const Superellipsoid& s) const {
-            const auto& o = std::get<Superellipsoid>(other);
-            return s.e == o.e && s.n == o.n;
-        }
-        bool operator()(const Extrusion& s) const {
-            const auto& o = std::get<Extrusion>(other);
-            if (s.contours.size() != o.contours.size()) return false;
-            for (size_t i = 0; i < s.contours.size(); ++i) {
-                if (s.contours[i].size() != o.contours[i].size()) return false;
-                for (size_t k = 0; k < s.contours[i].size(); ++k)
-                    if (s.contours[i][k].x != o.contours[i][k].x || s.contours[i][k].y != o.contours[i][k].y)
-                        return false;
-            }
-            return s.plane == o.plane && s.fill == o.fill && s.height1 == o.height1 && s.height2 == o.height2 &&
-                   s.conic == o.conic && s.open == o.open;
-        }
-        bool operator()(const Revolution& s) const {
-            const auto& o = std::get<Revolution>(other);
-            if (s.kind != o.kind || s.spline != o.spline || s.open != o.open || s.points.size() != o.points.size())
-                return false;
-            for (size_t i = 0; i < s.points.size(); ++i)
-                if (s.points[i].x != o.points[i].x || s.points[i].y != o.points[i].y) return false;
-            return true;
-        }
-        bool operator()(const Blob& s) const {
-            const auto& o = std::get<Blob>(other);
-            if (s.threshold != o.threshold || s.components.size() != o.components.size()) return false;
-            for (size_t i = 0; i < s.components.size(); ++i) {
-                const BlobComponent &p = s.components[i], &q = o.components[i];
-                if (p.kind != q.kind || !(p.center == q.center) || !(p.end == q.end) || p.radius != q.radius ||
-                    p.strength != q.strength || !(p.transform == q.transform))
-                    return false;
-            }
-            return true;
-        }
-    };
-    return std::visit(Visitor{b}, a);
+    return a.index() == b.index() && std::visit(SameShape{b}, a);
 }
 
 // Members of a CSG: the same shapes at the same places.

@@ -56,6 +56,7 @@ inline void orthonormalBasis(const Vec3& n, Vec3& t, Vec3& b) {
 
 struct Vec2 {
     double x = 0, y = 0;
+    constexpr bool operator==(const Vec2&) const = default;
 };
 
 inline constexpr double kPi = 3.14159265358979323846;

@@ -71,8 +71,10 @@ std::string figuresTable(const CaseResult& result) {
         rows += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", name, escapeMarkup(value));
     };
     std::string channels;
-    for (int c = 0; c < r.channels; ++c)
-        channels += (c ? "/" : "") + channelName(c);
+    for (int c = 0; c < r.channels; ++c) {
+        if (c) channels += '/';
+        channels += channelName(c);
+    }
     row("size", fmt::format("{}x{}, channels {}", r.width, r.height, channels));
     row("NaN/Inf pixels", std::to_string(r.nonFinitePixels));
     row("RMSE", fmt::format("{:.6g}", r.rmse));

@@ -211,6 +211,7 @@ std::string Evaluator::declarationText(SourceLoc start) const {
 // #declare Name = value [;]: in .drt files the ';' is required after numbers,
 // vectors and colours (as in POV-Ray 3.7, which only warns) and optional after blocks.
 void Evaluator::declareDirective(const Token& t, bool local) {
+    const size_t scopeCount = scopes_.size();
     noExpand_ = true;
     Token name = next();
     if (name.isWord("deprecated")) {
@@ -258,7 +259,7 @@ void Evaluator::declareDirective(const Token& t, bool local) {
     // laughs"): look at the memory the scene takes before keeping it.
     if (!value.isNumeric() && value.kind != Value::Kind::String) checkMemoryAt(name.loc);
     if (element) **element = value;
-    else declare(name.text, value, local);
+    else declare(name.text, value, local, scopeCount);
     if (peekOperator().is(";")) next();
     else if (needsSemicolon) fail(lastToken_.loc, "expected ';' after the value of '" + name.text + "'");
 }
@@ -513,7 +514,9 @@ void Evaluator::invokeMacro(const Token& t) {
                 scope[m->params[count]] = std::make_shared<Value>(rvalue());
             }
             ++count;
-        } while (acceptSymbol(","));
+            // POV-Ray's commas between arguments are optional: `M(Obj -y)`.
+        } while (acceptSymbol(",") ||
+                 (!syntax().requireCommas && count < m->params.size() && !peek().is(")")));
     }
     expectSymbol(")", "after the macro arguments");
     if (count != m->params.size())

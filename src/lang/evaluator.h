@@ -15,6 +15,7 @@
 #include "lang/value.h"
 #include "scene/weight.h"
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <set>
@@ -124,7 +125,10 @@ public:
     Cell indexArray(Cell cell, const Token& name);
     // Reads one `[i]` per dimension of `a` (array `name`): the row-major index of the element.
     size_t arrayIndex(const lang::Array& a, const Token& name);
-    void declare(const std::string& name, const Value& value, bool local);
+    // `scopeCount`: how many scopes were open when the directive began (a
+    // value may end inside a macro that is still open, as POV-Ray's
+    // `#local V = M();` with the `;` in M's body); the name goes to those.
+    void declare(const std::string& name, const Value& value, bool local, size_t scopeCount = SIZE_MAX);
     bool isMacro(const std::string& name) const;
     // Declared names whose value is one of `kinds` (all names when empty), for suggestions.
     std::vector<std::string> declaredNames(std::initializer_list<Value::Kind> kinds = {}) const;

@@ -49,14 +49,16 @@ const std::map<Block, Words>& table() {
                                       "area_sampling", "inverse_square", "media_interaction", "media_attenuation",
                                       "looks_like", "parallel", "projected_through", "photons", "motion"},
                                      kTransforms);
-        m[Block::Texture] = with({"pigment", "finish", "normal", "texture_map", "tiles", "checker", "hexagon",
-                                  "brick", "gradient", "radial", "onion", "average", "uv_mapping"},
-                                 kTransforms);
+        Words texture{"pigment", "finish", "normal", "texture_map", "tiles", "checker", "hexagon",
+                      "brick",   "gradient", "average", "uv_mapping"};
+        for (const PlacePatternWord& w : placePatternWords()) texture.push_back(w.word);
+        m[Block::Texture] = with(texture, kTransforms);
         Words pigment{"color", "colour", "rgb", "rgbf", "rgbt", "rgbft", "srgb", "checker", "hexagon", "brick",
-                      "brick_size", "mortar", "gradient", "radial", "onion", "spherical", "color_map", "colour_map",
+                      "brick_size", "mortar", "gradient", "color_map", "colour_map",
                       "pigment_map", "average", "image_map", "turbulence", "octaves", "omega", "lambda", "warp",
                       "quick_color", "uv_mapping"};
         for (const std::string& w : noisePatternNames()) pigment.push_back(w);
+        for (const PlacePatternWord& w : placePatternWords()) pigment.push_back(w.word);
         pigment = with(pigment, waveWords());
         m[Block::Pigment] = with(pigment, kTransforms);
         Words normal{"turbulence", "octaves", "omega", "lambda", "accuracy", "bump_size"};
@@ -160,17 +162,25 @@ const std::vector<NoisePatternWord>& noisePatternWords() {
     return words;
 }
 
-std::optional<PatternKind> noisePatternNamed(const std::string& word) {
-    for (const NoisePatternWord& w : noisePatternWords())
+namespace {
+
+std::optional<PatternKind> kindNamed(const std::vector<PatternWord>& words, const std::string& word) {
+    for (const PatternWord& w : words)
         if (word == w.word) return w.kind;
     return std::nullopt;
 }
 
-const char* noisePatternWord(PatternKind kind) {
-    for (const NoisePatternWord& w : noisePatternWords())
+const char* wordOfKind(const std::vector<PatternWord>& words, PatternKind kind) {
+    for (const PatternWord& w : words)
         if (w.kind == kind) return w.word;
     return nullptr;
 }
+
+} // namespace
+
+std::optional<PatternKind> noisePatternNamed(const std::string& word) { return kindNamed(noisePatternWords(), word); }
+
+const char* noisePatternWord(PatternKind kind) { return wordOfKind(noisePatternWords(), kind); }
 
 std::vector<std::string> noisePatternNames() {
     std::vector<std::string> names;
@@ -179,9 +189,21 @@ std::vector<std::string> noisePatternNames() {
     return names;
 }
 
+const std::vector<PlacePatternWord>& placePatternWords() {
+    static const std::vector<PlacePatternWord> words{
+        {"radial", PatternKind::Radial}, {"onion", PatternKind::Onion},           {"spherical", PatternKind::Spherical},
+        {"planar", PatternKind::Planar}, {"cylindrical", PatternKind::Cylindrical}, {"boxed", PatternKind::Boxed},
+    };
+    return words;
+}
+
+std::optional<PatternKind> placePatternNamed(const std::string& word) { return kindNamed(placePatternWords(), word); }
+
+const char* placePatternWord(PatternKind kind) { return wordOfKind(placePatternWords(), kind); }
+
 bool isApproximatedPattern(const std::string& word) {
     static const std::set<std::string> words = {
-        "spiral1", "spiral2", "mandel", "julia", "cells", "planar", "cylindrical", "boxed", "quilted", "cubic",
+        "spiral1", "spiral2", "mandel", "julia", "cells", "quilted", "cubic",
         "tiling", "pavement", "facets", "function", "density_file", "object", "aoi", "slope", "pigment_pattern",
         "magnet", "fractal", "wave", "noise"};
     return words.count(word) > 0;

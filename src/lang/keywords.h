@@ -24,18 +24,28 @@ const std::vector<std::string>& blockKeywords(Block block);
 // "'ior' goes in 'interior', not 'finish'". Words every block shares are left out.
 std::vector<Block> homesOf(const std::string& word, Block in);
 
-// ---- noise patterns (render/noise.h): read in pigments, normals, textures
-// and densities, written back by the .drt writer.
-struct NoisePatternWord {
+// A pattern's keyword.
+struct PatternWord {
     const char* word;
     PatternKind kind;
 };
+
+// ---- noise patterns (render/noise.h): read in pigments, normals, textures
+// and densities, written back by the .drt writer.
+using NoisePatternWord = PatternWord;
 // Every word, the canonical one of each kind first (POV-Ray's `spotted` is `bozo`).
 const std::vector<NoisePatternWord>& noisePatternWords();
 std::optional<PatternKind> noisePatternNamed(const std::string& word);
 const char* noisePatternWord(PatternKind kind); // nullptr for a kind that is not a noise pattern
 // The canonical words (for suggestions).
 std::vector<std::string> noisePatternNames();
+
+// Patterns of the point's place alone, with no parameters and a colour map
+// (radial, onion, spherical, planar, cylindrical, boxed): read and written by this one table.
+using PlacePatternWord = PatternWord;
+const std::vector<PlacePatternWord>& placePatternWords();
+std::optional<PatternKind> placePatternNamed(const std::string& word);
+const char* placePatternWord(PatternKind kind); // nullptr for a kind that is not in the table
 
 // POV-Ray patterns drt does not have: read and approximated (pigments,
 // textures) or refused (.drt dialect).

@@ -52,6 +52,7 @@ std::string shapeHead(const Shape& shape, ShapeText& text) {
 }
 
 // CSG: the members follow as object modifiers (objectModifiers).
+template <>
 const std::vector<std::string>& ShapeSyntax<Csg>::keywords() {
     static const std::vector<std::string> w = [] {
         std::vector<std::string> words;
@@ -61,12 +62,14 @@ const std::vector<std::string>& ShapeSyntax<Csg>::keywords() {
     return w;
 }
 
+template <>
 void ShapeSyntax<Csg>::read(Evaluator&, const Token& keyword, ObjectValue& o) {
     Csg csg;
     csg.op = *csgOpNamed(keyword.text);
     o.object.shape = std::move(csg);
 }
 
+template <>
 std::string ShapeSyntax<Csg>::head(const Csg& c, ShapeText& text) {
     if (c.children.empty()) {
         text.problems.insert("a CSG with no members (left out)");

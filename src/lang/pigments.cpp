@@ -292,17 +292,14 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         const SourceLoc loc = peek().loc;
         p.mortar = floatExpr();
         if (p.mortar < 0) refuse(loc, "'mortar' must not be negative" + got(p.mortar));
-    } else if (w == "gradient" || w == "radial" || w == "onion" || w == "spherical") {
+    } else if (w == "gradient" || placePatternNamed(w)) {
         next();
         if (w == "gradient") {
             const SourceLoc loc = peek().loc;
             p.gradientAxis = vectorExpr("the gradient axis");
             requireNonZero(p.gradientAxis, loc, "gradient axis");
         }
-        p.pattern = w == "gradient" ? PatternKind::Gradient
-                    : w == "radial" ? PatternKind::Radial
-                    : w == "onion"  ? PatternKind::Onion
-                                    : PatternKind::Spherical;
+        p.pattern = w == "gradient" ? PatternKind::Gradient : *placePatternNamed(w);
         p.children.clear();
         greyRamp(p);
     } else if (const std::optional<PatternKind> kind = noisePatternNamed(w)) {

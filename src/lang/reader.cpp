@@ -77,17 +77,19 @@ std::vector<std::string> Evaluator::declaredNames(std::initializer_list<Value::K
 // #local writes the innermost scope; #declare updates the nearest existing
 // identifier (so a macro parameter bound to the caller's identifier writes
 // through) or creates a global one.
-void Evaluator::declare(const std::string& name, const Value& value, bool local) {
+void Evaluator::declare(const std::string& name, const Value& value, bool local, size_t scopeCount) {
+    const size_t open = std::min(scopeCount, scopes_.size());
     if (local) {
-        auto& scope = scopes_.back();
+        auto& scope = scopes_[open - 1];
         if (auto it = scope.find(name); it != scope.end()) *it->second = value;
         else scope[name] = std::make_shared<Value>(value);
         return;
     }
-    if (Cell c = lookup(name)) {
-        *c = value;
-        return;
-    }
+    for (size_t i = open; i-- > 0;)
+        if (auto found = scopes_[i].find(name); found != scopes_[i].end()) {
+            *found->second = value;
+            return;
+        }
     scopes_.front()[name] = std::make_shared<Value>(value);
 }
 

@@ -3,8 +3,8 @@
 // model construction) and its .drt writer entry. The entries live beside each
 // other in shapes_*.cpp. The reader table (shapeReaders) and the writer both
 // go through every alternative of Shape, so a shape without an entry does not
-// build: adding a shape means its model type, its intersection code and its
-// ShapeSyntax.
+// build: adding a shape means its model type (scene/scene.h), its intersection
+// code (accel/shapes.h and .cpp) and its ShapeSyntax in one shapes_*.cpp.
 #pragma once
 
 #include "scene/scene.h"
@@ -26,35 +26,18 @@ struct ShapeText {
     const Object* object = nullptr;    // the object the shape belongs to (a mesh's textures are placed by it)
 };
 
-// ShapeSyntax<T> for each T in Shape:
+// ShapeSyntax<T> for each T in Shape, defined (as `template <>` members) in the
+// shape's own lang/shapes_*.cpp (CSG: objects.cpp):
 //   keywords()                      the words that start it (`sphere`; `lathe`, `sor`; ...)
 //   read(evaluator, keyword, object) after the shape's '{': reads its arguments into object
 //   head(shape, text)               the .drt text from the keyword through its arguments
-template <class T> struct ShapeSyntax; // no primary definition: a Shape without an entry does not compile
-
-#define DRT_SHAPE_SYNTAX(Type)                                                                                      \
-    template <> struct ShapeSyntax<Type> {                                                                          \
-        static const std::vector<std::string>& keywords();                                                         \
-        static void read(Evaluator& e, const Token& keyword, ObjectValue& object);                                  \
-        static std::string head(const Type& shape, ShapeText& text);                                               \
-    }
-
-DRT_SHAPE_SYNTAX(Sphere);         // shapes_basic.cpp
-DRT_SHAPE_SYNTAX(Plane);          // shapes_basic.cpp
-DRT_SHAPE_SYNTAX(Box);            // shapes_basic.cpp
-DRT_SHAPE_SYNTAX(Cylinder);       // shapes_basic.cpp
-DRT_SHAPE_SYNTAX(Cone);           // shapes_basic.cpp
-DRT_SHAPE_SYNTAX(Disc);           // shapes_basic.cpp
-DRT_SHAPE_SYNTAX(Torus);          // shapes_basic.cpp
-DRT_SHAPE_SYNTAX(Mesh);           // shapes_mesh.cpp
-DRT_SHAPE_SYNTAX(Csg);            // objects.cpp (the members are read as object modifiers)
-DRT_SHAPE_SYNTAX(Algebraic);      // shapes_algebraic.cpp
-DRT_SHAPE_SYNTAX(Superellipsoid); // shapes_algebraic.cpp
-DRT_SHAPE_SYNTAX(Extrusion);      // shapes_extrusion.cpp
-DRT_SHAPE_SYNTAX(Revolution);     // shapes_revolution.cpp
-DRT_SHAPE_SYNTAX(Blob);           // shapes_blob.cpp
-
-#undef DRT_SHAPE_SYNTAX
+// The reader table and the writer use all three for every alternative of
+// Shape, so a shape without an entry does not link.
+template <class T> struct ShapeSyntax {
+    static const std::vector<std::string>& keywords();
+    static void read(Evaluator& e, const Token& keyword, ObjectValue& object);
+    static std::string head(const T& shape, ShapeText& text);
+};
 
 // The reader of each shape keyword, from every ShapeSyntax.
 using ShapeReader = void (*)(Evaluator& e, const Token& keyword, ObjectValue& object);

@@ -57,11 +57,13 @@ std::vector<double> coefficientList(Evaluator& e, const std::string& what, size_
 
 } // namespace
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Algebraic>::keywords() {
     static const std::vector<std::string> w{"quadric", "cubic", "quartic", "poly"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Algebraic>::read(Evaluator& e, const Token& keyword, ObjectValue& o) {
     const std::string& w = keyword.text;
     Algebraic a;
@@ -111,6 +113,7 @@ void ShapeSyntax<Algebraic>::read(Evaluator& e, const Token& keyword, ObjectValu
     o.object.shape = std::move(a);
 }
 
+template <>
 std::string ShapeSyntax<Algebraic>::head(const Algebraic& a, ShapeText&) {
     std::vector<double> c = a.coefficients;
     if (a.form == Algebraic::Form::Quadric) {
@@ -128,11 +131,13 @@ std::string ShapeSyntax<Algebraic>::head(const Algebraic& a, ShapeText&) {
     return text + ">" + (a.sturm ? " sturm" : "");
 }
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Superellipsoid>::keywords() {
     static const std::vector<std::string> w{"superellipsoid"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Superellipsoid>::read(Evaluator& e, const Token&, ObjectValue& o) {
     const SourceLoc loc = e.peek().loc;
     Superellipsoid s;
@@ -150,6 +155,7 @@ void ShapeSyntax<Superellipsoid>::read(Evaluator& e, const Token&, ObjectValue& 
     o.object.shape = s;
 }
 
+template <>
 std::string ShapeSyntax<Superellipsoid>::head(const Superellipsoid& s, ShapeText&) {
     return "superellipsoid { <" + number(s.e) + ", " + number(s.n) + ">";
 }

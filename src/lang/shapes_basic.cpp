@@ -32,11 +32,13 @@ double positive(Evaluator& e, const char* what) {
 
 // ------------------------------------------------------------ sphere
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Sphere>::keywords() {
     static const std::vector<std::string> w{"sphere"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Sphere>::read(Evaluator& e, const Token&, ObjectValue& o) {
     Sphere s;
     s.center = e.vectorExpr("the centre <x, y, z>");
@@ -45,17 +47,20 @@ void ShapeSyntax<Sphere>::read(Evaluator& e, const Token&, ObjectValue& o) {
     o.object.shape = s;
 }
 
+template <>
 std::string ShapeSyntax<Sphere>::head(const Sphere& s, ShapeText&) {
     return "sphere { " + vector(s.center) + ", " + number(s.radius);
 }
 
 // ------------------------------------------------------------ plane
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Plane>::keywords() {
     static const std::vector<std::string> w{"plane"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Plane>::read(Evaluator& e, const Token&, ObjectValue& o) {
     Plane p;
     const SourceLoc loc = e.peek().loc;
@@ -77,6 +82,7 @@ void ShapeSyntax<Plane>::read(Evaluator& e, const Token&, ObjectValue& o) {
     o.object.shape = p;
 }
 
+template <>
 std::string ShapeSyntax<Plane>::head(const Plane& p, ShapeText&) {
     // The reader divides both the normal and the distance by the normal's length.
     const Vec3 n = writer::unnormalised(p.normal);
@@ -93,11 +99,13 @@ std::string ShapeSyntax<Plane>::head(const Plane& p, ShapeText&) {
 
 // ------------------------------------------------------------ box
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Box>::keywords() {
     static const std::vector<std::string> w{"box"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Box>::read(Evaluator& e, const Token&, ObjectValue& o) {
     Box b;
     b.corner1 = e.vectorExpr("a corner <x, y, z>");
@@ -106,17 +114,20 @@ void ShapeSyntax<Box>::read(Evaluator& e, const Token&, ObjectValue& o) {
     o.object.shape = b;
 }
 
+template <>
 std::string ShapeSyntax<Box>::head(const Box& b, ShapeText&) {
     return "box { " + vector(b.corner1) + ", " + vector(b.corner2);
 }
 
 // ------------------------------------------------------------ cylinder
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Cylinder>::keywords() {
     static const std::vector<std::string> w{"cylinder"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Cylinder>::read(Evaluator& e, const Token&, ObjectValue& o) {
     Cylinder c;
     c.base = e.vectorExpr("the base point");
@@ -132,17 +143,20 @@ void ShapeSyntax<Cylinder>::read(Evaluator& e, const Token&, ObjectValue& o) {
     o.object.shape = c;
 }
 
+template <>
 std::string ShapeSyntax<Cylinder>::head(const Cylinder& c, ShapeText&) {
     return "cylinder { " + vector(c.base) + ", " + vector(c.cap) + ", " + number(c.radius) + (c.open ? " open" : "");
 }
 
 // ------------------------------------------------------------ cone
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Cone>::keywords() {
     static const std::vector<std::string> w{"cone"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Cone>::read(Evaluator& e, const Token&, ObjectValue& o) {
     Cone c;
     c.base = e.vectorExpr("the base point");
@@ -165,6 +179,7 @@ void ShapeSyntax<Cone>::read(Evaluator& e, const Token&, ObjectValue& o) {
     o.object.shape = c;
 }
 
+template <>
 std::string ShapeSyntax<Cone>::head(const Cone& c, ShapeText&) {
     return "cone { " + vector(c.base) + ", " + number(c.baseRadius) + ", " + vector(c.cap) + ", " +
            number(c.capRadius) + (c.open ? " open" : "");
@@ -172,11 +187,13 @@ std::string ShapeSyntax<Cone>::head(const Cone& c, ShapeText&) {
 
 // ------------------------------------------------------------ disc
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Disc>::keywords() {
     static const std::vector<std::string> w{"disc"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Disc>::read(Evaluator& e, const Token&, ObjectValue& o) {
     Disc d;
     d.center = e.vectorExpr("the centre <x, y, z>");
@@ -198,6 +215,7 @@ void ShapeSyntax<Disc>::read(Evaluator& e, const Token&, ObjectValue& o) {
     o.object.shape = d;
 }
 
+template <>
 std::string ShapeSyntax<Disc>::head(const Disc& d, ShapeText&) {
     return "disc { " + vector(d.center) + ", " + vector(writer::unnormalised(d.normal)) + ", " + number(d.radius) +
            (d.holeRadius != 0 ? ", " + number(d.holeRadius) : "");
@@ -205,11 +223,13 @@ std::string ShapeSyntax<Disc>::head(const Disc& d, ShapeText&) {
 
 // ------------------------------------------------------------ torus
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Torus>::keywords() {
     static const std::vector<std::string> w{"torus"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Torus>::read(Evaluator& e, const Token&, ObjectValue& o) {
     Torus t;
     t.majorRadius = positive(e, "torus major radius");
@@ -218,6 +238,7 @@ void ShapeSyntax<Torus>::read(Evaluator& e, const Token&, ObjectValue& o) {
     o.object.shape = t;
 }
 
+template <>
 std::string ShapeSyntax<Torus>::head(const Torus& t, ShapeText&) {
     return "torus { " + number(t.majorRadius) + ", " + number(t.minorRadius);
 }

@@ -66,11 +66,13 @@ BlobComponent component(Evaluator& e, const Token& keyword) {
 
 } // namespace
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Blob>::keywords() {
     static const std::vector<std::string> w{"blob"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Blob>::read(Evaluator& e, const Token& keyword, ObjectValue& o) {
     Blob blob;
     for (;;) {
@@ -111,6 +113,7 @@ void ShapeSyntax<Blob>::read(Evaluator& e, const Token& keyword, ObjectValue& o)
     o.object.shape = std::move(blob);
 }
 
+template <>
 std::string ShapeSyntax<Blob>::head(const Blob& b, ShapeText& out) {
     const std::string pad(size_t(out.indent + 1) * 2, ' ');
     std::string text = "blob { threshold " + number(b.threshold);

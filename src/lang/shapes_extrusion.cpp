@@ -191,16 +191,19 @@ void readText(Evaluator& e, ObjectValue& o) {
 
 } // namespace
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Extrusion>::keywords() {
     static const std::vector<std::string> w{"prism", "text"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Extrusion>::read(Evaluator& e, const Token& keyword, ObjectValue& o) {
     if (keyword.text == "text") readText(e, o);
     else readPrism(e, keyword, o);
 }
 
+template <>
 std::string ShapeSyntax<Extrusion>::head(const Extrusion& x, ShapeText& out) {
     if (x.text) {
         std::string text = "text { font " + writer::quoted(fontName(*x.text)) + " string " + writer::quoted(x.text->string) +

@@ -151,11 +151,13 @@ bool readHeightField(Evaluator& e, Mesh& m) {
 
 } // namespace
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Mesh>::keywords() {
     static const std::vector<std::string> w{"triangle", "smooth_triangle", "mesh", "mesh2", "polygon", "height_field"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Mesh>::read(Evaluator& e, const Token& keyword, ObjectValue& o) {
     Mesh m;
     const std::string& w = keyword.text;
@@ -167,6 +169,7 @@ void ShapeSyntax<Mesh>::read(Evaluator& e, const Token& keyword, ObjectValue& o)
     o.object.shape = std::move(m);
 }
 
+template <>
 std::string ShapeSyntax<Mesh>::head(const Mesh& m, ShapeText& text) {
     // A model file not read yet: its name, which reads back to the same mesh.
     if (m.source && m.source->kind == MeshSource::Kind::ModelFile)

@@ -27,11 +27,13 @@ const char* splineWord(Revolution::Spline s) {
 
 } // namespace
 
+template <>
 const std::vector<std::string>& ShapeSyntax<Revolution>::keywords() {
     static const std::vector<std::string> w{"lathe", "sor"};
     return w;
 }
 
+template <>
 void ShapeSyntax<Revolution>::read(Evaluator& e, const Token& keyword, ObjectValue& o) {
     Revolution rev;
     rev.kind = keyword.text == "sor" ? Revolution::Kind::Sor : Revolution::Kind::Lathe;
@@ -87,6 +89,7 @@ void ShapeSyntax<Revolution>::read(Evaluator& e, const Token& keyword, ObjectVal
     o.object.shape = std::move(rev);
 }
 
+template <>
 std::string ShapeSyntax<Revolution>::head(const Revolution& r, ShapeText& out) {
     const bool sor = r.kind == Revolution::Kind::Sor;
     std::string text = sor ? "sor { " : std::string("lathe { ") + splineWord(r.spline) + " ";

@@ -67,7 +67,7 @@ bool Evaluator::isTexturePatternWord(const Token& t) const {
     if (t.kind != TokenKind::Word || lookup(t.text)) return false;
     const std::string& w = t.text;
     return w == "texture_map" || w == "material_map" || w == "tiles" || w == "checker" || w == "hexagon" ||
-           w == "brick" || w == "gradient" || w == "radial" || w == "onion" || w == "average" ||
+           w == "brick" || w == "gradient" || w == "average" || placePatternNamed(w).has_value() ||
            noisePatternNamed(w).has_value() || isApproximatedPattern(w);
 }
 
@@ -184,10 +184,8 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
         const SourceLoc loc = peek().loc;
         pattern.gradientAxis = vectorExpr("the gradient axis");
         requireNonZero(pattern.gradientAxis, loc, "gradient axis");
-    } else if (w == "radial") {
-        pattern.pattern = PatternKind::Radial;
-    } else if (w == "onion") {
-        pattern.pattern = PatternKind::Onion;
+    } else if (const std::optional<PatternKind> place = placePatternNamed(w)) {
+        pattern.pattern = *place;
     } else if (w == "average") {
         pattern.pattern = PatternKind::Average;
     } else if (const std::optional<PatternKind> kind = noisePatternNamed(w)) {
@@ -330,10 +328,7 @@ namespace {
 // Patterns that perturb a POV-Ray normal by their slope (render/normal_pattern.cpp).
 std::optional<PatternKind> normalOnlyPattern(const std::string& word) {
     if (word == "gradient") return PatternKind::Gradient;
-    if (word == "radial") return PatternKind::Radial;
-    if (word == "onion") return PatternKind::Onion;
-    if (word == "spherical") return PatternKind::Spherical;
-    return std::nullopt;
+    return placePatternNamed(word);
 }
 
 } // namespace

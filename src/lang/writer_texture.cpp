@@ -172,15 +172,12 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         colorMap();
         break;
     case PatternKind::Radial:
-        text += " radial";
-        colorMap();
-        break;
     case PatternKind::Onion:
-        text += " onion";
-        colorMap();
-        break;
     case PatternKind::Spherical:
-        text += " spherical";
+    case PatternKind::Planar:
+    case PatternKind::Cylindrical:
+    case PatternKind::Boxed:
+        text += std::string(" ") + lang::placePatternWord(p.pattern);
         colorMap();
         break;
     case PatternKind::Average:
@@ -214,10 +211,9 @@ static std::string texturePatternWord(const Pigment& p) {
     case PatternKind::Hexagon: return "hexagon";
     case PatternKind::Brick: return "brick";
     case PatternKind::Gradient: return "gradient " + vector(p.gradientAxis);
-    case PatternKind::Radial: return "radial";
-    case PatternKind::Onion: return "onion";
     case PatternKind::Average: return "average";
     default: {
+        if (const char* place = lang::placePatternWord(p.pattern)) return place;
         const char* word = noiseKeyword(p.pattern);
         return word ? word : "average";
     }

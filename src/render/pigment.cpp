@@ -99,6 +99,11 @@ double radialValue(const Vec3& p) {
 double onionValue(const Vec3& p) { return rampWave(length(p)); }
 
 double sphericalValue(const Vec3& p) { return std::max(0.0, 1.0 - length(p)); }
+double planarValue(const Vec3& p) { return std::max(0.0, 1.0 - std::fabs(p.y)); }
+double cylindricalValue(const Vec3& p) { return std::max(0.0, 1.0 - std::sqrt(p.x * p.x + p.z * p.z)); }
+double boxedValue(const Vec3& p) {
+    return std::max(0.0, 1.0 - std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
+}
 
 ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value) {
     if (map.empty()) return ColorFT{Color(value), 0, 0};
@@ -136,6 +141,9 @@ PatternSample samplePatternAt(const Pigment& pigment, const Vec3& p) {
     case PatternKind::Radial: value = radialValue(p); break;
     case PatternKind::Onion: value = onionValue(p); break;
     case PatternKind::Spherical: value = sphericalValue(p); break;
+    case PatternKind::Planar: value = planarValue(p); break;
+    case PatternKind::Cylindrical: value = cylindricalValue(p); break;
+    case PatternKind::Boxed: value = boxedValue(p); break;
     default: break;
     }
     // POV-Ray's pattern step: fmod(v frequency + phase, 1.00001), then the wave.

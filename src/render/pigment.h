@@ -23,6 +23,9 @@ double gradientValue(const Vec3& p, const Vec3& axis); // in [0, 1]
 double radialValue(const Vec3& p);          // in [0, 1)
 double onionValue(const Vec3& p);           // in [0, 1)
 double sphericalValue(const Vec3& p);       // max(0, 1 - |p|), in [0, 1]
+double planarValue(const Vec3& p);          // max(0, 1 - |y|)
+double cylindricalValue(const Vec3& p);     // max(0, 1 - distance from the y axis)
+double boxedValue(const Vec3& p);           // max(0, 1 - max(|x|, |y|, |z|))
 ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value);
 
 // Where a pattern puts a world point: a block pattern (checker, hexagon,

@@ -15,30 +15,22 @@ namespace drt {
 namespace {
 
 // Whether the object is a closed surface around a solid inside, so that a
-// ray leaving it proves that it started inside. Hollow objects are meant to
-// be entered; inverse, clipped and open ones, meshes, discs, lathes and
-// algebraic surfaces have no dependable inside; and a plane's inside (a
-// half-space) holds the camera whenever a wall faces away from it.
+// ray leaving it proves that it started inside: each shape says so itself
+// (closedSolid(), scene/scene.h). Hollow objects are meant to be entered;
+// inverse and clipped ones have no dependable inside.
 bool isClosedSolid(const Object& object) {
     if (object.hollow || object.inverse || !object.clippedBy.empty())
         return false;
     return std::visit(
         [](const auto& shape) {
             using T = std::decay_t<decltype(shape)>;
-            if constexpr (std::is_same_v<T, Sphere> || std::is_same_v<T, Box> ||
-                          std::is_same_v<T, Torus> || std::is_same_v<T, Superellipsoid> || std::is_same_v<T, Blob>)
-                return true;
-            else if constexpr (std::is_same_v<T, Cylinder> || std::is_same_v<T, Cone> || std::is_same_v<T, Extrusion>)
-                return !shape.open;
-            else if constexpr (std::is_same_v<T, Revolution>)
-                return shape.kind == Revolution::Kind::Sor && !shape.open;
-            else if constexpr (std::is_same_v<T, Csg>) {
+            if constexpr (std::is_same_v<T, Csg>) {
                 for (const Object& child : shape.children)
                     if (!isClosedSolid(child))
                         return false;
                 return !shape.children.empty();
             } else
-                return false;
+                return shape.closedSolid();
         },
         object.shape);
 }

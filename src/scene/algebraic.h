@@ -3,6 +3,8 @@
 // defining function is negative.
 #pragma once
 
+#include "core/vec.h"
+
 #include <vector>
 
 namespace drt {
@@ -17,6 +19,12 @@ struct Algebraic {
     // order (algebraicTerms below), algebraicTermCount(order) of them.
     std::vector<double> coefficients;
     bool sturm = false; // POV-Ray's root-finder choice; kept for round trips only
+    // A polynomial surface may reach infinity (POV-Ray bounds it only by bounded_by).
+    bool bounds(Vec3&, Vec3&) const { return false; }
+    bool closedSolid() const { return false; }
+    bool operator==(const Algebraic& o) const {
+        return form == o.form && order == o.order && coefficients == o.coefficients;
+    }
 };
 
 // superellipsoid { <e, n> }:
@@ -24,6 +32,12 @@ struct Algebraic {
 struct Superellipsoid {
     double e = 1; // east-west exponent
     double n = 1; // north-south exponent
+    bool bounds(Vec3& lower, Vec3& upper) const {
+        lower = Vec3(-1), upper = Vec3(1);
+        return true;
+    }
+    bool closedSolid() const { return true; }
+    bool operator==(const Superellipsoid&) const = default;
 };
 
 inline constexpr int kMinAlgebraicOrder = 2;

@@ -21,6 +21,7 @@ struct BlobComponent {
     double radius = 1;
     double strength = 1;
     Transform transform;  // component -> blob space (transforms inside the component)
+    bool operator==(const BlobComponent&) const = default;
 };
 
 struct Blob {
@@ -28,6 +29,8 @@ struct Blob {
     std::vector<BlobComponent> components;
     bool sturm = false;     // POV-Ray's root-finder choice; kept for round trips only
     bool hierarchy = true;  // POV-Ray's bounding-hierarchy switch; kept for round trips only
+    bool closedSolid() const { return true; }
+    bool operator==(const Blob& o) const { return threshold == o.threshold && components == o.components; }
 };
 
 // Blob-space box around every component's region of influence (a ball or a

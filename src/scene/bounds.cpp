@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <concepts>
 
 namespace drt {
 
@@ -60,22 +61,17 @@ Box3 revolutionBox(const Revolution& r) {
     return box({-rmax, ylo, -rmax}, {rmax, yhi, rmax});
 }
 
-// Object-space boxes of every shape, one overload each and no catch-all: a
-// shape added to Shape does not compile until it says how it is bounded.
+// Object-space boxes of every shape and no catch-all: a shape added to Shape
+// does not compile until it says how it is bounded, by its own bounds() (the
+// simple shapes, scene/scene.h) or by an overload here.
 struct ShapeBox {
-    Box3 operator()(const Sphere& s) const { return box(s.center - Vec3(s.radius), s.center + Vec3(s.radius)); }
-    Box3 operator()(const Box& b) const { return box(b.corner1, b.corner2); }
-    Box3 operator()(const Cylinder& c) const {
-        return box(min(c.base, c.cap) - Vec3(c.radius), max(c.base, c.cap) + Vec3(c.radius));
-    }
-    Box3 operator()(const Cone& c) const {
-        const double r = std::max(c.baseRadius, c.capRadius);
-        return box(min(c.base, c.cap) - Vec3(r), max(c.base, c.cap) + Vec3(r));
-    }
-    Box3 operator()(const Disc& d) const { return box(d.center - Vec3(d.radius), d.center + Vec3(d.radius)); }
-    Box3 operator()(const Torus& t) const {
-        const double r = t.majorRadius + t.minorRadius;
-        return box({-r, -t.minorRadius, -r}, {r, t.minorRadius, r});
+    template <class S>
+        requires requires(const S& s, Vec3& v) {
+            { s.bounds(v, v) } -> std::same_as<bool>;
+        }
+    Box3 operator()(const S& s) const {
+        Vec3 lower, upper;
+        return s.bounds(lower, upper) ? box(lower, upper) : unbounded();
     }
     Box3 operator()(const Mesh& m) const {
         if (m.indexed) {
@@ -107,7 +103,6 @@ struct ShapeBox {
         if (result.bounded) result.upper = max(result.upper, result.lower); // empty overlap: a point
         return result;
     }
-    Box3 operator()(const Superellipsoid&) const { return box(Vec3(-1), Vec3(1)); }
     Box3 operator()(const Extrusion& e) const { return extrusionBox(e); }
     Box3 operator()(const Revolution& r) const { return revolutionBox(r); }
     Box3 operator()(const Blob& b) const {
@@ -115,9 +110,6 @@ struct ShapeBox {
         result.bounded = blobBounds(b, result.lower, result.upper);
         return result.bounded ? result : box(Vec3(0), Vec3(0)); // no component: nothing to bound
     }
-    Box3 operator()(const Plane&) const { return unbounded(); }
-    // A polynomial surface may reach infinity (POV-Ray bounds it only by bounded_by).
-    Box3 operator()(const Algebraic&) const { return unbounded(); }
 };
 
 } // namespace

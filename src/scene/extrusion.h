@@ -54,6 +54,11 @@ struct Extrusion {
     // (On the heap: they are large, and most shapes in a scene are not extrusions.)
     HeapOptional<PrismSource> prism;
     HeapOptional<TextSource> text;
+    bool closedSolid() const { return !open; }
+    bool operator==(const Extrusion& o) const { // the outline, not the source it was built from
+        return contours == o.contours && plane == o.plane && fill == o.fill && height1 == o.height1 &&
+               height2 == o.height2 && conic == o.conic && open == o.open;
+    }
 };
 
 } // namespace drt

@@ -17,6 +17,10 @@ struct Revolution {
     std::vector<Vec2> points; // <radius, height>
     bool open = false;        // sor: no base and cap discs
     bool sturm = false;       // POV-Ray's root-finder choice; kept for round trips only
+    bool closedSolid() const { return kind == Kind::Sor && !open; }
+    bool operator==(const Revolution& o) const {
+        return kind == o.kind && spline == o.spline && points == o.points && open == o.open;
+    }
 };
 
 // The fewest points each form accepts (a Bezier lathe also needs a multiple of 4).

@@ -13,6 +13,8 @@
 #include "scene/extrusion.h"
 #include "scene/indexed_mesh.h"
 #include "scene/motion.h"
+
+#include <algorithm>
 #include "scene/revolution.h"
 
 #include <array>
@@ -38,6 +40,9 @@ enum class PatternKind {
     Radial,   // colour map around y
     Onion,    // colour map by distance from the origin
     Spherical, // colour map of max(0, 1 - distance from the origin) (POV-Ray's spherical)
+    Planar,    // colour map of max(0, 1 - |y|) (POV-Ray's planar)
+    Cylindrical, // colour map of max(0, 1 - distance from the y axis) (POV-Ray's cylindrical)
+    Boxed,     // colour map of max(0, 1 - max(|x|, |y|, |z|)) (POV-Ray's boxed)
     // Noise patterns (render/noise.h): drt's own gradient noise, shaped like
     // POV-Ray's documented patterns but not value-for-value equal to them.
     Bozo,     // colour map of plain noise (POV-Ray's bozo and spotted)
@@ -242,24 +247,57 @@ inline void transformInteriorSpaces(Interior& interior, const Transform& t) {
 
 // ---------------------------------------------------------------- shapes
 // Every shape is given in object space; Object::transform maps it to world space.
+//
+// Each shape type says, next to its numbers, what the layers above ask of every
+// shape, so that a new shape is its type here, its intersection (accel/shapes.h
+// and .cpp) and its front-end entry (one lang/shapes_*.cpp), and the compiler
+// refuses it until each is given:
+//   bool bounds(Vec3& lower, Vec3& upper) const  object-space box; false: unbounded
+//                                                (scene/bounds.cpp; CSG, meshes, blobs,
+//                                                extrusions and lathes are bounded there)
+//   bool closedSolid() const   a closed surface around a solid inside, so that a ray
+//                              leaving it proves it started inside (render/scene_warnings.cpp)
+//   operator==                 equal in every number that shapes it (animation/clock_motion.cpp)
 
 struct Sphere {
     Vec3 center;
     double radius = 1;
+    bool bounds(Vec3& lower, Vec3& upper) const {
+        lower = center - Vec3(radius), upper = center + Vec3(radius);
+        return true;
+    }
+    bool closedSolid() const { return true; }
+    bool operator==(const Sphere&) const = default;
 };
 struct Plane { // points p with dot(normal, p) = distance; inside is dot < distance
     Vec3 normal{0, 1, 0};
     double distance = 0;
+    bool bounds(Vec3&, Vec3&) const { return false; }
+    // A plane's inside (a half-space) holds the camera whenever a wall faces away from it.
+    bool closedSolid() const { return false; }
+    bool operator==(const Plane&) const = default;
 };
 struct Box {
     Vec3 corner1{-1, -1, -1};
     Vec3 corner2{1, 1, 1};
+    bool bounds(Vec3& lower, Vec3& upper) const {
+        lower = min(corner1, corner2), upper = max(corner1, corner2);
+        return true;
+    }
+    bool closedSolid() const { return true; }
+    bool operator==(const Box&) const = default;
 };
 struct Cylinder {
     Vec3 base;
     Vec3 cap{0, 1, 0};
     double radius = 1;
     bool open = false;
+    bool bounds(Vec3& lower, Vec3& upper) const {
+        lower = min(base, cap) - Vec3(radius), upper = max(base, cap) + Vec3(radius);
+        return true;
+    }
+    bool closedSolid() const { return !open; }
+    bool operator==(const Cylinder&) const = default;
 };
 struct Cone {
     Vec3 base;
@@ -267,16 +305,36 @@ struct Cone {
     Vec3 cap{0, 1, 0};
     double capRadius = 0;
     bool open = false;
+    bool bounds(Vec3& lower, Vec3& upper) const {
+        const double r = std::max(baseRadius, capRadius);
+        lower = min(base, cap) - Vec3(r), upper = max(base, cap) + Vec3(r);
+        return true;
+    }
+    bool closedSolid() const { return !open; }
+    bool operator==(const Cone&) const = default;
 };
 struct Disc {
     Vec3 center;
     Vec3 normal{0, 1, 0};
     double radius = 1;
     double holeRadius = 0;
+    bool bounds(Vec3& lower, Vec3& upper) const {
+        lower = center - Vec3(radius), upper = center + Vec3(radius);
+        return true;
+    }
+    bool closedSolid() const { return false; }
+    bool operator==(const Disc&) const = default;
 };
 struct Torus { // around the y axis
     double majorRadius = 1;
     double minorRadius = 0.25;
+    bool bounds(Vec3& lower, Vec3& upper) const {
+        const double r = majorRadius + minorRadius;
+        lower = {-r, -minorRadius, -r}, upper = {r, minorRadius, r};
+        return true;
+    }
+    bool closedSolid() const { return true; }
+    bool operator==(const Torus&) const = default;
 };
 // A mesh read from a file after parsing (src/assets fills vertices and
 // triangles): the file and what the scene said about it.
@@ -309,6 +367,7 @@ struct Mesh {
     // the others take the object's texture. In the mesh's object space, like
     // Object::texture.
     std::vector<Texture> textures;
+    bool closedSolid() const { return false; } // a mesh has no dependable inside
 };
 
 struct Object;

@@ -85,7 +85,8 @@ reference_one() {
 }
 
 # drt's render of one scene and its figure: $cache/drt/SCENE.result holds
-# "STATUS<TAB>MAE<TAB>SECONDS<TAB>DETAIL" (STATUS: compared, drt-failed, no-reference).
+# "STATUS<TAB>MAE<TAB>SECONDS<TAB>DETAIL" (STATUS: compared, drt-failed, no-reference,
+# both-failed: POV-Ray fails on the scene as well).
 drt_one() {
     scene=$1
     out=$cache/$run/${scene%.pov}
@@ -106,7 +107,11 @@ drt_one() {
         else
             detail=$(grep -m 1 -E 'error' "$out.log" | sed 's/^[^ ]*: //' | cut -c 1-140)
         fi
-        printf 'drt-failed\t-\t%s\t%s\n' "$seconds" "${detail:-status $status}" >"$out.result"
+        if [ -f "$ref.failed" ]; then # POV-Ray refuses the scene too: not drt's failure
+            printf 'both-failed\t-\t%s\t%s\n' "$seconds" "drt: ${detail:-status $status}; $(cat "$ref.failed")" >"$out.result"
+        else
+            printf 'drt-failed\t-\t%s\t%s\n' "$seconds" "${detail:-status $status}" >"$out.result"
+        fi
     elif [ ! -f "$ref.png" ]; then
         printf 'no-reference\t-\t%s\t%s\n' "$seconds" "$(cat "$ref.failed" 2>/dev/null)" >"$out.result"
     else
@@ -152,7 +157,7 @@ warnings_of() {
 }
 
 table() {
-    local rows="" total=0 agree=0 compared=0 drt_failed=0 no_ref=0 missing=0
+    local rows="" total=0 agree=0 compared=0 drt_failed=0 no_ref=0 both_failed=0 missing=0
     local clock=0 radiosity=0 photons=0
     while read -r scene; do
         total=$((total + 1))
@@ -180,6 +185,10 @@ table() {
             drt_failed=$((drt_failed + 1))
             rows+="| $scene | - | drt fails | ${cause:-${detail//|/\\|}} |"$'\n'
             ;;
+        both-failed)
+            both_failed=$((both_failed + 1))
+            rows+="| $scene | - | both fail | ${detail//|/\\|} |"$'\n'
+            ;;
         no-reference)
             no_ref=$((no_ref + 1))
             rows+="| $scene | - | no POV-Ray image | ${detail//|/\\|} |"$'\n'
@@ -189,8 +198,10 @@ table() {
         case $f in *radiosity*) radiosity=$((radiosity + 1)) ;; esac
         case $f in *photons*) photons=$((photons + 1)) ;; esac
     done < <(all_scenes)
-    local percent
+    local percent rendered rendered_percent
     percent=$(awk "BEGIN { printf \"%.1f\", 100 * $agree / $total }")
+    rendered=$((total - no_ref - both_failed - missing))
+    rendered_percent=$(awk "BEGIN { printf \"%.1f\", 100 * $agree / ($rendered > 0 ? $rendered : 1) }")
     {
         sed '/^<!-- wide:begin -->$/,$d' "$doc"
         echo '<!-- wide:begin -->'
@@ -208,9 +219,11 @@ Animated scenes render their first frame (\`clock\` 0) in both. Produced by
 (POV-Ray's images are cached outside the repository; after a change, \`wide.sh drt PATTERN\` renders again only the
 scenes whose path contains PATTERN, and \`wide.sh table\` rewrites this section.)
 
-**${agree} of ${total} scenes agree (${percent}%).** Of the others: $((compared - agree)) differ by more than
-${threshold}, ${drt_failed} fail in drt, ${no_ref} have no POV-Ray image (POV-Ray failed or exceeded the CPU limit of
-${cpu_limit} s)$([ $missing -gt 0 ] && echo ", $missing were not rendered"). Among the scenes that do not agree,
+**${agree} of ${total} scenes agree (${percent}%); of the ${rendered} scenes POV-Ray renders from the command line,
+${agree} agree (${rendered_percent}%).** Of the others: $((compared - agree)) differ by more than
+${threshold}, ${drt_failed} fail in drt, ${both_failed} fail in both (POV-Ray stops on them too, e.g. the portfolio
+scenes that need their \`.ini\`'s frame numbers), ${no_ref} have no POV-Ray image (POV-Ray failed or exceeded the
+CPU limit of ${cpu_limit} s)$([ $missing -gt 0 ] && echo ", $missing were not rendered"). Among the scenes that do not agree,
 ${clock} use \`clock\` (animation), ${radiosity} radiosity and ${photons} photons.
 
 | scene | MAE | result | cause |

@@ -23,27 +23,27 @@ syn keyword drtBlock text texture texture_list texture_map tiles torus triangle 
 syn keyword drtBlock uv_vectors vertex_vectors
 syn keyword drtKeyword absorption adaptive adc_bailout agate all ambient ambient_light angle
 syn keyword drtKeyword aperture area_illumination area_light area_sampling array assumed_gamma at average
-syn keyword drtKeyword bezier_spline blue bozo brick brick_size brilliance bumps checker
-syn keyword drtKeyword circular clock clock_delta clock_on color color_map colour colour_map
-syn keyword drtKeyword confidence conic_sweep conserve_energy crackle crand cubic_spline cubic_wave dents
-syn keyword drtKeyword difference diffuse direction distance eccentricity emission error extinction
-syn keyword drtKeyword fade_color fade_colour fade_distance fade_power falloff file filter final_clock
-syn keyword drtKeyword final_frame fisheye focal_distance focal_point fog_alt fog_offset fog_type font
-syn keyword drtKeyword frame_number frequency fresnel gamma gradient granite green grid
-syn keyword drtKeyword height hexagon hierarchy hollow initial_clock initial_frame interpolate intersection
-syn keyword drtKeyword intervals inverse inverse_square ior jitter lambda leopard linear_spline
-syn keyword drtKeyword linear_sweep location look_at map_type marble matrix max_samples max_trace_level
-syn keyword drtKeyword media_attenuation media_interaction merge metallic method min_samples mortar no_shadow
-syn keyword drtKeyword octaves offset omega once onion open orient orthographic
-syn keyword drtKeyword panoramic perspective phase phong phong_size point_at poly_wave pov_grid
-syn keyword drtKeyword quadratic_spline radial radius ramp_wave ratio red reflection reflection_blur
-syn keyword drtKeyword refraction_blur rgb rgbf rgbft rgbt right ripples rotate
-syn keyword drtKeyword roughness sampler samples scale scallop_wave shadowless shutter_close shutter_open
-syn keyword drtKeyword sine_wave sky solid_angle specular spherical spline spotlight srgb
-syn keyword drtKeyword srgbf srgbft srgbt stratified strength string sturm thickness
-syn keyword drtKeyword threshold tightness tile2 translate transmit triangle_wave turb_depth turbulence
-syn keyword drtKeyword u ultra_wide_angle union up uv_mapping v variance waves
-syn keyword drtKeyword width wood wrinkles
+syn keyword drtKeyword bezier_spline blue boxed bozo brick brick_size brilliance bumps
+syn keyword drtKeyword checker circular clock clock_delta clock_on color color_map colour
+syn keyword drtKeyword colour_map confidence conic_sweep conserve_energy crackle crand cubic_spline cubic_wave
+syn keyword drtKeyword cylindrical dents difference diffuse direction distance eccentricity emission
+syn keyword drtKeyword error extinction fade_color fade_colour fade_distance fade_power falloff file
+syn keyword drtKeyword filter final_clock final_frame fisheye focal_distance focal_point fog_alt fog_offset
+syn keyword drtKeyword fog_type font frame_number frequency fresnel gamma gradient granite
+syn keyword drtKeyword green grid height hexagon hierarchy hollow initial_clock initial_frame
+syn keyword drtKeyword interpolate intersection intervals inverse inverse_square ior jitter lambda
+syn keyword drtKeyword leopard linear_spline linear_sweep location look_at map_type marble matrix
+syn keyword drtKeyword max_samples max_trace_level media_attenuation media_interaction merge metallic method min_samples
+syn keyword drtKeyword mortar no_shadow octaves offset omega once onion open
+syn keyword drtKeyword orient orthographic panoramic perspective phase phong phong_size planar
+syn keyword drtKeyword point_at poly_wave pov_grid quadratic_spline radial radius ramp_wave ratio
+syn keyword drtKeyword red reflection reflection_blur refraction_blur rgb rgbf rgbft rgbt
+syn keyword drtKeyword right ripples rotate roughness sampler samples scale scallop_wave
+syn keyword drtKeyword shadowless shutter_close shutter_open sine_wave sky solid_angle specular spherical
+syn keyword drtKeyword spline spotlight srgb srgbf srgbft srgbt stratified strength
+syn keyword drtKeyword string sturm thickness threshold tightness tile2 translate transmit
+syn keyword drtKeyword triangle_wave turb_depth turbulence u ultra_wide_angle union up uv_mapping
+syn keyword drtKeyword v variance waves width wood wrinkles
 syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|switch\|undef\|version\|warning\|while\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
