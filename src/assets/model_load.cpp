@@ -29,6 +29,10 @@
 #include <map>
 #include <optional>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 namespace drt {
 
 namespace {
@@ -124,6 +128,27 @@ WeldedVertices weld(const aiMesh& m, bool withNormals, bool withUvs) {
     return out;
 }
 
+// True when every mesh of `scene` is shown by one node and every node's
+// transform is the identity: the meshes as they are are the model.
+bool placedAsIs(const aiScene& scene) {
+    if (!scene.mRootNode)
+        return false;
+    std::vector<unsigned> uses(scene.mNumMeshes, 0);
+    std::vector<const aiNode*> pending{scene.mRootNode};
+    while (!pending.empty()) {
+        const aiNode& node = *pending.back();
+        pending.pop_back();
+        if (!node.mTransformation.IsIdentity())
+            return false;
+        for (unsigned i = 0; i < node.mNumMeshes; ++i)
+            if (node.mMeshes[i] >= uses.size() || ++uses[node.mMeshes[i]] > 1)
+                return false;
+        for (unsigned i = 0; i < node.mNumChildren; ++i)
+            pending.push_back(node.mChildren[i]);
+    }
+    return std::all_of(uses.begin(), uses.end(), [](unsigned n) { return n == 1; });
+}
+
 // "" if the file can be read, else why not.
 std::string unreadable(const std::string& path) {
     std::error_code ec;
@@ -151,10 +176,16 @@ std::string loadModelFile(const MeshSource& source, double workingGamma, LoadedM
     // up (a file without them shows flat faces); UVs keep OpenGL's v-up
     // convention, the image map's.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_PreTransformVertices |
-                           aiProcess_ValidateDataStructure;
+    // aiProcess_ValidateDataStructure stays, though it costs about a tenth of
+    // reading a binary PLY: without it the truncated PLY of the tests reaches
+    // the code below broken and crashes it.
+    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     // No aiProcess_JoinIdenticalVertices: weld() below does it for a fraction of the time and memory.
     const aiScene* scene = importer.ReadFile(source.path, flags);
+    // The node transforms baked in, unless each mesh is placed once and as it
+    // is (OBJ and PLY files always): then the step would only copy the meshes.
+    if (scene && !placedAsIs(*scene))
+        scene = importer.ApplyPostProcessing(aiProcess_PreTransformVertices);
     if (!scene) {
         const std::string why = importer.GetErrorString();
         // SortByPType removed every point and line: nothing was left.
@@ -259,6 +290,12 @@ std::string loadModelFile(const MeshSource& source, double workingGamma, LoadedM
         return prefix + error;
     padForEmbree(out);
     model.mesh = std::move(built);
+    // assimp's copy is freed in many small blocks (an OBJ's faces, a few per
+    // triangle); give the heap they leave back to the system.
+    importer.FreeScene();
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
     return "";
 }
 

@@ -61,6 +61,13 @@ public:
     // The location of the last token consumed.
     SourceLoc lastLoc() const { return lastToken_.loc; }
     const Token& lastToken() const { return lastToken_; }
+    // The current file's token stream at its frontier, for reading long lists
+    // of literals without tokens (mesh vertices and indices: TokenStream's
+    // scans); nullptr when the file is replayed (a loop in it, a macro body) or
+    // a look-ahead cannot be given back. After a scan that consumed something,
+    // call rawRead() with the place of the last symbol it consumed.
+    TokenStream* rawStream();
+    void rawRead(SourceLoc last, const char* lastSymbol);
 
     // ------------------------------------------------------------ dialects
     // The dialect of the file being read (its syntax rules) and of the scene
@@ -255,7 +262,7 @@ public:
 private:
     friend struct DepthGuard;
     struct Frame {
-        std::shared_ptr<const std::vector<Token>> tokens;
+        std::shared_ptr<TokenStream> tokens;
         size_t pos = 0;
         bool isMacro = false;
         SourceLoc includedFrom; // include frames: the #include directive; macro frames: the call
@@ -330,7 +337,7 @@ private:
     std::vector<std::map<std::string, Cell>> scopes_;
     std::set<std::string> warned_;
     std::vector<PendingWarning>* pending_ = nullptr; // while evaluating a #declare
-    std::map<std::string, std::shared_ptr<const std::vector<Token>>> lexedFiles_;
+    std::map<std::string, std::shared_ptr<TokenStream>> lexedFiles_;
     int expressionDepth_ = 0;
     bool noExpand_ = false;
     Token lastToken_, beforeLastToken_;

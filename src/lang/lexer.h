@@ -1,10 +1,15 @@
 // The lexer of both dialects: one switch over the current character (after
-// Lua's llex.c and clox's scanner). A file is lexed once into a token vector;
-// loops and macros replay it by index (lang/reader.cpp).
+// Lua's llex.c and clox's scanner). A file is lexed on demand into a
+// TokenStream as the reader pulls tokens; loops and macros replay it by index
+// (lang/reader.cpp). Readers of long literal lists (mesh vertices and
+// indices, shapes_mesh*.cpp) may scan plain numbers and vectors straight from
+// the text at the stream's end (its frontier) without making tokens.
 #pragma once
 
 #include "core/diagnostics.h"
+#include "core/vec.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,5 +44,85 @@ std::string describe(const Token& token);
 // and an unknown string escape errors; POV-Ray reads them as a number then a
 // word, and keeps the escaped character.
 std::vector<Token> lex(const std::string& text, int fileId, bool strict);
+
+// A vector of plain number literals, `<1, -2.5, 3e2>` (2 to 5 components),
+// scanned without tokens: its components and the place of its '<'.
+struct LiteralVector {
+    double v[5] = {0, 0, 0, 0, 0};
+    int size = 0;
+    SourceLoc loc, end; // of its '<' and its '>'
+    // As vectorExpr() reads it: 2 components have z = 0, 4 or 5 keep x, y, z.
+    Vec3 xyz() const { return {v[0], v[1], size > 2 ? v[2] : 0.0}; }
+};
+
+// The tokens of one file, lexed as they are asked for (the same tokens, in
+// the same order, as lex()). Indices stay valid: tokens are kept in blocks
+// that never move.
+class TokenStream {
+public:
+    // The text of file `fileId` in `files` (looked up at each use: the table may grow).
+    TokenStream(const SourceFiles& files, int fileId, bool strict);
+    // A text of its own.
+    TokenStream(std::string text, int fileId, bool strict);
+    ~TokenStream();
+    TokenStream(const TokenStream&) = delete;
+    TokenStream& operator=(const TokenStream&) = delete;
+
+    // Token `i`, lexing up to it; past the end of the file, the EndOfFile token.
+    const Token& operator[](size_t i) const;
+    // Tokens made so far.
+    size_t lexed() const { return count_; }
+    int fileId() const { return fileId_; }
+
+    // Forgets tokens [i, lexed()) so the text after token i-1 is read again;
+    // only the last few tokens can be forgotten (false otherwise).
+    bool rewind(size_t i);
+
+    // --- Scanning at the frontier (the text after the last token made). Each
+    // scan either consumes what it names and returns true, or consumes nothing
+    // and returns false; blanks and comments before it are skipped either way
+    // only when it succeeds.
+    struct Mark {
+        size_t pos = 0;
+        int line = 1, column = 1;
+    };
+    Mark mark() const;
+    void reset(Mark m);
+    // The symbol character `c` (`{`, `}`, `,`, `<`, ...), alone: not the start of `<=`.
+    bool symbol(char c);
+    // The word `w`, whole.
+    bool word(const char* w);
+    // The next character after blanks and comments, not consumed ('\0' at the end or on a bad comment).
+    char peekChar();
+    // `<n, n [, n...]>` of 2 to 5 optionally signed number literals, separated by
+    // commas, followed by a blank or a character that cannot continue an
+    // expression (`,` `}` `<` `#`, a letter); with `requireCommas` false,
+    // components may also be separated by blanks, as POV-Ray allows.
+    bool vector(LiteralVector& out);
+    // A list item: an optional ',' then vector().
+    bool item(LiteralVector& out);
+    // A plain unsigned number literal followed by `,` or `}` (after blanks).
+    bool number(double& out, SourceLoc& loc);
+    // The place of the next character after blanks (for messages).
+    SourceLoc here();
+
+private:
+    class Scanner;
+    void lexOne() const;
+    const std::string& text() const;
+
+    const SourceFiles* files_ = nullptr;
+    std::string own_;
+    int fileId_;
+    std::unique_ptr<Scanner> scanner_;
+    static constexpr size_t kBlockBits = 10;
+    static constexpr size_t kBlock = size_t(1) << kBlockBits;
+    mutable std::vector<std::unique_ptr<Token[]>> blocks_;
+    mutable size_t count_ = 0;
+    mutable bool ended_ = false; // the EndOfFile token is made
+    // Where the last few tokens started, for rewind().
+    static constexpr size_t kRing = 16;
+    mutable Mark starts_[kRing];
+};
 
 } // namespace drt::lang

@@ -12,19 +12,29 @@ namespace fs = std::filesystem;
 
 namespace drt {
 
-std::optional<Scene> loadSceneText(const std::string& text, const std::string& name, Diagnostics& diags,
+namespace {
+
+// The scene in `text`, which the file table keeps (a scene read from a file
+// is held once, not copied: a large mesh's text is most of the memory parsing takes).
+std::optional<Scene> loadOwnedText(std::string text, const std::string& name, Diagnostics& diags,
                                    const LoadOptions& options, const std::string& baseDir) {
     LoadOptions effective = options;
     if (effective.includePaths.empty()) effective.includePaths = {baseDir, kPovStandardIncludeDir};
     const DialectKind dialect = options.dialect.value_or(dialectForPath(name));
     const int errorsBefore = diags.errorCount();
-    std::string withoutMark = text;
-    stripByteOrderMark(withoutMark);
-    const int fileId = diags.files().add(name, std::move(withoutMark));
+    stripByteOrderMark(text);
+    const int fileId = diags.files().add(name, std::move(text));
     lang::Evaluator evaluator(diags, effective, dialect);
     std::optional<Scene> scene = evaluator.run(fileId, baseDir);
     if (diags.errorCount() > errorsBefore) return std::nullopt;
     return scene;
+}
+
+} // namespace
+
+std::optional<Scene> loadSceneText(const std::string& text, const std::string& name, Diagnostics& diags,
+                                   const LoadOptions& options, const std::string& baseDir) {
+    return loadOwnedText(text, name, diags, options, baseDir);
 }
 
 std::optional<Scene> loadScene(const std::string& path, Diagnostics& diags, const LoadOptions& options) {
@@ -36,7 +46,7 @@ std::optional<Scene> loadScene(const std::string& path, Diagnostics& diags, cons
     std::string dir = fs::path(path).parent_path().string();
     LoadOptions effective = options;
     if (!effective.dialect) effective.dialect = dialectForPath(path);
-    return loadSceneText(text, path, diags, effective, dir.empty() ? "." : dir);
+    return loadOwnedText(std::move(text), path, diags, effective, dir.empty() ? "." : dir);
 }
 
 std::optional<Scene> loadSceneFile(const std::string& path, Diagnostics& diags) { return loadScene(path, diags); }

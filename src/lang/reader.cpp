@@ -102,8 +102,7 @@ void Evaluator::pushFile(int fileId, SourceLoc includedFrom, const std::string& 
                                          double(frames_.size() + 1)));
     const std::string& path = diags_.files().path(fileId);
     auto& tokens = lexedFiles_[path + "#" + std::to_string(fileId)];
-    tokens = std::make_shared<const std::vector<Token>>(
-        lex(diags_.files().text(fileId), fileId, dialectOf(dialect).strictLexing));
+    tokens = std::make_shared<TokenStream>(diags_.files(), fileId, dialectOf(dialect).strictLexing);
     Frame f;
     f.tokens = tokens;
     f.includedFrom = includedFrom;
@@ -321,6 +320,36 @@ Token Evaluator::peekOperator() {
         if (t.kind == TokenKind::Word && isMacro(t.text)) return t;
         return peek();
     }
+}
+
+TokenStream* Evaluator::rawStream() {
+    if (frames_.empty() || noExpand_) return nullptr;
+    Frame& f = frames_.back();
+    if (f.isMacro || f.tokens->fileId() == abandonedFile_) return nullptr;
+    // A loop in this file jumps back to token indices: its tokens must all be made.
+    const size_t current = frames_.size() - 1;
+    for (const Cond& c : conds_)
+        if (c.frame == current && (c.type == Cond::Type::While || c.type == Cond::Type::For)) return nullptr;
+    // The look-ahead goes back to the stream when it is exactly this file's last tokens.
+    const size_t k = pushed_.size();
+    if (k > f.pos) return nullptr;
+    for (size_t i = 0; i < k; ++i) {
+        const Token& made = (*f.tokens)[f.pos - 1 - i];
+        const Token& held = pushed_[i];
+        if (made.kind != held.kind || made.loc.file != held.loc.file || made.loc.line != held.loc.line ||
+            made.loc.column != held.loc.column || made.text != held.text)
+            return nullptr;
+    }
+    if (!f.tokens->rewind(f.pos - k)) return nullptr;
+    f.pos -= k;
+    pushed_.clear();
+    return f.tokens.get();
+}
+
+void Evaluator::rawRead(SourceLoc last, const char* lastSymbol) {
+    beforeLastToken_ = std::move(lastToken_);
+    lastToken_ = Token{TokenKind::Symbol, lastSymbol, 0, last};
+    lastOrigin_ = nullptr;
 }
 
 bool Evaluator::acceptSymbol(const char* s) {

@@ -14,6 +14,14 @@
 // vertices. A mesh triangle without uv_vectors has POV-Ray's uvs <0,0>,
 // <1,0>, <1,1> when another triangle of the mesh has some (else the mesh has
 // none).
+//
+// Speed: runs of items written as plain literals (triangles and
+// smooth_triangles of literal vectors, list vectors, index triples and their
+// texture indices) are read straight from the text by TokenStream's scans
+// (lang/lexer.h), without tokens or the expression evaluator; anything else,
+// and every list in a file a loop or a macro replays, goes through the
+// evaluator. Both ways give the same mesh and the same messages
+// (tests/mesh_literal_scan_test.cpp).
 #include "lang/mesh_syntax.h"
 #include "lang/writer_detail.h"
 #include "scene/motion.h"
@@ -33,37 +41,116 @@ std::string floatText(float f) {
     return writer::number(double(f));
 }
 
+// `triangle { a, b, c }` or `smooth_triangle { a, na, b, nb, c, nc }` whose
+// vectors are plain literals, read straight from the text: its corners and
+// unit normals, or false with nothing read (anything else, a zero normal
+// included, goes the evaluator's way, which reports it).
+bool literalTriangle(Evaluator& e, TokenStream& s, bool& smooth, TriangleCorners& c) {
+    const TokenStream::Mark start = s.mark();
+    const auto fail = [&] {
+        s.reset(start);
+        return false;
+    };
+    if (s.word("triangle"))
+        smooth = false;
+    else if (s.word("smooth_triangle"))
+        smooth = true;
+    else
+        return false;
+    if (!s.symbol('{'))
+        return fail();
+    const bool commas = e.syntax().requireCommas;
+    LiteralVector v;
+    for (int i = 0; i < (smooth ? 6 : 3); ++i) {
+        if (i > 0 && !s.symbol(',') && commas)
+            return fail();
+        if (!s.vector(v))
+            return fail();
+        if (i % (smooth ? 2 : 1) == 0) {
+            c.corners[smooth ? i / 2 : i] = v.xyz();
+        } else {
+            const Vec3 n = v.xyz();
+            if (!(length(n) > 0))
+                return fail();
+            c.normals[i / 2] = normalize(n);
+        }
+    }
+    const SourceLoc close = s.here();
+    if (!s.symbol('}'))
+        return fail();
+    e.rawRead(close, "}");
+    return true;
+}
+
 } // namespace
 
 void readTriangleMesh(Evaluator& e, const Token& keyword, Mesh& m) {
     auto built = std::make_shared<IndexedMesh>();
     IndexedMesh& out = *built;
-    // Kept for every triangle while reading, dropped at the end when no
-    // triangle had any: normals (zero on flat triangles: the accelerator
-    // shades those flat), uvs and textures.
+    // Made when the first triangle has one, with the earlier triangles'
+    // defaults: normals (zero on flat triangles: the accelerator shades those
+    // flat), uvs (POV-Ray's <0, 0>, <1, 0>, <1, 1>) and textures.
     std::vector<Float3> normals;
     std::vector<Float2> uvs;
     std::vector<uint32_t> textures;
     bool anySmooth = false, anyUv = false, anyTexture = false;
     const double limit = double(e.diags().limits().meshTriangles);
+    static const Float2 kDefaultUv[3] = {{0, 0}, {1, 0}, {1, 1}};
+    const auto add = [&](const TriangleCorners& c, bool smooth, const Float2* uv, uint32_t texture) {
+        const uint32_t base = uint32_t(out.positions.size());
+        for (int k = 0; k < 3; ++k) {
+            out.positions.push_back(Float3::of(c.corners[k]));
+            out.indices.push_back(base + uint32_t(k));
+        }
+        if (smooth && !anySmooth)
+            normals.resize(base), anySmooth = true;
+        if (anySmooth)
+            for (int k = 0; k < 3; ++k)
+                normals.push_back(smooth ? Float3::of(c.normals[k]) : Float3{});
+        if (uv && !anyUv) {
+            for (uint32_t t = 0; t < base / 3; ++t)
+                uvs.insert(uvs.end(), std::begin(kDefaultUv), std::end(kDefaultUv));
+            anyUv = true;
+        }
+        if (anyUv)
+            uvs.insert(uvs.end(), uv ? uv : kDefaultUv, (uv ? uv : kDefaultUv) + 3);
+        if (texture != kObjectTexture && !anyTexture)
+            textures.assign(base, kObjectTexture), anyTexture = true;
+        if (anyTexture)
+            textures.insert(textures.end(), 3, texture);
+    };
+    // Triangles of plain literals are read from the text without tokens
+    // while the keywords are no macro names.
+    const auto keywordsPlain = [&] { return !e.isMacro("triangle") && !e.isMacro("smooth_triangle"); };
+    bool plain = keywordsPlain();
+    const auto literal = [&] {
+        if (!plain || double(out.triangleCount()) + 1 > limit)
+            return false;
+        TokenStream* s = e.rawStream();
+        TriangleCorners c;
+        bool smooth = false;
+        if (!s || !literalTriangle(e, *s, smooth, c))
+            return false;
+        add(c, smooth, nullptr, kObjectTexture);
+        return true;
+    };
     for (;;) {
+        if (literal())
+            continue;
+        // Directives before the triangle run, and it may be plain after all.
         const Token t = e.peek();
         if (!(t.isWord("triangle") || t.isWord("smooth_triangle")))
             break;
+        if (literal())
+            continue;
         e.next();
         if (double(out.triangleCount()) + 1 > limit)
             e.countValue(double(out.triangleCount()) + 1, t.loc, "mesh triangle count", 0, limit);
         const bool smooth = t.text == "smooth_triangle";
         e.expectSymbol("{", "after '" + t.text + "'");
-        const TriangleCorners c = readTriangleCorners(e, smooth);
-        const uint32_t base = uint32_t(out.positions.size());
-        for (int k = 0; k < 3; ++k) {
-            out.positions.push_back(Float3::of(c.corners[k]));
-            out.indices.push_back(base + uint32_t(k));
-            normals.push_back(smooth ? Float3::of(c.normals[k]) : Float3{});
-        }
-        anySmooth = anySmooth || smooth;
+        const TriangleCorners corners = readTriangleCorners(e, smooth);
         Float2 uv[3] = {{0, 0}, {1, 0}, {1, 1}};
+        bool hasUv = false;
         uint32_t texture = kObjectTexture;
         for (;;) {
             const Token s = e.next();
@@ -75,17 +162,16 @@ void readTriangleMesh(Evaluator& e, const Token& keyword, Mesh& m) {
                         meshSeparator(e, "between uv vectors");
                     uv[k] = toFloat2(e.vectorExpr("a uv vector <u, v>"));
                 }
-                anyUv = true;
+                hasUv = true;
             } else if (s.isWord("texture")) {
                 m.textures.push_back(e.texture(Texture{}));
                 texture = uint32_t(m.textures.size() - 1);
-                anyTexture = true;
             } else {
                 e.failExpected(s, "'uv_vectors', 'texture' or '}' to close the triangle");
             }
         }
-        uvs.insert(uvs.end(), std::begin(uv), std::end(uv));
-        textures.insert(textures.end(), 3, texture);
+        add(corners, smooth, hasUv ? uv : nullptr, texture);
+        plain = keywordsPlain(); // a directive in the triangle may have declared one
     }
     if (out.indices.empty())
         e.error(keyword.loc, "mesh has no triangles");
@@ -119,9 +205,21 @@ void readMesh2(Evaluator& e, const Token& keyword, Mesh& m) {
         e.acceptSymbol(",");
         e.expectSymbol("}", "after the listed count of items");
     };
+    // Runs of plain literal vectors `, <x, y, z>` are read from the text
+    // without tokens, the rest by the evaluator.
     auto vectorList = [&](const char* what, auto add) {
         const int n = count(what);
         for (int i = 0; i < n; ++i) {
+            if (TokenStream* s = e.rawStream()) {
+                LiteralVector v;
+                const int from = i;
+                for (; i < n && s->item(v); ++i)
+                    add(v.xyz());
+                if (i > from)
+                    e.rawRead(v.end, ">");
+                if (i == n)
+                    break;
+            }
             e.acceptSymbol(",");
             add(e.vectorExpr());
         }
@@ -133,18 +231,83 @@ void readMesh2(Evaluator& e, const Token& keyword, Mesh& m) {
     auto indexList = [&](std::vector<uint32_t>& indices, size_t available, const char* what, bool faces) {
         const int n = count("mesh2 index count");
         const std::string indexName = std::string(what) + " index";
-        for (int i = 0; i < n; ++i) {
-            e.acceptSymbol(",");
-            const SourceLoc at = e.peek().loc;
-            const Vec3 v = e.vectorExpr();
+        // A face: its triple `v` (its '<' at `at`), checked, then (after
+        // `own`, its texture indices, are read and checked) what they mean.
+        std::vector<uint32_t> own;
+        const auto triple = [&](const Vec3& v, SourceLoc at) {
             for (int k = 0; k < 3; ++k)
                 indices.push_back(
                     uint32_t(e.countValue(v[k], at, indexName.c_str(), 0, double(available) - 1)));
-            std::vector<uint32_t> own;
+        };
+        const auto textureIndex = [&](double t, SourceLoc at) {
+            own.push_back(uint32_t(e.countValue(t, at, "texture index", 0, double(m.textures.size()) - 1)));
+        };
+        const auto faceTextures = [&](SourceLoc at) {
+            if (!faces)
+                return;
+            if (own.size() == 1)
+                own.assign(3, own[0]);
+            if (!own.empty() && own.size() != 3)
+                e.fail(at, fmt::format("a face takes one texture index or three, not {}", own.size()));
+            anyTexture = anyTexture || !own.empty();
+            if (own.empty())
+                own.assign(3, kObjectTexture);
+            textures.insert(textures.end(), own.begin(), own.end());
+        };
+        for (int i = 0; i < n; ++i) {
+            // Runs of plain literal triples `, <i, j, k>` and their texture
+            // indices `, t`, from the text without tokens.
+            if (TokenStream* s = e.rawStream()) {
+                LiteralVector v;
+                SourceLoc last;
+                std::vector<std::pair<double, SourceLoc>> read;
+                const int from = i;
+                for (; i < n; ++i) {
+                    const TokenStream::Mark at = s->mark();
+                    if (!s->item(v))
+                        break;
+                    last = v.end;
+                    read.clear();
+                    // `, t`: a texture index unless a triple or the list's end follows the comma.
+                    bool plain = true;
+                    for (TokenStream::Mark before = s->mark(); s->symbol(','); before = s->mark()) {
+                        const char c = s->peekChar();
+                        if (c == '<' || c == '}') {
+                            s->reset(before);
+                            break;
+                        }
+                        double t = 0;
+                        SourceLoc textureAt;
+                        if (!faces || !s->number(t, textureAt)) {
+                            plain = false;
+                            break;
+                        }
+                        read.emplace_back(t, textureAt);
+                        last = textureAt;
+                    }
+                    if (!plain) {
+                        s->reset(at);
+                        break;
+                    }
+                    triple(v.xyz(), v.loc);
+                    own.clear();
+                    for (const auto& [t, textureAt] : read)
+                        textureIndex(t, textureAt);
+                    faceTextures(v.loc);
+                }
+                if (i > from)
+                    e.rawRead(last, ">");
+                if (i == n)
+                    break;
+            }
+            e.acceptSymbol(",");
+            const SourceLoc at = e.peek().loc;
+            triple(e.vectorExpr(), at);
+            own.clear();
             while (e.peekOperator().is(",")) {
-                e.next();
+                Token comma = e.next();
                 if (e.peek().is("<") || e.peek().is("}")) {
-                    e.pushBack(Token{TokenKind::Symbol, ",", 0, at});
+                    e.pushBack(std::move(comma));
                     break;
                 }
                 const SourceLoc textureAt = e.peek().loc;
@@ -152,19 +315,9 @@ void readMesh2(Evaluator& e, const Token& keyword, Mesh& m) {
                 if (!faces)
                     e.fail(textureAt,
                            std::string("texture indices follow face_indices only, not ") + what + " indices");
-                own.push_back(
-                    uint32_t(e.countValue(t, textureAt, "texture index", 0, double(m.textures.size()) - 1)));
+                textureIndex(t, textureAt);
             }
-            if (faces) {
-                if (own.size() == 1)
-                    own.assign(3, own[0]);
-                if (!own.empty() && own.size() != 3)
-                    e.fail(at, fmt::format("a face takes one texture index or three, not {}", own.size()));
-                anyTexture = anyTexture || !own.empty();
-                if (own.empty())
-                    own.assign(3, kObjectTexture);
-                textures.insert(textures.end(), own.begin(), own.end());
-            }
+            faceTextures(at);
         }
         closeList();
     };

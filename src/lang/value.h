@@ -15,6 +15,7 @@
 namespace drt::lang {
 
 struct Token;
+class TokenStream;
 
 // An object while it is evaluated: CSG stays a tree, and the flags the
 // inheritance rules need (a union's texture goes to members without one) are
@@ -38,7 +39,7 @@ struct Material {
 struct Macro {
     std::string name;
     std::vector<std::string> params;
-    std::shared_ptr<const std::vector<Token>> tokens; // the file holding the body
+    std::shared_ptr<TokenStream> tokens; // the file holding the body
     size_t bodyStart = 0;                               // index of the first body token
     DialectKind dialect = DialectKind::Drt;             // of the file it was defined in
     SourceLoc loc;

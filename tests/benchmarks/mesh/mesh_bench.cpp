@@ -5,6 +5,7 @@
 // would be gigabytes) and measures in child processes (so each peak memory
 // is its own):
 //   text      parse of `mesh { triangle ... }` text by drt's front end (MB/s)
+//   mesh2     parse of the same mesh as `mesh2 { vertex_vectors ... face_indices ... }` text
 //   obj/ply   loading the model file into a compact mesh
 //   raw       raw Embree: the same float arrays as a triangle geometry, committed
 //   compact   drt: the compact mesh (made in memory) in a scene, built, traced
@@ -13,9 +14,11 @@
 //             Embree's BVH, the renderer)
 //   instances drt: 100 placements of the one mesh (Embree instances)
 //   empty     the bare process, whose peak memory the others subtract
-// and, when given drt binaries (--drt LABEL=PATH), the whole `drt render` of
-// the text scene (and of `mesh { file }` where the binary reads it) with its
-// wall time and peak memory per triangle.
+// and, when given drt binaries (--drt LABEL=PATH), `drt check` of both text
+// scenes (CPU time, MB/s) and the whole `drt render` of the text scene (and
+// of `mesh { file }` where the binary reads it) with its wall time and peak
+// memory per triangle: an older binary beside a newer one compares them in
+// one run.
 #include "assets/assets.h"
 #include "lang/load.h"
 #include "mesh_generators.h"
@@ -32,6 +35,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -45,6 +49,24 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// CPU time of this process so far (user + system, all threads).
+double cpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + double(t.tv_nsec) / 1e9;
+}
+
+// Resident memory now (not the peak).
+long residentKiB() {
+    long pages = 0, resident = 0;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2)
+            resident = 0;
+        std::fclose(f);
+    }
+    return resident * (sysconf(_SC_PAGESIZE) / 1024);
 }
 
 long peakKiB() {
@@ -116,6 +138,21 @@ void writeFiles(const std::string& dir, long n, bool withText) {
     }
     text += "  pigment { color rgb <0.8, 0.7, 0.6> }\n}\n";
     std::ofstream(file(dir, n, "drt")) << text;
+    std::string mesh2 = fmt::format("{}mesh2 {{\n  vertex_vectors {{ {}", kSceneHead, m->positions.size());
+    for (const Float3& p : m->positions)
+        mesh2 += fmt::format(",\n    <{},{},{}>", p.x, p.y, p.z);
+    if (normals) {
+        mesh2 += fmt::format("\n  }}\n  normal_vectors {{ {}", m->normals.size());
+        for (const Float3& p : m->normals)
+            mesh2 += fmt::format(",\n    <{},{},{}>", p.x, p.y, p.z);
+    }
+    mesh2 += fmt::format("\n  }}\n  face_indices {{ {}", m->triangleCount());
+    for (size_t t = 0; t < m->triangleCount(); ++t) {
+        const auto tri = m->triangle(t);
+        mesh2 += fmt::format(",\n    <{},{},{}>", tri[0], tri[1], tri[2]);
+    }
+    mesh2 += "\n  }\n  pigment { color rgb <0.8, 0.7, 0.6> }\n}\n";
+    std::ofstream(file(dir, n, "mesh2.drt")) << mesh2;
     std::string obj;
     for (const Float3& p : m->positions)
         obj += fmt::format("v {} {} {}\n", p.x, p.y, p.z);
@@ -190,15 +227,17 @@ int measure(const std::string& mode, long n, const std::string& dir, int threads
     std::printf("start_kib %ld\n", startKiB);
     if (mode == "empty")
         return 0;
-    if (mode == "text") {
+    if (mode == "text" || mode == "mesh2") {
+        const std::string path = file(dir, n, mode == "text" ? "drt" : "mesh2.drt");
         Diagnostics diags;
         const auto start = Clock::now();
-        const auto scene = loadSceneFile(file(dir, n, "drt"), diags);
-        const double s = secondsSince(start);
+        const double cpuStart = cpuSeconds();
+        const auto scene = loadSceneFile(path, diags);
+        const double s = secondsSince(start), cpu = cpuSeconds() - cpuStart;
         if (!scene)
             return 1;
-        std::printf("seconds %.6f\nmb_per_s %.2f\n", s,
-                    double(std::filesystem::file_size(file(dir, n, "drt"))) / 1e6 / s);
+        std::printf("seconds %.6f\ncpu_seconds %.6f\nmb_per_s %.2f\n", s, cpu,
+                    double(std::filesystem::file_size(path)) / 1e6 / cpu);
     } else if (mode == "obj" || mode == "ply") {
         Scene scene;
         auto source = std::make_shared<MeshSource>();
@@ -213,7 +252,7 @@ int measure(const std::string& mode, long n, const std::string& dir, int threads
         const auto start = Clock::now();
         if (!resolveAssets(scene, diags))
             return 1;
-        std::printf("seconds %.6f\n", secondsSince(start));
+        std::printf("seconds %.6f\nresident_kib %ld\n", secondsSince(start), residentKiB());
     } else if (mode == "raw") {
         const auto mesh = grid(n);
         RTCDevice device = rtcNewDevice(fmt::format("threads={}", threads).c_str());
@@ -252,6 +291,7 @@ int measure(const std::string& mode, long n, const std::string& dir, int threads
 struct Child {
     mutable std::map<std::string, double> values; // read with [] (0 when missing)
     double wallSeconds = 0;
+    double cpuSeconds = 0; // user + system
     long peakKiB = 0; // the child's ru_maxrss
     bool ok = false;
     std::string err;
@@ -292,6 +332,8 @@ Child run(const std::vector<std::string>& args) {
     wait4(pid, &status, 0, &usage);
     child.wallSeconds = secondsSince(start);
     child.peakKiB = usage.ru_maxrss;
+    child.cpuSeconds = double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                       double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
     child.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
     child.err = err;
     size_t at = 0;
@@ -365,7 +407,9 @@ int main(int argc, char** argv) {
     // Each drt binary's peak on a scene without the mesh (camera and light),
     // which its rows subtract.
     std::ofstream(dir + "/empty.drt") << kSceneHead;
-    std::map<std::string, long> emptyKiBOf;
+    std::map<std::string, long> emptyKiBOf, emptyCheckKiBOf;
+    for (const auto& [label, path] : drts)
+        emptyCheckKiBOf[label] = run({path, "check", dir + "/empty.drt"}).peakKiB;
     for (const auto& [label, path] : drts)
         emptyKiBOf[label] = run({path, "render", dir + "/empty.drt", "-o", dir + "/out.png", "--width", "32",
                                  "--height", "24", "--spp", "1"})
@@ -387,15 +431,36 @@ int main(int argc, char** argv) {
         const auto failed = [](const Child& c) { return c.ok ? std::string() : "failed: " + c.err; };
         if (text) {
             const Child c = one("text", n);
-            row("parse .drt text (front end)", c.values["seconds"], perTriangle(c),
-                fmt::format("{:.1f} MB/s", c.values["mb_per_s"]) + failed(c));
+            row("parse `mesh { triangle }` text (front end)", c.values["cpu_seconds"], perTriangle(c),
+                fmt::format("CPU time; {:.1f} MB/s; wall {:.3f} s", c.values["mb_per_s"], c.values["seconds"]) +
+                    failed(c));
+            const Child c2 = one("mesh2", n);
+            row("parse `mesh2` text (front end)", c2.values["cpu_seconds"], perTriangle(c2),
+                fmt::format("CPU time; {:.1f} MB/s; wall {:.3f} s", c2.values["mb_per_s"], c2.values["seconds"]) +
+                    failed(c2));
+            for (const auto& [label, path] : drts)
+                for (const char* scene : {"drt", "mesh2.drt"}) {
+                    const std::string name = file(dir, n, scene);
+                    const Child check = run({path, "check", name});
+                    const std::string what = fmt::format("`{} check` {} text", label,
+                                                         scene == std::string("drt") ? "mesh" : "mesh2");
+                    row(what.c_str(), check.cpuSeconds,
+                        double(check.peakKiB - emptyCheckKiBOf[label]) * 1024.0 / triangles,
+                        check.ok ? fmt::format("CPU time; {:.1f} MB/s; wall {:.2f} s",
+                                               double(std::filesystem::file_size(name)) / 1e6 / check.cpuSeconds,
+                                               check.wallSeconds)
+                                 : "failed: " + check.err);
+                }
         }
         for (const char* format : {"obj", "ply"}) {
             if (format == std::string("obj") && !text)
                 continue;
             const Child c = one(format, n);
             row(format == std::string("obj") ? "load OBJ (assimp)" : "load binary PLY (assimp)",
-                c.values["seconds"], perTriangle(c), failed(c));
+                c.values["seconds"], perTriangle(c),
+                fmt::format("CPU {:.3f} s; resident after {:.0f} B/tri", c.cpuSeconds,
+                            (c.values["resident_kib"] - double(empty.peakKiB)) * 1024.0 / triangles) +
+                    failed(c));
         }
         const Child raw = one("raw", n);
         row("BVH build, raw Embree", raw.values["build_seconds"], perTriangle(raw), failed(raw));
