@@ -157,6 +157,22 @@ INSTANTIATE_TEST_SUITE_P(
                                 std::to_string(info.param.column));
     });
 
+// POV-Ray reads a '#' with no directive name as nothing (language/image_size.pov
+// has `look_at <0,2,0>#`); in .drt it stays an error. Many in a row end too.
+TEST(Lexer, ALoneHashIsSkippedInPovAndAnErrorInDrt) {
+    const auto pov = lexAll("look_at <0,2,0>#\n}", false);
+    ASSERT_EQ(pov.size(), 10u);
+    for (const Token& t : pov) EXPECT_NE(t.kind, TokenKind::Error) << t.text;
+    EXPECT_TRUE(pov[7].is(">"));
+    EXPECT_TRUE(pov[8].is("}"));
+    EXPECT_EQ(pov[8].loc.line, 2);
+    const auto drt = lexAll("look_at <0,2,0>#\n}", true);
+    EXPECT_EQ(drt[8].kind, TokenKind::Error);
+    const auto many = lexAll(std::string(200000, '#') + "\nx", false);
+    ASSERT_EQ(many.size(), 2u);
+    EXPECT_TRUE(many[0].isWord("x"));
+}
+
 TEST(Lexer, LexingCarriesOnAfterAnError) {
     const auto t = lexAll("a $ b", false);
     EXPECT_EQ(t[1].kind, TokenKind::Error);

@@ -49,45 +49,50 @@ public:
     void reset(Mark m) { pos_ = m.pos, line_ = m.line, column_ = m.column; }
 
     Token next() {
-        SourceLoc commentStart;
-        const std::string commentError = skipBlanksAndComments(commentStart);
-        if (!commentError.empty()) {
-            pos_ = size_;
-            return make(TokenKind::Error, commentStart, commentError);
-        }
-        const SourceLoc start = here();
-        if (atEnd()) return make(TokenKind::EndOfFile, start, "");
-        const char c = peek();
-        if (isDigit(c) || (c == '.' && isDigit(peek(1)))) return number(start);
-        if (isWordStart(c)) return word(start, TokenKind::Word);
-        if (c == '"') return string(start);
-        if (c == '#') {
-            advance();
-            while (peek() == ' ' || peek() == '\t') advance(); // `# declare` is allowed
-            if (!isWordStart(peek())) return make(TokenKind::Error, start, "expected a directive name after '#'");
-            return word(start, TokenKind::Directive);
-        }
-        advance();
-        auto two = [&](char second, const char* both, const char* one) {
-            if (peek() == second) {
-                advance();
-                return make(TokenKind::Symbol, start, both);
+        for (;;) { // POV-Ray reads a '#' with no directive name after it as nothing: the loop skips it
+            SourceLoc commentStart;
+            const std::string commentError = skipBlanksAndComments(commentStart);
+            if (!commentError.empty()) {
+                pos_ = size_;
+                return make(TokenKind::Error, commentStart, commentError);
             }
-            return make(TokenKind::Symbol, start, one);
-        };
-        switch (c) {
-        case '<': return two('=', "<=", "<");
-        case '>': return two('=', ">=", ">");
-        case '!': return two('=', "!=", "!");
-        case '{': case '}': case '(': case ')': case '[': case ']': case ',': case ';': case '+': case '-':
-        case '*': case '/': case '=': case '?': case ':': case '&': case '|': case '.': case '^':
-            return make(TokenKind::Symbol, start, std::string(1, c));
-        default: {
-            const bool printable = std::isprint(static_cast<unsigned char>(c));
-            return make(TokenKind::Error, start,
-                        printable ? std::string("unexpected character '") + c + "'"
-                                  : "unexpected byte " + std::to_string(static_cast<unsigned char>(c)));
-        }
+            const SourceLoc start = here();
+            if (atEnd()) return make(TokenKind::EndOfFile, start, "");
+            const char c = peek();
+            if (isDigit(c) || (c == '.' && isDigit(peek(1)))) return number(start);
+            if (isWordStart(c)) return word(start, TokenKind::Word);
+            if (c == '"') return string(start);
+            if (c == '#') {
+                advance();
+                while (peek() == ' ' || peek() == '\t') advance(); // `# declare` is allowed
+                if (!isWordStart(peek())) {
+                    if (!strict_) continue;
+                    return make(TokenKind::Error, start, "expected a directive name after '#'");
+                }
+                return word(start, TokenKind::Directive);
+            }
+            advance();
+            auto two = [&](char second, const char* both, const char* one) {
+                if (peek() == second) {
+                    advance();
+                    return make(TokenKind::Symbol, start, both);
+                }
+                return make(TokenKind::Symbol, start, one);
+            };
+            switch (c) {
+            case '<': return two('=', "<=", "<");
+            case '>': return two('=', ">=", ">");
+            case '!': return two('=', "!=", "!");
+            case '{': case '}': case '(': case ')': case '[': case ']': case ',': case ';': case '+': case '-':
+            case '*': case '/': case '=': case '?': case ':': case '&': case '|': case '.': case '^':
+                return make(TokenKind::Symbol, start, std::string(1, c));
+            default: {
+                const bool printable = std::isprint(static_cast<unsigned char>(c));
+                return make(TokenKind::Error, start,
+                            printable ? std::string("unexpected character '") + c + "'"
+                                      : "unexpected byte " + std::to_string(static_cast<unsigned char>(c)));
+            }
+            }
         }
     }
 
