@@ -24,17 +24,8 @@ Integrator::Integrator(const Scene& scene, const Accelerator& accel)
     if (hasMedia_) mediaBounds(scene, accel, mediaLower_, mediaUpper_);
 }
 
-Color Integrator::trace(const Ray& cameraRay, Sampler& sampler, RayCounts& counts) const {
-    return traceFrom(cameraRay, nullptr, false, sampler, counts);
-}
-
 Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraFound, Sampler& sampler,
                         RayCounts& counts) const {
-    return traceFrom(cameraRay, &cameraHit, cameraFound, sampler, counts);
-}
-
-Color Integrator::traceFrom(const Ray& cameraRay, const Hit* cameraHit, bool cameraFound, Sampler& sampler,
-                            RayCounts& counts) const {
     thread_local std::vector<PendingRay> stack;
     stack.clear();
     // The camera ray is traced first without going through the stack.
@@ -52,9 +43,9 @@ Color Integrator::traceFrom(const Ray& cameraRay, const Hit* cameraHit, bool cam
         else
             ++counts.secondary;
         Hit traced;
-        const bool given = first && cameraHit; // the camera ray's hit, found by the caller
-        const bool found = given ? cameraFound : accel_.intersect(pending.ray, traced);
-        const Hit& hit = given ? *cameraHit : traced;
+        // The camera ray's hit was found by the caller.
+        const bool found = first ? cameraFound : accel_.intersect(pending.ray, traced);
+        const Hit& hit = first ? cameraHit : traced;
         Color seen = pending.weight; // what reaches the eye of what the ray sees
         if (!scene_.fogs.empty()) { // the fog in front of what the ray sees
             const double speed = length(pending.ray.direction);

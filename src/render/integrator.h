@@ -37,20 +37,17 @@ class Integrator {
 public:
     Integrator(const Scene& scene, const Accelerator& accel);
 
-    // Radiance along a camera ray. The sampler must already be at the pixel
-    // sample (startPixelSample). Thread-safe: the only mutable state is the
-    // sampler and `counts`, which each thread owns.
-    Color trace(const Ray& cameraRay, Sampler& sampler, RayCounts& counts) const;
-    // The same, with the camera ray's intersection already found (cameraFound,
-    // cameraHit: what Accelerator::intersect gives for it, e.g. from a packet).
+    // Radiance along a camera ray whose intersection is already found
+    // (cameraFound, cameraHit: what Accelerator::intersect gives for it; the
+    // renderer traces camera rays in packets). The sampler must already be at
+    // the pixel sample (startPixelSample). Thread-safe: the only mutable state
+    // is the sampler and `counts`, which each thread owns.
     Color trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraFound, Sampler& sampler,
                 RayCounts& counts) const;
 
     int maxTraceLevel() const { return maxTraceLevel_; }
 
 private:
-    Color traceFrom(const Ray& cameraRay, const Hit* cameraHit, bool cameraFound, Sampler& sampler,
-                    RayCounts& counts) const;
     struct PendingRay {
         Ray ray;
         Color weight;
