@@ -70,7 +70,17 @@ Color reflectivity(const Finish& finish, double cosIncident, double eta) {
     return lo + blend * (hi - lo);
 }
 
+SpotCones spotCones(const Light& light) {
+    return {std::cos(light.falloff * kPi / 180), std::cos(light.radius * kPi / 180)};
+}
+
 double spotlightAttenuation(const Light& light, const Vec3& lightPosition, const Vec3& point) {
+    if (!light.spotlight) return 1;
+    return spotlightAttenuation(light, spotCones(light), lightPosition, point);
+}
+
+double spotlightAttenuation(const Light& light, const SpotCones& cones, const Vec3& lightPosition,
+                            const Vec3& point) {
     if (!light.spotlight) return 1;
     const Vec3 axis = light.pointAt - lightPosition;
     const Vec3 toPoint = point - lightPosition;
@@ -79,8 +89,7 @@ double spotlightAttenuation(const Light& light, const Vec3& lightPosition, const
     const double cosAngle = dot(axis, toPoint) / (axisLength * pointDistance);
     if (!(cosAngle > 0)) return 0;
     double attenuation = light.tightness > 0 ? std::pow(cosAngle, light.tightness) : 1.0;
-    const double cosFalloff = std::cos(light.falloff * kPi / 180);
-    const double cosRadius = std::cos(light.radius * kPi / 180);
+    const double cosFalloff = cones.cosFalloff, cosRadius = cones.cosRadius;
     if (cosAngle < cosFalloff) return 0;
     if (cosAngle < cosRadius && cosRadius > cosFalloff) {
         const double t = (cosAngle - cosFalloff) / (cosRadius - cosFalloff);

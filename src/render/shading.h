@@ -39,6 +39,15 @@ Color metallicTint(double metallic, const ColorFT& pigment, double cosAngle);
 // 1 for non-spotlights.
 double spotlightAttenuation(const Light& light, const Vec3& lightPosition, const Vec3& point);
 
+// The cosines of a spotlight's falloff and radius angles, which
+// spotlightAttenuation takes from the light each call; a caller that shades
+// many points with one light computes them once (the same values to the bit).
+struct SpotCones {
+    double cosFalloff = 1, cosRadius = 1;
+};
+SpotCones spotCones(const Light& light);
+double spotlightAttenuation(const Light& light, const SpotCones& cones, const Vec3& lightPosition, const Vec3& point);
+
 // POV-Ray's fade: 2 / (1 + (distance/fade_distance)^fade_power); 1 without fade.
 double fadeAttenuation(const Light& light, double distance);
 
