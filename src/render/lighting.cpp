@@ -144,10 +144,11 @@ Vec3 areaOffset(const AreaLight& area, const AreaFrame& frame, double u, double 
     return frame.axis1 * (u - 0.5) + frame.axis2 * (v - 0.5);
 }
 
-Color lightIntensityAt(const Light& light, const SpotCones& cones, const Vec3& lightPosition, const Vec3& point) {
+Color lightIntensityAt(const Light& light, const SpotCones& cones, const Vec3& lightPosition, const Vec3& point,
+                       bool atCentre) {
     // The distance only for a fading light (fadeAttenuation is 1 otherwise).
     const bool fades = light.fadeDistance > 0 && light.fadePower > 0;
-    return light.color * (spotlightAttenuation(light, cones, lightPosition, point) *
+    return light.color * (spotlightAttenuation(light, cones, lightPosition, point, atCentre) *
                           (fades ? fadeAttenuation(light, length(lightPosition - point)) : 1.0));
 }
 
@@ -329,7 +330,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         };
         // Diffuse and highlights from a point light at `position` whose colour
         // is scaled by `scale` (and by 1/r^2 when `inverseSquare`), times `visible`.
-        const auto pointLight = [&](const Vec3& position, double scale, bool inverseSquare,
+        const auto pointLight = [&](const Vec3& position, bool atCentre, double scale, bool inverseSquare,
                                     PointLightSamples::Sample* shadow) {
             const Vec3 toLight = position - sp.hit->point;
             const double distance = length(toLight);
@@ -337,7 +338,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             const Vec3 l = toLight / distance;
             if (!(dot(sp.normal, l) > 0)) return;
             if (inverseSquare) scale /= distance * distance;
-            Color intensity = lightIntensityAt(*light, cones, position, sp.hit->point) * scale;
+            Color intensity = lightIntensityAt(*light, cones, position, sp.hit->point, atCentre) * scale;
             if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
             if (shadow) {
                 intensity *= visibility(*shadow);
@@ -348,13 +349,13 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         };
         if (!light->area) {
             drawSamples();
-            pointLight(light->position, 1.0, light->inverseSquare, cache.samples_.data() + range.begin);
+            pointLight(light->position, true, 1.0, light->inverseSquare, cache.samples_.data() + range.begin);
         } else if (light->areaIllumination) {
             // Each sample point shades as a weighted point light.
             drawSamples();
             PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
             for (int k = 0; k < range.count; ++k)
-                if (samples[k].weight > 0) pointLight(samples[k].position, samples[k].weight, false, samples + k);
+                if (samples[k].weight > 0) pointLight(samples[k].position, false, samples[k].weight, false, samples + k);
         } else {
             // A point light at the centre times the mean visibility of the samples.
             const Vec3 toCenter = light->position - sp.hit->point;
@@ -362,7 +363,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             if (!(distance > 0)) continue;
             const Vec3 l = toCenter / distance;
             if (!(dot(sp.normal, l) > 0)) continue;
-            Color intensity = lightIntensityAt(*light, cones, light->position, sp.hit->point);
+            Color intensity = lightIntensityAt(*light, cones, light->position, sp.hit->point, true);
             if (light->inverseSquare) intensity = intensity / (distance * distance);
             if (isBlack(intensity)) continue;
             if (!light->shadowless) {
