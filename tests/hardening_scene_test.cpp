@@ -99,6 +99,27 @@ TEST(HardeningScene, DeclareDoublingStopsAtTheObjectLimit) {
     EXPECT_CONTAINS(o.err, "laughs.drt:");
 }
 
+// A loop that adds an object per pass and never ends (the fuzzer's first
+// find): in .drt, which goes on after an error to report more, a resource limit
+// still ends the read at once. Before, each later pass reported the limit again
+// until the error limit (50 printed, 100 counted), after a minute of work.
+TEST(HardeningScene, AWhileAddingObjectsForeverEndsAtTheObjectLimitWithOneError) {
+    const std::string text = std::string(kCamera) +
+                             "#declare L = 0;\n#while (L < 6)\n  sphere { <0, L, 0>, 1 }\n  #declare L = L + 0;\n#end\n"
+                             "sphere { <0, 0, 0>, -1 }\n"; // a later error that the read no longer reaches
+    const Outcome o = runOn("forever.drt", text, "check", "--limit objects=20000");
+    EXPECT_EQ(o.exitCode, 1);
+    EXPECT_CONTAINS(o.err, "forever.drt:5:3: error: the scene's objects and patterns number 20001 is over the limit of "
+                           "20000 (limit objects = 20000; raise it with --limit objects=N)");
+    EXPECT_CONTAINS(o.err, "1 error");
+    EXPECT_EQ(o.err.find("more errors"), std::string::npos) << o.err;
+    EXPECT_EQ(o.err.find("radius"), std::string::npos) << o.err;
+    // An ordinary error does not end the .drt read: both are reported.
+    const Outcome two = runOn("two.drt", std::string(kCamera) + "sphere { <0, 0, 0>, -1 }\nsphere { <0, 0, 0>, -2 }\n");
+    EXPECT_EQ(two.exitCode, 1);
+    EXPECT_CONTAINS(two.err, "2 errors");
+}
+
 TEST(HardeningScene, PigmentDoublingStopsAtTheMemoryLimit) {
     std::string text = "#declare P0 = pigment { color rgb <1, 0, 0> }\n";
     for (int i = 1; i <= 40; ++i)

@@ -42,6 +42,11 @@ void Evaluator::fail(SourceLoc loc, const std::string& message) {
     throw Abort{};
 }
 
+void Evaluator::failLimit(SourceLoc loc, const std::string& message) {
+    limitReached_ = true;
+    fail(loc, message);
+}
+
 void Evaluator::failExpected(const Token& got, const std::string& what) {
     fail(got.loc, "expected " + what + ", found " + describe(got));
 }

@@ -523,7 +523,7 @@ void Evaluator::invokeMacro(const Token& t) {
         fail(t.loc, fmt::format("macro '{}' takes {} parameter{}, given {}", m->name, m->params.size(),
                                 m->params.size() == 1 ? "" : "s", count));
     if (int64_t(frames_.size()) >= diags_.limits().callDepth)
-        fail(t.loc, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
+        failLimit(t.loc, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
                                   double(frames_.size() + 1)) +
                         " (runaway recursion?)");
     if (++macroCalls_ % kMemoryCheckInterval == 0) checkMemoryAt(t.loc);
@@ -546,14 +546,14 @@ void Evaluator::countIteration(const char* directive) {
         const SourceLoc loc = c.loc;
         const long iterations = c.iterations;
         conds_.pop_back(); // its #end was just read
-        fail(loc, limitExceeded(limits, &Limits::loopIterations, fmt::format("this {} loop's pass", directive),
+        failLimit(loc, limitExceeded(limits, &Limits::loopIterations, fmt::format("this {} loop's pass", directive),
                                 double(iterations)));
     }
     if (c.iterations % kMemoryCheckInterval == 0) checkMemoryAt(c.loc);
 }
 
 void Evaluator::checkMemoryAt(SourceLoc loc) {
-    if (std::string problem = checkMemory(diags_.limits()); !problem.empty()) fail(loc, problem);
+    if (std::string problem = checkMemory(diags_.limits()); !problem.empty()) failLimit(loc, problem);
 }
 
 } // namespace drt::lang

@@ -78,6 +78,10 @@ public:
 
     // ------------------------------------------------------------ diagnostics (diagnose.cpp)
     [[noreturn]] void fail(SourceLoc loc, const std::string& message);
+    // A resource limit (objects, loop passes, nesting, memory, ...) was reached:
+    // the error ends the whole read, with no recovery at the next statement,
+    // since whatever filled the limit would only fill it again.
+    [[noreturn]] void failLimit(SourceLoc loc, const std::string& message);
     [[noreturn]] void failExpected(const Token& got, const std::string& what);
     // An unknown word in `block`: "did you mean", or where the keyword belongs.
     // `extra` are further words valid here (declared names, ...).
@@ -352,6 +356,7 @@ private:
     int errorsSeen_ = 0;
     long macroCalls_ = 0;
     int64_t built_ = 0;      // Limits::objects: nodes built and copied so far
+    bool limitReached_ = false; // a resource limit ended the read (failLimit)
     int abandonedFile_ = -1; // an included file that is no scene, read no further after its first error
 };
 

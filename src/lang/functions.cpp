@@ -163,7 +163,7 @@ bool Evaluator::builtin(const Token& name, Value& out) {
     const double maxLength = double(diags_.limits().stringLength);
     auto checkLength = [&](const std::string& s) {
         if (double(s.size()) > maxLength)
-            fail(name.loc, limitExceeded(diags_.limits(), &Limits::stringLength, "the string's length",
+            failLimit(name.loc, limitExceeded(diags_.limits(), &Limits::stringLength, "the string's length",
                                          double(s.size())));
     };
     auto str = [&](size_t i) -> const std::string& {

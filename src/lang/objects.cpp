@@ -12,6 +12,35 @@ namespace drt::lang {
 
 using Kind = Value::Kind;
 
+// CSG: the members follow as object modifiers (objectModifiers). These come
+// first: an explicit specialization must precede its first use in this file
+// (the shape table and shapeHead use every shape's), or clang refuses it.
+template <>
+const std::vector<std::string>& ShapeSyntax<Csg>::keywords() {
+    static const std::vector<std::string> w = [] {
+        std::vector<std::string> words;
+        for (const CsgWord& c : csgWords()) words.push_back(c.word);
+        return words;
+    }();
+    return w;
+}
+
+template <>
+void ShapeSyntax<Csg>::read(Evaluator&, const Token& keyword, ObjectValue& o) {
+    Csg csg;
+    csg.op = *csgOpNamed(keyword.text);
+    o.object.shape = std::move(csg);
+}
+
+template <>
+std::string ShapeSyntax<Csg>::head(const Csg& c, ShapeText& text) {
+    if (c.children.empty()) {
+        text.problems.insert("a CSG with no members (left out)");
+        return "";
+    }
+    return std::string(csgWord(c.op)) + " {";
+}
+
 // ------------------------------------------------------------ the shape table
 
 namespace {
@@ -49,33 +78,6 @@ bool isUnsupportedShape(const std::string& keyword) {
 
 std::string shapeHead(const Shape& shape, ShapeText& text) {
     return std::visit([&](const auto& s) { return ShapeSyntax<std::decay_t<decltype(s)>>::head(s, text); }, shape);
-}
-
-// CSG: the members follow as object modifiers (objectModifiers).
-template <>
-const std::vector<std::string>& ShapeSyntax<Csg>::keywords() {
-    static const std::vector<std::string> w = [] {
-        std::vector<std::string> words;
-        for (const CsgWord& c : csgWords()) words.push_back(c.word);
-        return words;
-    }();
-    return w;
-}
-
-template <>
-void ShapeSyntax<Csg>::read(Evaluator&, const Token& keyword, ObjectValue& o) {
-    Csg csg;
-    csg.op = *csgOpNamed(keyword.text);
-    o.object.shape = std::move(csg);
-}
-
-template <>
-std::string ShapeSyntax<Csg>::head(const Csg& c, ShapeText& text) {
-    if (c.children.empty()) {
-        text.problems.insert("a CSG with no members (left out)");
-        return "";
-    }
-    return std::string(csgWord(c.op)) + " {";
 }
 
 // ------------------------------------------------------------ helpers
@@ -238,7 +240,7 @@ void Evaluator::countBuilt(SourceLoc loc, int64_t weight) {
     const int64_t before = built_;
     built_ += weight;
     if (built_ > diags_.limits().objects)
-        fail(loc, limitExceeded(diags_.limits(), &Limits::objects, "the scene's objects and patterns number",
+        failLimit(loc, limitExceeded(diags_.limits(), &Limits::objects, "the scene's objects and patterns number",
                                 double(built_)));
     if (built_ / kMemoryCheckInterval != before / kMemoryCheckInterval) checkMemoryAt(loc);
 }

@@ -193,7 +193,7 @@ Value Evaluator::arrayLiteral(SourceLoc loc) {
         a->sizes.push_back(n);
         total *= size_t(n);
         if (total > size_t(limits.arrayElements))
-            fail(at, limitExceeded(limits, &Limits::arrayElements, "the array's element count", double(total)));
+            failLimit(at, limitExceeded(limits, &Limits::arrayElements, "the array's element count", double(total)));
     }
     if (a->sizes.empty()) fail(loc, "array needs a size: array[n]");
     a->items.resize(total);

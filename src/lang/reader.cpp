@@ -19,7 +19,7 @@ namespace drt::lang {
 Evaluator::DepthGuard::DepthGuard(Evaluator& e, SourceLoc loc) : depth(e.expressionDepth_) {
     if (++depth > e.diags_.limits().nestingDepth) {
         --depth;
-        e.fail(loc, limitExceeded(e.diags_.limits(), &Limits::nestingDepth, "nesting depth", double(depth + 1)));
+        e.failLimit(loc, limitExceeded(e.diags_.limits(), &Limits::nestingDepth, "nesting depth", double(depth + 1)));
     }
 }
 Evaluator::DepthGuard::~DepthGuard() { --depth; }
@@ -98,7 +98,7 @@ void Evaluator::declare(const std::string& name, const Value& value, bool local,
 void Evaluator::pushFile(int fileId, SourceLoc includedFrom, const std::string& dir,
                          const std::string& canonicalPath, DialectKind dialect) {
     if (int64_t(frames_.size()) >= diags_.limits().callDepth)
-        fail(includedFrom, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
+        failLimit(includedFrom, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
                                          double(frames_.size() + 1)));
     const std::string& path = diags_.files().path(fileId);
     auto& tokens = lexedFiles_[path + "#" + std::to_string(fileId)];
@@ -206,7 +206,7 @@ void Evaluator::includeDirective(const Token& t) {
     int64_t depth = 0;
     for (const Frame& f : frames_) depth += f.isMacro ? 0 : 1;
     if (depth > diags_.limits().includeDepth)
-        fail(at.loc, limitExceeded(diags_.limits(), &Limits::includeDepth, "include depth", double(depth)));
+        failLimit(at.loc, limitExceeded(diags_.limits(), &Limits::includeDepth, "include depth", double(depth)));
     std::string text;
     if (std::string problem = readSourceFile(path, diags_.limits().includeBytes, text); !problem.empty())
         fail(at.loc, "cannot include '" + name + "': " + problem);
@@ -448,7 +448,7 @@ std::optional<Scene> Evaluator::run(int fileId, const std::string& baseDir) {
             if (t.kind == TokenKind::EndOfFile) break;
             statement(t);
         } catch (const Abort&) {
-            if (!scene().recoverAfterErrors || frames_.empty()) return std::nullopt;
+            if (!scene().recoverAfterErrors || limitReached_ || frames_.empty()) return std::nullopt;
             try {
                 synchronize();
             } catch (const Abort&) {

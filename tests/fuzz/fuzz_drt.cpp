@@ -5,7 +5,7 @@
 #include "lang/load.h"
 
 int drt::fuzz::fuzzDrtFrontEnd(const uint8_t* data, size_t size) {
-    drt::Diagnostics diagnostics;
+    drt::Diagnostics diagnostics = drt::fuzz::fuzzDiagnostics();
     drt::loadSceneText(drt::fuzz::text(data, size), "fuzz.drt", diagnostics, drt::fuzz::includeDir());
     drt::fuzz::formatEveryDiagnostic(diagnostics);
     return 0;

@@ -4,7 +4,7 @@
 #include "pov/load.h"
 
 int drt::fuzz::fuzzPovFrontEnd(const uint8_t* data, size_t size) {
-    drt::Diagnostics diagnostics;
+    drt::Diagnostics diagnostics = drt::fuzz::fuzzDiagnostics();
     drt::PovOptions options;
     options.imageWidth = 8;
     options.imageHeight = 6;

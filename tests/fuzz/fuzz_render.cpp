@@ -43,7 +43,7 @@ void cutWork(drt::Scene& scene) {
 } // namespace
 
 int drt::fuzz::fuzzRender(const uint8_t* data, size_t size) {
-    drt::Diagnostics diagnostics;
+    drt::Diagnostics diagnostics = drt::fuzz::fuzzDiagnostics();
     std::optional<drt::Scene> scene =
         drt::loadSceneText(drt::fuzz::text(data, size), "fuzz.drt", diagnostics, drt::fuzz::includeDir());
     if (!scene || diagnostics.hasErrors() || !drt::resolveAssets(*scene, diagnostics)) return 0;

@@ -24,6 +24,22 @@ inline std::string text(const uint8_t* data, size_t size) {
 // named on the command line in the current folder.
 inline const char* includeDir() { return "."; }
 
+// The limits a harness reads with: the defaults cut so that an input which
+// fills one (a #while that never ends and adds an object per pass) reaches its
+// located error within seconds under the sanitizers, not within the fuzzer's
+// 10 s timeout. The default limits' endings are unit-tested (hardening_*_test).
+inline Diagnostics fuzzDiagnostics() {
+    Diagnostics diagnostics;
+    Limits limits = diagnostics.limits();
+    limits.objects = 50'000;
+    limits.loopIterations = 200'000;
+    limits.arrayElements = 200'000;
+    limits.meshTriangles = 200'000;
+    limits.memoryMB = 1536;
+    diagnostics.setLimits(limits);
+    return diagnostics;
+}
+
 // Formats every diagnostic (quoting source lines, placing carets) so that the
 // diagnostics code is fuzzed too.
 inline void formatEveryDiagnostic(const Diagnostics& diagnostics) {
