@@ -5,7 +5,9 @@
 # so does each word of EXTRA (words a source spells in pieces, like directives).
 set(words "")
 foreach(word IN LISTS EXTRA)
-  list(APPEND words "\"${word}\"")
+  if(NOT word STREQUAL "")
+    list(APPEND words "\"${word}\"")
+  endif()
 endforeach()
 foreach(input IN LISTS INPUTS)
   file(READ "${input}" text)
