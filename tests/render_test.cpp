@@ -5,11 +5,17 @@
 #include "render/directions.h"
 #include "render/film.h"
 #include "render/pigment.h"
+#include "render/lighting.h"
 #include "render/shading.h"
+#include "sampling/sampler.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <memory>
+#include <vector>
 
 namespace drt {
 namespace {
@@ -307,6 +313,119 @@ TEST(Shading, SpotlightAttenuation) {
     EXPECT_NEAR(spotlightAttenuation(spot, spot.position, {std::tan(0.3), 0, 1}), std::pow(std::cos(0.3), 10), 1e-12);
     Light plain;
     EXPECT_DOUBLE_EQ(spotlightAttenuation(plain, plain.position, {1, 0, -1}), 1.0);
+}
+
+// The cone cosines and centre axis computed once per light give the
+// attenuation computed from the light at every call, to the bit.
+TEST(Shading, SpotConesGiveTheSameAttenuationToTheBit) {
+    Light spot;
+    spot.spotlight = true;
+    spot.position = {0.3, 2, -0.7};
+    spot.pointAt = {0.1, 0, 0.2};
+    uint64_t state = 12345;
+    const auto next = [&state] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return double(state >> 11) * 0x1.0p-53;
+    };
+    int lit = 0, partial = 0;
+    for (const auto& [radius, falloff, tightness] :
+         std::vector<std::array<double, 3>>{{20, 40, 0}, {20, 40, 10}, {40, 20, 3}, {0, 11, 0}, {30, 30, 0.5}}) {
+        spot.radius = radius;
+        spot.falloff = falloff;
+        spot.tightness = tightness;
+        const SpotCones cones = spotCones(spot);
+        for (int i = 0; i < 2000; ++i) {
+            const Vec3 point{4 * next() - 2, 0, 4 * next() - 2};
+            const double expected = spotlightAttenuation(spot, spot.position, point);
+            ASSERT_EQ(spotlightAttenuation(spot, cones, spot.position, point, true), expected) << i;
+            ASSERT_EQ(spotlightAttenuation(spot, cones, spot.position, point, false), expected) << i;
+            const Vec3 elsewhere = spot.position + Vec3{next() - 0.5, 0, next() - 0.5};
+            ASSERT_EQ(spotlightAttenuation(spot, cones, elsewhere, point, false),
+                      spotlightAttenuation(spot, elsewhere, point))
+                << i;
+            lit += expected > 0;
+            partial += expected > 0 && expected < 1;
+        }
+    }
+    EXPECT_GT(lit, 1000);    // the cones were inside the points' range
+    EXPECT_GT(partial, 100); // and so were their edges
+}
+
+// A sampler that records the dimensions asked of it.
+class RecordingSampler : public Sampler {
+public:
+    explicit RecordingSampler(std::unique_ptr<Sampler> inner)
+        : Sampler(inner->samplesPerPixel(), inner->seed()), inner_(std::move(inner)) {}
+    std::unique_ptr<Sampler> clone() const override { return std::make_unique<RecordingSampler>(inner_->clone()); }
+    void startPixelSample(int x, int y, int index) override { inner_->startPixelSample(x, y, index); }
+    double get1D(int d) override { return asked.push_back(d), inner_->get1D(d); }
+    Vec2 get2D(int d) override { return asked.push_back(d), inner_->get2D(d); }
+    Vec2 get2DStratified(int d, int k, int n) override { return asked.push_back(d), inner_->get2DStratified(d, k, n); }
+    std::string name() const override { return "recording"; }
+    bool wasAsked(int d) const { return std::find(asked.begin(), asked.end(), d) != asked.end(); }
+    std::vector<int> asked;
+
+private:
+    std::unique_ptr<Sampler> inner_;
+};
+
+// A light's samples are drawn only where its light can arrive: an area
+// spotlight whose cone misses the point draws none, and what the point
+// receives is the same, to the bit, as without that light.
+TEST(Lighting, ALightWhoseConeMissesThePointDrawsNoSamples) {
+    Scene scene;
+    Texture t = solid(Color(0.8));
+    t.finish.diffuse = 0.7;
+    t.finish.specular = 0.5;
+    t.finish.roughness = 0.1;
+    scene.objects.push_back(plane({0, 1, 0}, 0, t));
+    const auto areaSpot = [](Vec3 pointAt) {
+        Light light = pointLight({0, 4, 0}, Color(1));
+        light.area = AreaLight{};
+        light.area->axis1 = {1, 0, 0};
+        light.area->axis2 = {0, 0, 1};
+        light.area->size1 = light.area->size2 = 4;
+        light.area->jitter = true;
+        light.spotlight = true;
+        light.pointAt = pointAt;
+        light.radius = 5;
+        light.falloff = 10;
+        return light;
+    };
+    Scene withMiss = scene;
+    scene.lights.push_back(areaSpot({0, 0, 0}));
+    withMiss.lights = {areaSpot({0, 0, 0}), areaSpot({30, 0, 0})};
+    const auto shadeFloor = [](const Scene& s, RecordingSampler& sampler, RayCounts& counts) {
+        const Accelerator accel(s);
+        Ray ray;
+        ray.origin = {0.05, 1, 0.02};
+        ray.direction = {0, -1, 0};
+        Hit hit;
+        EXPECT_TRUE(accel.intersect(ray, hit));
+        const DirectLighting lighting(s, accel);
+        PointLightSamples samples;
+        samples.clear();
+        ShadingPoint sp;
+        sp.hit = &hit;
+        sp.normal = {0, 1, 0};
+        sp.incoming = {0, -1, 0};
+        sp.pigment = s.objects[0].texture.pigment.color;
+        sp.finish = &s.objects[0].texture.finish;
+        sampler.startPixelSample(2, 3, 5);
+        return lighting.shade(sp, samples, sampler, counts);
+    };
+    RecordingSampler alone(makeSampler("sobol", 16, 1)), both(makeSampler("sobol", 16, 1));
+    RayCounts aloneCounts, bothCounts;
+    const Color expected = shadeFloor(scene, alone, aloneCounts);
+    const Color got = shadeFloor(withMiss, both, bothCounts);
+    EXPECT_GT(expected.r, 0);
+    EXPECT_EQ(got.r, expected.r);
+    EXPECT_EQ(got.g, expected.g);
+    EXPECT_EQ(got.b, expected.b);
+    EXPECT_TRUE(both.wasAsked(lightDimension(0, 0)));
+    EXPECT_FALSE(both.wasAsked(lightDimension(0, 1))) << "the light that cannot reach the point drew a sample";
+    EXPECT_EQ(bothCounts.shadow, aloneCounts.shadow);
+    EXPECT_EQ(bothCounts.shadow, 1u);
 }
 
 TEST(Shading, FadeAttenuation) {

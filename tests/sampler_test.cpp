@@ -132,6 +132,45 @@ TEST(Sampler, CloneGivesTheSameStream) {
     }
 }
 
+// The Sobol sampler keeps a pixel's scramble seeds in a cache by dimension:
+// whatever dimensions were asked before, and in whatever order, each value is
+// the one a fresh sampler gives for that dimension alone. The dimensions
+// include the lights' (2048 apart past 8197, which once shared one slot) and
+// more than the cache holds, so slots are shared and overwritten.
+TEST(SobolSampler, ValuesDoNotDependOnWhichDimensionsWereAskedBefore) {
+    std::vector<int> dimensions;
+    for (int d = 0; d < 120; ++d) dimensions.push_back(d);
+    for (int light = 1; light < 12; ++light)
+        for (int depth = 0; depth < 3; ++depth) dimensions.push_back(8197 + 2 * ((light - 1) * 1024 + depth));
+    dimensions.push_back((1 << 30) + 8197);
+    for (int order = 0; order < 3; ++order) {
+        auto used = makeSampler("sobol", 16, 5);
+        for (int x = 0; x < 2; ++x)
+            for (int i = 0; i < 16; ++i) {
+                used->startPixelSample(x, 4, i);
+                for (size_t n = 0; n < dimensions.size(); ++n) {
+                    // forwards, backwards, and the lights interleaved with the bounces
+                    const size_t k = order == 0 ? n : order == 1 ? dimensions.size() - 1 - n
+                                                                 : (n * 37) % dimensions.size();
+                    const int d = dimensions[k];
+                    auto fresh = makeSampler("sobol", 16, 5);
+                    fresh->startPixelSample(x, 4, i);
+                    const bool twoD = (n + size_t(order)) % 2 == 0;
+                    if (twoD) {
+                        const Vec2 a = used->get2D(d), b = fresh->get2D(d);
+                        ASSERT_EQ(a.x, b.x) << "dimension " << d << ", sample " << i << ", order " << order;
+                        ASSERT_EQ(a.y, b.y) << "dimension " << d << ", sample " << i << ", order " << order;
+                    } else {
+                        ASSERT_EQ(used->get1D(d), fresh->get1D(d)) << "dimension " << d << ", sample " << i;
+                    }
+                    const Vec2 s = used->get2DStratified(d, 1, 4), t = fresh->get2DStratified(d, 1, 4);
+                    ASSERT_EQ(s.x, t.x) << "dimension " << d;
+                    ASSERT_EQ(s.y, t.y) << "dimension " << d;
+                }
+            }
+    }
+}
+
 TEST(Sampler, PixelsAreDecorrelated) {
     // The same sample index in neighbouring pixels must not repeat a value.
     for (const auto& name : samplerNames()) {

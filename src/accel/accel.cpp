@@ -52,17 +52,22 @@ float floatAtMost(double v) {
     return double(f) > v ? floatDown(f) : f;
 }
 
+// max(v, 0) and min(max(v, 0), 1) with NaN going to 0 as std::fmax sends it,
+// by comparisons (std::fmax is a library call here, twice per ray).
+inline float atLeastZero(float v) { return v > 0 ? v : 0.0f; }
+inline double clampToUnit(double v) { return v > 0 ? (v < 1 ? v : 1.0) : 0.0; }
+
 // The origin is moved into the top level's frame in double, then rounded.
 void fillRay(const Ray& ray, const AcceleratorState& state, RTCRay& r, unsigned mask) {
     const Vec3 origin = state.shifted ? ray.origin - state.frameOrigin : ray.origin;
     r.org_x = float(origin.x);
     r.org_y = float(origin.y);
     r.org_z = float(origin.z);
-    r.tnear = std::fmax(0.0f, floatAtLeast(ray.tMin));
+    r.tnear = atLeastZero(floatAtLeast(ray.tMin));
     r.dir_x = float(ray.direction.x);
     r.dir_y = float(ray.direction.y);
     r.dir_z = float(ray.direction.z);
-    r.time = float(std::fmin(1.0, std::fmax(0.0, ray.time)));
+    r.time = float(clampToUnit(ray.time));
     r.tfar = floatAtMost(ray.tMax);
     r.mask = mask;
     r.id = 0;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <string>
 
@@ -99,7 +100,9 @@ uint64_t nextAcceleratorGeneration() {
 // A moving object's level -> world transform at `time`, kept per thread. The
 // rays of one camera sample (camera, shadow, reflected, refracted) share its
 // time, so each moving object's transform is interpolated once per sample
-// rather than once per ray; the result is the same to the bit.
+// rather than once per ray; the result is the same to the bit. The slot is a
+// hash of the object and the time: a packet's camera rays carry 8 sample
+// times, and each sample's later rays must still find its own.
 static const Transform& cachedToWorld(const AcceleratorState& state, unsigned index, double time) {
     struct Entry {
         uint64_t generation = 0; // no accelerator has generation 0
@@ -107,8 +110,10 @@ static const Transform& cachedToWorld(const AcceleratorState& state, unsigned in
         double time = 0;
         Transform toWorld;
     };
-    thread_local std::array<Entry, 8> cache;
-    Entry& e = cache[index % cache.size()];
+    constexpr int kSlotBits = 5;
+    thread_local std::array<Entry, size_t(1) << kSlotBits> cache;
+    const uint64_t key = (uint64_t(index) * 0x9e3779b97f4a7c15ULL) ^ (std::bit_cast<uint64_t>(time) * 0xff51afd7ed558ccdULL);
+    Entry& e = cache[size_t(key >> (64 - kSlotBits))];
     if (e.generation != state.generation || e.index != index || e.time != time) {
         e.toWorld = state.instances[index].toWorld(time);
         e.generation = state.generation;

@@ -144,10 +144,11 @@ Vec3 areaOffset(const AreaLight& area, const AreaFrame& frame, double u, double 
     return frame.axis1 * (u - 0.5) + frame.axis2 * (v - 0.5);
 }
 
-Color lightIntensityAt(const Light& light, const Vec3& lightPosition, const Vec3& point) {
+Color lightIntensityAt(const Light& light, const SpotCones& cones, const Vec3& lightPosition, const Vec3& point,
+                       bool atCentre) {
     // The distance only for a fading light (fadeAttenuation is 1 otherwise).
     const bool fades = light.fadeDistance > 0 && light.fadePower > 0;
-    return light.color * (spotlightAttenuation(light, lightPosition, point) *
+    return light.color * (spotlightAttenuation(light, cones, lightPosition, point, atCentre) *
                           (fades ? fadeAttenuation(light, length(lightPosition - point)) : 1.0));
 }
 
@@ -275,7 +276,10 @@ private:
 
 DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel)
     : scene_(scene), accel_(accel), opaqueCasters_(shadowsAreOpaque(scene)), hasMedia_(sceneHasMedia(scene)),
-      anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)) {}
+      anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)) {
+    cones_.reserve(scene.lights.size());
+    for (const Light& light : scene.lights) cones_.push_back(spotCones(light));
+}
 
 Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sampler& sampler,
                             RayCounts& counts) const {
@@ -285,12 +289,22 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         // A moving light as it is at this point's time (render/light_path.h);
         // a still one as written, with no copy.
         const Light* light = &scene_.lights[i];
-        if (anyLightMoves_ && lightMoves(*light)) light = &(cache.moved_ = lightAt(*light, sp.time));
+        const bool moved = anyLightMoves_ && lightMoves(*light);
+        if (moved) light = &(cache.moved_ = lightAt(*light, sp.time));
         if (isBlack(light->color)) continue;
+        const SpotCones cones = !light->spotlight ? SpotCones{} : moved ? spotCones(*light) : cones_[i];
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
         PointLightSamples::Range& range = cache.lights_[i];
-        if (range.generation != cache.generation_) { // the first layer at this point: draw the light's samples
+        if (range.generation != cache.generation_) { // the first layer at this point: no samples drawn yet
             range.generation = cache.generation_;
+            range.count = 0;
+        }
+        // The light's samples at this point, drawn the first time a layer needs
+        // them: a light whose centre sends nothing here (a spotlight's cone, a
+        // point facing away) draws none. Every value is a function of its
+        // sampler dimension alone, so when they are drawn changes none.
+        const auto drawSamples = [&] {
+            if (range.count > 0) return;
             range.begin = static_cast<int>(cache.samples_.size());
             if (!light->area) {
                 cache.samples_.push_back({light->position, 1.0, false, Color(0)});
@@ -302,8 +316,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                 }
             }
             range.count = static_cast<int>(cache.samples_.size()) - range.begin;
-        }
-        PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
+        };
         // Shadow rays through media: only for lights that interact with media (POV-Ray).
         const Scene* media = hasMedia_ && light->mediaAttenuation && light->mediaInteraction ? &scene_ : nullptr;
         const auto visibility = [&](PointLightSamples::Sample& s) -> const Color& {
@@ -317,7 +330,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         };
         // Diffuse and highlights from a point light at `position` whose colour
         // is scaled by `scale` (and by 1/r^2 when `inverseSquare`), times `visible`.
-        const auto pointLight = [&](const Vec3& position, double scale, bool inverseSquare,
+        const auto pointLight = [&](const Vec3& position, bool atCentre, double scale, bool inverseSquare,
                                     PointLightSamples::Sample* shadow) {
             const Vec3 toLight = position - sp.hit->point;
             const double distance = length(toLight);
@@ -325,7 +338,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             const Vec3 l = toLight / distance;
             if (!(dot(sp.normal, l) > 0)) return;
             if (inverseSquare) scale /= distance * distance;
-            Color intensity = lightIntensityAt(*light, position, sp.hit->point) * scale;
+            Color intensity = lightIntensityAt(*light, cones, position, sp.hit->point, atCentre) * scale;
             if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
             if (shadow) {
                 intensity *= visibility(*shadow);
@@ -335,11 +348,14 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                              crandNoise(sp, index, sampler));
         };
         if (!light->area) {
-            pointLight(light->position, 1.0, light->inverseSquare, samples);
+            drawSamples();
+            pointLight(light->position, true, 1.0, light->inverseSquare, cache.samples_.data() + range.begin);
         } else if (light->areaIllumination) {
             // Each sample point shades as a weighted point light.
+            drawSamples();
+            PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
             for (int k = 0; k < range.count; ++k)
-                if (samples[k].weight > 0) pointLight(samples[k].position, samples[k].weight, false, samples + k);
+                if (samples[k].weight > 0) pointLight(samples[k].position, false, samples[k].weight, false, samples + k);
         } else {
             // A point light at the centre times the mean visibility of the samples.
             const Vec3 toCenter = light->position - sp.hit->point;
@@ -347,10 +363,12 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             if (!(distance > 0)) continue;
             const Vec3 l = toCenter / distance;
             if (!(dot(sp.normal, l) > 0)) continue;
-            Color intensity = lightIntensityAt(*light, light->position, sp.hit->point);
+            Color intensity = lightIntensityAt(*light, cones, light->position, sp.hit->point, true);
             if (light->inverseSquare) intensity = intensity / (distance * distance);
             if (isBlack(intensity)) continue;
             if (!light->shadowless) {
+                drawSamples();
+                PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
                 Color visible(0);
                 for (int k = 0; k < range.count; ++k) visible += visibility(samples[k]);
                 intensity *= visible / range.count;

@@ -61,6 +61,7 @@
 
 #include "accel/accel.h"
 #include "core/color.h"
+#include "render/shading.h"
 #include "sampling/sampler.h"
 #include "scene/scene.h"
 
@@ -159,6 +160,7 @@ private:
     bool opaqueCasters_;
     bool hasMedia_; // media anywhere: shadow rays of lights that interact with them look for them
     bool anyLightMoves_; // some light moves over the shutter (render/light_path.h)
+    std::vector<SpotCones> cones_; // by light, as written (a moving light's are taken at each point)
 };
 
 } // namespace drt

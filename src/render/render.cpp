@@ -244,14 +244,23 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
     // Every sample value is a function of (pixel, index, dimension), so drawing
     // a packet's camera dimensions before the rest changes none of them.
     const bool cameraMoves = cameraPath.moving(), lensSampled = cameraPath.hasLens();
-    const auto takeSamples = [&](Sampler& sampler, PixelAccumulator& pixel, int x, int y, int first, int last,
-                                 RayCounts& counts) {
-        constexpr int kPacket = Accelerator::kPacketSize;
+    // A packet's rays and hits, made once per tile (a Hit is about 260 bytes
+    // of initialised members: not something to build for every pixel).
+    constexpr int kPacket = Accelerator::kPacketSize;
+    struct Packet {
         ResolvedCamera moved; // a moving camera at the sample's time
         Ray rays[kPacket];
         Hit hits[kPacket];
         bool found[kPacket];
         bool covered[kPacket];
+    };
+    const auto takeSamples = [&](Packet& packet, Sampler& sampler, PixelAccumulator& pixel, int x, int y, int first,
+                                 int last, RayCounts& counts) {
+        ResolvedCamera& moved = packet.moved;
+        Ray* const rays = packet.rays;
+        Hit* const hits = packet.hits;
+        bool* const found = packet.found;
+        bool* const covered = packet.covered;
         for (int start = first; start < last; start += kPacket) {
             const int n = std::min(kPacket, last - start);
             int traced = 0;
@@ -292,18 +301,19 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
         if (options.adaptive) result.adaptive.reserve(size_t(tile.width()) * size_t(tile.height()));
         else result.color = Image(tile.width(), tile.height(), 3), result.variance = result.color;
         RayCounts counts;
+        Packet packet; // once per tile
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) {
                 if (!options.adaptive) {
                     PixelAccumulator pixel;
-                    takeSamples(*sampler, pixel, x, y, 0, options.samplesPerPixel, counts);
+                    takeSamples(packet, *sampler, pixel, x, y, 0, options.samplesPerPixel, counts);
                     result.counts.nonFiniteSamples += pixel.nonFinite();
                     storePixel(pixel, x - tile.x0, y - tile.y0, result.color, result.variance);
                     continue;
                 }
                 AdaptivePixel pixel = state.adaptivePixel(x, y);
                 if (pixel.active) {
-                    takeSamples(*sampler, pixel.samples, x, y, pixel.taken, roundEnd, counts);
+                    takeSamples(packet, *sampler, pixel.samples, x, y, pixel.taken, roundEnd, counts);
                     pixel.taken = roundEnd;
                     pixel.unconverged = !converged(pixel.samples, options);
                 }

@@ -70,18 +70,32 @@ Color reflectivity(const Finish& finish, double cosIncident, double eta) {
     return lo + blend * (hi - lo);
 }
 
+SpotCones spotCones(const Light& light) {
+    SpotCones cones;
+    cones.cosFalloff = std::cos(light.falloff * kPi / 180);
+    cones.cosRadius = std::cos(light.radius * kPi / 180);
+    cones.centreAxis = light.pointAt - light.position;
+    cones.centreAxisLength = length(cones.centreAxis);
+    return cones;
+}
+
 double spotlightAttenuation(const Light& light, const Vec3& lightPosition, const Vec3& point) {
     if (!light.spotlight) return 1;
-    const Vec3 axis = light.pointAt - lightPosition;
+    return spotlightAttenuation(light, spotCones(light), lightPosition, point);
+}
+
+double spotlightAttenuation(const Light& light, const SpotCones& cones, const Vec3& lightPosition,
+                            const Vec3& point, bool atCentre) {
+    if (!light.spotlight) return 1;
+    const Vec3 axis = atCentre ? cones.centreAxis : light.pointAt - lightPosition;
     const Vec3 toPoint = point - lightPosition;
-    const double axisLength = length(axis), pointDistance = length(toPoint);
+    const double axisLength = atCentre ? cones.centreAxisLength : length(axis), pointDistance = length(toPoint);
     if (!(axisLength > 0) || !(pointDistance > 0)) return 0;
     const double cosAngle = dot(axis, toPoint) / (axisLength * pointDistance);
     if (!(cosAngle > 0)) return 0;
+    const double cosFalloff = cones.cosFalloff, cosRadius = cones.cosRadius;
+    if (cosAngle < cosFalloff) return 0; // outside the cone: no tightness power needed
     double attenuation = light.tightness > 0 ? std::pow(cosAngle, light.tightness) : 1.0;
-    const double cosFalloff = std::cos(light.falloff * kPi / 180);
-    const double cosRadius = std::cos(light.radius * kPi / 180);
-    if (cosAngle < cosFalloff) return 0;
     if (cosAngle < cosRadius && cosRadius > cosFalloff) {
         const double t = (cosAngle - cosFalloff) / (cosRadius - cosFalloff);
         attenuation *= t * t * (3 - 2 * t); // smoothstep from the falloff cone to the radius cone

@@ -39,6 +39,20 @@ Color metallicTint(double metallic, const ColorFT& pigment, double cosAngle);
 // 1 for non-spotlights.
 double spotlightAttenuation(const Light& light, const Vec3& lightPosition, const Vec3& point);
 
+// What spotlightAttenuation computes from the light alone at each call: the
+// cosines of the falloff and radius angles and the axis from the light's own
+// position. A caller that shades many points with one light computes them
+// once (the same values to the bit); `atCentre` says lightPosition is the
+// light's position, whose axis is then taken from here.
+struct SpotCones {
+    double cosFalloff = 1, cosRadius = 1;
+    Vec3 centreAxis{0, 0, 0};
+    double centreAxisLength = 0;
+};
+SpotCones spotCones(const Light& light);
+double spotlightAttenuation(const Light& light, const SpotCones& cones, const Vec3& lightPosition, const Vec3& point,
+                            bool atCentre = false);
+
 // POV-Ray's fade: 2 / (1 + (distance/fade_distance)^fade_power); 1 without fade.
 double fadeAttenuation(const Light& light, double distance);
 

@@ -94,10 +94,16 @@ private:
         OwenSeed seed[2];
     };
     // A direct-mapped cache by dimension: a pixel's samples ask for the same
-    // dimensions over and over.
-    static constexpr int kCacheSlots = 64;
+    // dimensions over and over. The slot is a multiplicative hash of the
+    // dimension, not its low bits: the lights after the first have dimensions
+    // 2048 apart (lighting.h), which low bits would put in one slot, so that
+    // every light of a many-light scene evicted the others' seeds.
+    static constexpr int kCacheBits = 6, kCacheSlots = 1 << kCacheBits;
+    static unsigned cacheSlot(int dimension) {
+        return (static_cast<uint32_t>(dimension) * 0x9e3779b1u) >> (32 - kCacheBits);
+    }
     const Seeds& seeds(uint64_t tag, int dimension) {
-        Seeds& s = cache_[tag][static_cast<unsigned>(dimension) % kCacheSlots];
+        Seeds& s = cache_[tag][cacheSlot(dimension)];
         if (s.generation != generation_ || s.dimension != dimension) {
             s.generation = generation_;
             s.dimension = dimension;
