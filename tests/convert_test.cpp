@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace drt {
@@ -33,6 +34,17 @@ Image renderSmall(const Scene& scene) {
     return render(scene, options).color;
 }
 
+// The POV-Ray scene and its conversion, each read by its own front end; an
+// error in either fails the test.
+void loadBoth(const std::string& pov, const std::string& drt, std::optional<Scene>& original,
+              std::optional<Scene>& converted) {
+    Diagnostics povDiags, drtDiags;
+    original = loadPovSceneFile(pov, povDiags);
+    converted = loadSceneFile(drt, drtDiags);
+    ASSERT_TRUE(original) << povDiags.formatAll();
+    ASSERT_TRUE(converted && !drtDiags.hasErrors()) << drtDiags.formatAll();
+}
+
 TEST(Convert, WritesADrtFileThatRendersTheSameImage) {
     const std::string dir = test::tempDir();
     const std::string pov = test::writeFile(dir + "/ball.pov", kSimplePov);
@@ -42,11 +54,9 @@ TEST(Convert, WritesADrtFileThatRendersTheSameImage) {
     EXPECT_NE(text.find("// Converted from ball.pov"), std::string::npos) << text;
     EXPECT_NE(text.find("// ball.pov:6"), std::string::npos) << text; // the object's source line
 
-    Diagnostics povDiags, drtDiags;
-    const std::optional<Scene> original = loadPovSceneFile(pov, povDiags);
-    const std::optional<Scene> converted = loadSceneFile(dir + "/ball.drt", drtDiags);
-    ASSERT_TRUE(original) << povDiags.formatAll();
-    ASSERT_TRUE(converted) << drtDiags.formatAll();
+    std::optional<Scene> original, converted;
+    loadBoth(pov, dir + "/ball.drt", original, converted);
+    ASSERT_TRUE(original && converted);
     EXPECT_TRUE(renderSmall(*original).pixels == renderSmall(*converted).pixels);
 }
 
@@ -67,12 +77,41 @@ box { <1, 0, 1>, <2, 1, 2> texture { tiles { texture { pigment { rgb x } } textu
     EXPECT_NE(text.find("texture_map"), std::string::npos) << text;
     EXPECT_NE(text.find("tiles {"), std::string::npos) << text;
 
-    Diagnostics povDiags, drtDiags;
-    const std::optional<Scene> original = loadPovSceneFile(pov, povDiags);
-    const std::optional<Scene> converted = loadSceneFile(dir + "/layers.drt", drtDiags);
-    ASSERT_TRUE(original) << povDiags.formatAll();
-    ASSERT_TRUE(converted) << drtDiags.formatAll();
+    std::optional<Scene> original, converted;
+    loadBoth(pov, dir + "/layers.drt", original, converted);
+    ASSERT_TRUE(original && converted);
     EXPECT_TRUE(renderSmall(*original).pixels == renderSmall(*converted).pixels);
+}
+
+// POV-Ray takes a spotlight's cone angles through their cosines, so a
+// negative angle (camera/mesh_camera's `falloff -90`) is its magnitude: the
+// .drt file gets that, reads back without an error and renders the same.
+// Negative values with no such equivalent are written and reported.
+TEST(Convert, NegativeSpotlightAnglesBecomeTheirMagnitudesAndOtherNegativesAreReported) {
+    const std::string dir = test::tempDir();
+    const std::string pov = test::writeFile(dir + "/spot.pov", R"(
+camera { location <0, 2, -4> look_at <0, 0, 0> }
+light_source { <0, 4, 0> color rgb 1 spotlight radius -20 falloff -35 tightness 3 point_at <0.5, 0, 0> }
+plane { y, 0 pigment { rgb 1 } }
+)");
+    const auto r = runDrt("convert '" + pov + "' -o '" + dir + "/spot.drt'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("0 warnings"), std::string::npos) << r.out << r.err;
+    const std::string text = test::readFile(dir + "/spot.drt");
+    EXPECT_NE(text.find("radius 20 falloff 35"), std::string::npos) << text;
+    std::optional<Scene> original, converted;
+    loadBoth(pov, dir + "/spot.drt", original, converted);
+    ASSERT_TRUE(original && converted);
+    const Image a = renderSmall(*original), b = renderSmall(*converted);
+    EXPECT_TRUE(a.pixels == b.pixels);
+    // The cone shows: the picture is not uniform.
+    EXPECT_NE(*std::max_element(a.pixels.begin(), a.pixels.end()), *std::min_element(a.pixels.begin(), a.pixels.end()));
+
+    test::writeFile(dir + "/tight.pov", "light_source { <0, 4, 0> color rgb 1 spotlight tightness -2 }\n"
+                                        "plane { y, 0 pigment { rgb 1 } }\n");
+    const auto t = runDrt("convert '" + dir + "/tight.pov' -o '" + dir + "/tight.drt'");
+    EXPECT_NE((t.out + t.err).find("a light's negative 'tightness' (the .drt dialect refuses it)"), std::string::npos)
+        << t.out << t.err;
 }
 
 TEST(Convert, BadInputIsReportedAndNothingIsWritten) {

@@ -10,6 +10,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fmt/format.h>
+#include <cstdio>
+#include <cmath>
+#include <cstring>
+#include <random>
 
 namespace drt {
 namespace {
@@ -229,6 +234,16 @@ object { M } object { M translate x }
 }
 
 // The .drt writer gives mesh2 text that reads back to the very same arrays.
+// `drt convert STEM.pov -o STEM.drt`, then both read back (errors fail the test).
+void convertAndLoad(const std::string& stem, std::optional<Scene>& original, std::optional<Scene>& converted) {
+    const test::CommandResult c = test::runDrt("convert " + stem + ".pov -o " + stem + ".drt");
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    Diagnostics a, b;
+    original = loadSceneFile(stem + ".pov", a);
+    converted = loadSceneFile(stem + ".drt", b);
+    ASSERT_TRUE(original && converted && !a.hasErrors() && !b.hasErrors()) << a.formatAll() << b.formatAll();
+}
+
 TEST(Mesh2, WrittenTextReadsBackToTheSameMesh) {
     const std::string dir = test::tempDir();
     test::writeFile(dir + "/m.pov", std::string(kCamera) + R"(
@@ -242,12 +257,9 @@ mesh2 {
   uv_indices { 2, <0,1,2>, <2,1,0> }
   rotate 30 * y translate <0.2, 0, 1>
 })");
-    const test::CommandResult c = test::runDrt("convert " + dir + "/m.pov -o " + dir + "/m.drt");
-    ASSERT_EQ(c.exitCode, 0) << c.err;
-    Diagnostics a, b;
-    const auto original = loadSceneFile(dir + "/m.pov", a);
-    const auto converted = loadSceneFile(dir + "/m.drt", b);
-    ASSERT_TRUE(original && converted && !a.hasErrors() && !b.hasErrors()) << a.formatAll() << b.formatAll();
+    std::optional<Scene> original, converted;
+    convertAndLoad(dir + "/m", original, converted);
+    ASSERT_TRUE(original && converted);
     EXPECT_TRUE(sameIndexedMesh(indexedOf(*original), indexedOf(*converted)));
     RenderOptions options;
     options.width = options.height = 16;
@@ -257,6 +269,41 @@ mesh2 {
         for (int x = 0; x < 16; ++x)
             for (int k = 0; k < 3; ++k)
                 ASSERT_NEAR(ra.color.at(x, y, k), rb.color.at(x, y, k), 1e-9);
+}
+
+// Vertices are floats: the writer gives each its float's shortest text (0.1,
+// not the double 0.10000000149011612), which reads back to the same float, so
+// a converted mesh is the same bit for bit and about half the text. Random
+// bit patterns over the whole float range (denormals included) check it.
+TEST(Mesh2, WrittenVerticesAreTheFloatsShortestTextAndExact) {
+    std::mt19937 random(7);
+    std::uniform_int_distribution<uint32_t> bits(0, 0xFFFFFFFFu);
+    const int n = 3000;
+    std::string list;
+    for (int i = 0; i < n; ++i) {
+        float f = 0;
+        do {
+            const uint32_t b = bits(random);
+            std::memcpy(&f, &b, sizeof f);
+        } while (!std::isfinite(f) || std::fabs(f) > 1e30f); // drt's vectors stay within 1e30
+        char text[64];
+        std::snprintf(text, sizeof text, "%.9g", double(f));
+        list += fmt::format(", <{}, 0.1, {}>", text, i % 2 ? "1e-40" : "-3.4e-38");
+    }
+    std::string faces;
+    for (int i = 0; i + 2 < n; i += 3) faces += fmt::format(", <{}, {}, {}>", i, i + 1, i + 2);
+    const std::string dir = test::tempDir();
+    test::writeFile(dir + "/f.pov", std::string(kCamera) + "mesh2 { vertex_vectors { " + std::to_string(n) + list +
+                                        " } face_indices { " + std::to_string(n / 3) + faces + " } }\n");
+    std::optional<Scene> original, converted;
+    convertAndLoad(dir + "/f", original, converted);
+    ASSERT_TRUE(original && converted);
+    const IndexedMesh& m = indexedOf(*original);
+    ASSERT_EQ(m.positions.size(), size_t(n));
+    EXPECT_TRUE(sameIndexedMesh(m, indexedOf(*converted)));
+    const std::string written = test::readFile(dir + "/f.drt");
+    EXPECT_NE(written.find(", 0.1, "), std::string::npos);
+    EXPECT_EQ(written.find("0.10000000149011612"), std::string::npos);
 }
 
 TEST(Mesh2, EveryErrorIsLocated) {

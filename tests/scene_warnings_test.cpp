@@ -54,6 +54,25 @@ TEST(SceneWarnings, CameraInsideAClosedObjectPointsAtTheObject) {
             << enclosing;
 }
 
+// Only objects whose bounds hold the camera are asked (so that checking a
+// large scene builds no accelerator over it): the answer is the same with
+// many objects around, one of them inside the enclosing one between the
+// camera and its wall, and a moving one (whose bounds are not known) is asked.
+TEST(SceneWarnings, TheEnclosingObjectIsFoundAmongManyAndWhenItMoves) {
+    std::string many;
+    for (int i = 0; i < 200; ++i)
+        many += "sphere { <" + std::to_string(i % 20 - 10) + ", 0.3, " + std::to_string(i / 20 + 2) + ">, 0.3 }\n";
+    const std::string text = std::string(kCamera) + kLight + "sphere { <0, 1, -4>, 2 }\n" +
+                             "sphere { <0, 1, -3>, 0.4 }\n" + many;
+    EXPECT_NE(warningsFor(text).find("scene.drt:3:1: warning: the camera at <0, 1, -4> is inside this object"),
+              std::string::npos)
+        << warningsFor(text);
+    EXPECT_EQ(warningsFor(std::string(kCamera) + kLight + many), "");
+    const std::string moving = std::string(kCamera) + kLight +
+                               "sphere { <0, 1, -4>, 2 motion { translate <0.1, 0, 0> } }\n";
+    EXPECT_NE(warningsFor(moving).find("is inside this object"), std::string::npos) << warningsFor(moving);
+}
+
 TEST(SceneWarnings, ObjectsMeantToBeEnteredOrWithoutAnInsideAreFine) {
     for (const char* around : {"sphere { <0, 1, -4>, 100 hollow }",            // a sky dome
                                "cylinder { <0, 0, -4>, <0, 3, -4>, 0.5 open }", // an open tube

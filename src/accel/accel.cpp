@@ -133,6 +133,25 @@ void meshSurface(const IndexedMesh& m, const Mesh& shape, uint32_t prim, const s
     }
 }
 
+// dP/du and dP/dv of a compact mesh's triangle whose corners, as traced, are
+// p0, p1, p2 (a copy may have swapped the IndexedMesh's corners 1 and 2).
+// Zero when its uvs span no area.
+void uvTangents(const IndexedMesh& m, uint32_t prim, bool swapped, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                Hit& hit) {
+    auto c = m.uvTriangle(prim);
+    if (swapped) std::swap(c[1], c[2]);
+    const double du1 = double(m.uvs[c[1]].u) - m.uvs[c[0]].u, dv1 = double(m.uvs[c[1]].v) - m.uvs[c[0]].v;
+    const double du2 = double(m.uvs[c[2]].u) - m.uvs[c[0]].u, dv2 = double(m.uvs[c[2]].v) - m.uvs[c[0]].v;
+    const double det = du1 * dv2 - du2 * dv1;
+    const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+    if (!(std::fabs(det) > 1e-20) || !std::isfinite(1 / det)) {
+        hit.dpdu = hit.dpdv = Vec3{};
+        return;
+    }
+    hit.dpdu = (dv2 * e1 - dv1 * e2) / det;
+    hit.dpdv = (du1 * e2 - du2 * e1) / det;
+}
+
 // The hit record of the hit Embree found for the query's ray (rayhit: its
 // ray and hit as Embree left them, geomID valid).
 void hitFromEmbree(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit) {
@@ -230,6 +249,7 @@ void hitFromEmbree(const AcceleratorState& state, RayQuery& query, const RTCRayH
             const std::array<double, 3> weights = mesh.swapped ? std::array<double, 3>{w, v, u}
                                                                 : std::array<double, 3>{w, u, v};
             meshSurface(*mesh.indexed, std::get<Mesh>(hit.object->shape), prim, weights, hit);
+            if (hit.hasUv) uvTangents(*mesh.indexed, prim, mesh.swapped, p0, p1, p2, hit);
         }
         frameUnit = instance && instance->placed ? instance->frameUnit
                     : mesh.extent > 0            ? frameUnitFor(mesh.extent)
@@ -239,6 +259,10 @@ void hitFromEmbree(const AcceleratorState& state, RayQuery& query, const RTCRayH
         hit.point = motion->point(point);
         if (instance->placed) hit.restPoint = hit.point;
         else hit.restPoint = state.shifted ? point + state.frameOrigin : point;
+        if (hit.hasUv && instance->placed) { // tangents, like restPoint, in the world
+            hit.dpdu = motion->vector(hit.dpdu);
+            hit.dpdv = motion->vector(hit.dpdv);
+        }
         hit.geometricNormal = unitOrTowardOrigin(motion->normal(geometric));
         hit.shadingNormal = unitOr(motion->normal(shading), hit.geometricNormal);
     } else {

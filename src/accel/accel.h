@@ -57,6 +57,10 @@ struct Hit {
     // uv vectors), for uv_mapping.
     bool hasUv = false;
     Vec3 uv;
+    // With hasUv: how the surface point moves with u and with v (dP/du, dP/dv),
+    // in the space of restPoint, for uv-mapped normals; zero where the
+    // triangle's uvs are degenerate.
+    Vec3 dpdu, dpdv;
     // A mesh triangle with textures of its own (Mesh::textures): the texture
     // of each corner (null: the object's) and the barycentric weight of each;
     // all null for every other hit.

@@ -28,6 +28,9 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+#include <cmath>
+
 namespace drt::lang {
 
 namespace {
@@ -37,7 +40,17 @@ Float2 toFloat2(const Vec3& v) {
 }
 
 // The .drt text of a float, exact (it reads back to the same float).
+// The shortest text that reads back to f: the reader takes a double and
+// stores it as a float, so the float's own shortest form (0.001414, not the
+// double 0.0014140000566840172) is exact, unless rounding twice (text to
+// double to float) lands elsewhere, when the double's form is written.
 std::string floatText(float f) {
+    if (!std::isfinite(f) || f == 0) return writer::number(double(f));
+    char buffer[32];
+    const auto written = std::to_chars(buffer, buffer + sizeof buffer, f);
+    double back = 0;
+    const auto read = std::from_chars(buffer, written.ptr, back);
+    if (read.ec == std::errc() && float(back) == f) return std::string(buffer, written.ptr);
     return writer::number(double(f));
 }
 

@@ -26,12 +26,15 @@ Texture Evaluator::texture(const Texture& base) {
 
 Texture Evaluator::textureBody(const Texture& base, const char* closer, const std::string& where) {
     Texture tex = base;
-    bool uv = false; // uv_mapping in the texture: its pigment reads the surface's uv (the normal does not)
+    bool uv = false; // uv_mapping in the texture: its pigment and normal read the surface's uv
     for (;;) {
         const Token t = peek();
         if (t.is(closer)) {
             next();
-            if (uv) setUvMapping(tex.pigment, true);
+            if (uv) {
+                setUvMapping(tex.pigment, true);
+                if (tex.normal) tex.normal->uvMapping = true;
+            }
             return tex;
         }
         if (std::optional<Transform> tr = transformItem()) {
@@ -52,7 +55,9 @@ Texture Evaluator::textureBody(const Texture& base, const char* closer, const st
         else if (w == "normal") {
             if (std::optional<Normal> n = normalBlock(t.loc, tex.normal)) tex.normal = std::move(n);
         } else if (isTexturePatternWord(t)) {
-            return patternedTexture(t, closer, where);
+            Texture patterned = patternedTexture(t, closer, where);
+            if (uv) patterned.pigment.uvMapping = true; // the pattern; its entries keep their own mapping
+            return patterned;
         } else if (w == "uv_mapping") {
             uv = true;
         } else if (w == "quick_color" || w == "quick_colour") {
@@ -140,6 +145,7 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
     Pigment& pattern = tex.pigment;
     const std::string& w = word.text;
     std::string approximated; // a pattern drt lacks: the entries are averaged
+    bool uvPattern = false;   // uv_mapping among the pattern's modifiers
     const bool block = w == "checker" || w == "hexagon" || w == "brick" || w == "tiles";
     // checker / hexagon / brick: `count` textures, commas optional.
     auto blockTextures = [&](int count) {
@@ -271,7 +277,7 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
             if (t.text == "form") vectorExpr();
             else if (t.text != "solid") floatExpr();
         } else if (t.text == "uv_mapping") {
-            unsupported(t.text, t.loc, "'uv_mapping' is not supported; the pattern uses object coordinates");
+            uvPattern = true; // the pattern in uv space; its entries keep their own mapping
         } else {
             std::vector<std::string> known = blockKeywords(Block::TexturePattern);
             if (!block)
@@ -290,6 +296,7 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
     } else if (!block && tex.map.empty()) {
         refuse(word.loc, "a '" + w + "' texture needs a texture_map");
     }
+    if (uvPattern) pattern.uvMapping = true; // after its own transforms, which act in uv space
     return tex;
 }
 
@@ -341,11 +348,19 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
     Normal n = modify ? *base : Normal{};
     bool known = modify;
     bool first = true;
+    // uv_mapping anywhere in the block: the normal's own transforms act in uv space.
+    bool uv = n.uvMapping;
+    n.uvMapping = false;
     for (;;) {
         const Token t = peek();
         if (t.is("}")) {
             next();
             break;
+        }
+        if (t.isWord("uv_mapping")) {
+            next();
+            uv = true;
+            continue;
         }
         if (std::optional<Transform> tr = transformItem()) {
             n.toWorld = n.toWorld.then(*tr);
@@ -357,6 +372,7 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 next();
                 use(t.text);
                 if (c->normal) n = *c->normal, known = true;
+                if (n.uvMapping) uv = true, n.uvMapping = false; // a declared uv-mapped normal
                 first = false;
                 continue;
             }
@@ -406,6 +422,7 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
         unsupported("normal", keyword, "'normal' without a bump pattern is not supported and is ignored");
         return std::nullopt;
     }
+    n.uvMapping = uv;
     return n;
 }
 

@@ -196,16 +196,25 @@ void SceneWriter::light(const Light& l) {
     if (!(l.pointAt == d.pointAt))
         line(1, "point_at " + vector(l.pointAt));
     std::string items;
+    // The cone angles act through their cosines, so a negative angle (which a
+    // POV-Ray scene may give and the .drt dialect refuses) is its magnitude.
     if (l.radius != d.radius)
-        items += " radius " + number(l.radius);
+        items += " radius " + number(std::fabs(l.radius));
     if (l.falloff != d.falloff)
-        items += " falloff " + number(l.falloff);
+        items += " falloff " + number(std::fabs(l.falloff));
+    // The others have no such equivalent: written as given, they make a .drt
+    // file that reads with an error, so the conversion says so.
+    const auto nonNegative = [&](double v, const char* word) {
+        if (v < 0)
+            problems_.insert("a light's negative '" + std::string(word) + "' (the .drt dialect refuses it)");
+        return " " + std::string(word) + " " + number(v);
+    };
     if (l.tightness != d.tightness)
-        items += " tightness " + number(l.tightness);
+        items += nonNegative(l.tightness, "tightness");
     if (l.fadeDistance != d.fadeDistance)
-        items += " fade_distance " + number(l.fadeDistance);
+        items += nonNegative(l.fadeDistance, "fade_distance");
     if (l.fadePower != d.fadePower)
-        items += " fade_power " + number(l.fadePower);
+        items += nonNegative(l.fadePower, "fade_power");
     if (!items.empty())
         line(1, items.substr(1));
     if (l.shadowless)

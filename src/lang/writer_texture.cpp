@@ -64,15 +64,17 @@ static std::string waveText(const PatternWave& w) {
 }
 
 std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& exact) {
-    const Transform after = writer::compose(suffix);
+    // A uv-mapped normal lives in uv space, which the object's transforms do not move.
+    const std::vector<Step> placedBy = n.uvMapping ? std::vector<Step>{} : suffix;
+    const Transform after = writer::compose(placedBy);
     std::vector<Step> own;
     if (!writer::sameTransform(n.toWorld, after)) {
         own = decompose(n.toWorld.then(after.inverted()));
-        exact = exact && writer::sameTransform(writer::compose(suffix, writer::compose(own)), n.toWorld);
+        exact = exact && writer::sameTransform(writer::compose(placedBy, writer::compose(own)), n.toWorld);
     }
     const char* keyword = noiseKeyword(n.pattern);
-    return std::string(" ") + (keyword ? keyword : "bumps") + " " + number(n.amount) + turbulenceText(n.turbulence) +
-           waveText(n.wave) + formatSteps(own);
+    return std::string(n.uvMapping ? " uv_mapping " : " ") + (keyword ? keyword : "bumps") + " " + number(n.amount) +
+           turbulenceText(n.turbulence) + waveText(n.wave) + formatSteps(own);
 }
 
 bool isDefaultFinish(const Finish& f) {
@@ -234,12 +236,14 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
         return text;
     }
     // A patterned texture: the pattern's own transform comes last and moves the entries too.
+    // A uv-mapped pattern lives in uv space: the transforms after it move only its entries.
     const Pigment& p = t.pigment;
-    const Transform after = writer::compose(suffix);
+    const std::vector<Step> placedBy = p.uvMapping ? std::vector<Step>{} : suffix;
+    const Transform after = writer::compose(placedBy);
     std::vector<Step> own;
     if (!writer::sameTransform(p.toWorld, after)) {
         own = decompose(p.toWorld.then(after.inverted()));
-        exact = exact && writer::sameTransform(writer::compose(suffix, writer::compose(own)), p.toWorld);
+        exact = exact && writer::sameTransform(writer::compose(placedBy, writer::compose(own)), p.toWorld);
     }
     std::vector<Step> childSuffix = own;
     childSuffix.insert(childSuffix.end(), suffix.begin(), suffix.end());
@@ -249,7 +253,7 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
             text += " " + block;
         return text;
     };
-    std::string text;
+    std::string text = p.uvMapping ? " uv_mapping" : "";
     const bool block =
         p.pattern == PatternKind::Checker || p.pattern == PatternKind::Hexagon || p.pattern == PatternKind::Brick;
     const bool layeredEntry = std::any_of(t.map.begin(), t.map.end(),

@@ -107,11 +107,18 @@ Ray spawn(const Hit& hit, const Vec3& direction, double time) {
 // A bump pattern moves with its object: on a moving object it tilts the
 // normal in the object's rest pose, which is then turned to the world at the
 // ray's time (normals map by the inverse transpose).
+// A uv-mapped one reads the surface's uv and tangent frame (in the rest pose
+// too); on a surface without uvs it has nothing to vary over and leaves the
+// normal as it is.
 Vec3 Integrator::bumpNormal(const Normal& bumps, const Hit& hit, double time, const Vec3& normal) const {
-    if (hit.instance < 0) return perturbNormal(bumps, hit.point, normal);
+    if (bumps.uvMapping && !hit.hasUv) return normal;
+    const auto perturb = [&](const Vec3& point, const Vec3& n) {
+        return bumps.uvMapping ? perturbNormalUv(bumps, hit.uv, hit.dpdu, hit.dpdv, n) : perturbNormal(bumps, point, n);
+    };
+    if (hit.instance < 0) return perturb(hit.point, normal);
     const Transform toWorld = accel_.restToWorld(hit, time);
     const Vec3 restNormal = normalize(toWorld.inverted().normal(normal));
-    return normalize(toWorld.normal(perturbNormal(bumps, hit.restPoint, restNormal)));
+    return normalize(toWorld.normal(perturb(hit.restPoint, restNormal)));
 }
 
 void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const Hit& hit, Sampler& sampler,

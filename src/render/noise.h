@@ -65,5 +65,13 @@ double noisePatternValue(PatternKind kind, const Turbulence& turbulence, const V
 // So scaling a pattern down makes its bumps smaller, not steeper. `normal`
 // must be unit length; the result is unit length and never NaN.
 Vec3 perturbNormal(const Normal& bump, const Vec3& worldPoint, const Vec3& normal);
+// The same for a uv-mapped normal (Normal::uvMapping): the pattern at the
+// surface's (u, v, 0), its tilt carried to the surface by the tangent frame
+// dpdu, dpdv (Hit) with the normal as third axis, stretched by the frame's mean
+// scale sqrt(|dpdu x dpdv|), so a uniformly scaled uv layout keeps the bumps'
+// slopes as a uniformly scaled object does. Normals map by the frame's inverse
+// transpose, so a pattern slope along u tilts the normal along the gradient of
+// u on the surface. A degenerate frame leaves the normal as it is.
+Vec3 perturbNormalUv(const Normal& bump, const Vec3& uv, const Vec3& dpdu, const Vec3& dpdv, const Vec3& normal);
 
 } // namespace drt

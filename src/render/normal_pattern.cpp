@@ -95,4 +95,23 @@ Vec3 perturbNormal(const Normal& bump, const Vec3& worldPoint, const Vec3& norma
     return finite(world) ? world : normal;
 }
 
+Vec3 perturbNormalUv(const Normal& bump, const Vec3& uv, const Vec3& dpdu, const Vec3& dpdv, const Vec3& normal) {
+    if (!(bump.amount != 0) || !std::isfinite(bump.amount)) return normal;
+    // The frame L maps uv space to the surface: u to dpdu, v to dpdv, w to s n.
+    const double s = std::sqrt(length(cross(dpdu, dpdv)));
+    const Vec3 a = dpdu, b = dpdv, c = s * normal;
+    const Vec3 bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
+    const double det = dot(a, bc);
+    if (!(std::fabs(det) > 0) || !std::isfinite(det) || !(s > 0)) return normal;
+    const Vec3 q = warpPatternPoint(bump.pattern, bump.turbulence, bump.toWorld.inversePoint(uv));
+    if (!finite(q)) return normal;
+    // The normal in uv space is L^T n, then in pattern space; tilted there and
+    // carried back by the inverse transposes (L^-T has columns bc, ca, ab over det).
+    const Vec3 inUv(dot(a, normal), dot(b, normal), dot(c, normal));
+    const Vec3 inPattern = normalize(bump.toWorld.inverted().normal(inUv));
+    const Vec3 m = bump.toWorld.normal(inPattern + perturbation(bump, q));
+    const Vec3 world = normalize((m.x * bc + m.y * ca + m.z * ab) / det);
+    return finite(world) ? world : normal;
+}
+
 } // namespace drt

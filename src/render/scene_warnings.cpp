@@ -4,9 +4,12 @@
 #include "accel/accel.h"
 #include "core/error.h"
 #include "render/camera.h"
+#include "scene/bounds.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <type_traits>
 
@@ -33,6 +36,19 @@ bool isClosedSolid(const Object& object) {
                 return shape.closedSolid();
         },
         object.shape);
+}
+
+// Whether the object's bounds hold the point (a moving object's are not
+// known here: it may).
+bool mayHold(const Object& object, const Vec3& point) {
+    if (!object.motion.empty())
+        return true;
+    Vec3 lower, upper;
+    if (!objectBounds(object, lower, upper))
+        return true;
+    const double margin = 1e-9 * std::max({1.0, std::fabs(point.x), std::fabs(point.y), std::fabs(point.z)});
+    return point.x >= lower.x - margin && point.x <= upper.x + margin && point.y >= lower.y - margin &&
+           point.y <= upper.y + margin && point.z >= lower.z - margin && point.z <= upper.z + margin;
 }
 
 // The closed object the point lies in, if any. From outside every closed
@@ -76,14 +92,18 @@ void warnAboutScene(const Scene& scene, const std::string& scenePath, Diagnostic
     if (scene.lights.empty())
         diagnostics.warning({}, fmt::format("{} has no light_source: only ambient light and emission show", scenePath));
 
+    const int width = scene.render.width.value_or(320), height = scene.render.height.value_or(240);
+    const ResolvedCamera camera = resolveCamera(scene.camera, width, height);
+    // Only objects whose bounds hold the camera can hold it; leaving the others
+    // out changes no answer (a ray's first crossing of an object the camera is
+    // outside is an entry, whatever else is there) and keeps `drt check` of a
+    // large scene from copying it and building its accelerator.
     Scene closed;
     for (const Object& object : scene.objects)
-        if (isClosedSolid(object))
+        if (isClosedSolid(object) && mayHold(object, camera.location))
             closed.objects.push_back(object);
     if (closed.objects.empty())
         return;
-    const int width = scene.render.width.value_or(320), height = scene.render.height.value_or(240);
-    const ResolvedCamera camera = resolveCamera(scene.camera, width, height);
     try {
         if (const Object* inside = enclosingObject(closed, camera.location, scene.camera.shutterOpen))
             diagnostics.warning(inside->loc.valid() ? inside->loc : scene.camera.loc,

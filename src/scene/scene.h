@@ -150,6 +150,11 @@ struct Normal {
     Transform toWorld; // as Pigment::toWorld
     Vec3 gradientAxis{0, 1, 0}; // Gradient
     double accuracy = 0.02;     // POV-Ray's `accuracy`: the slope's sample spacing
+    // uv_mapping: the pattern lives in the surface's uv space (u, v, 0), which
+    // the object's transforms do not move; its tilt is carried to the surface by
+    // the uv tangent frame (render/normal_pattern.h). Surfaces without uv
+    // coordinates show no bumps then.
+    bool uvMapping = false;
 };
 
 // A plain texture is one layer: pigment, finish, normal. Two extensions, both
@@ -206,7 +211,7 @@ inline void transformPigmentSpaces(Pigment& p, const Transform& t) {
 // normal), its map entries and its layers.
 inline void transformTextureSpaces(Texture& texture, const Transform& t) {
     transformPigmentSpaces(texture.pigment, t);
-    if (texture.normal) texture.normal->toWorld = texture.normal->toWorld.then(t);
+    if (texture.normal && !texture.normal->uvMapping) texture.normal->toWorld = texture.normal->toWorld.then(t);
     for (Texture::MapEntry& entry : texture.map) transformTextureSpaces(entry.texture, t);
     for (Texture& layer : texture.layersAbove) transformTextureSpaces(layer, t);
 }
