@@ -185,12 +185,16 @@ TEST(HeightField, UnreadableImageIsAnError) {
     EXPECT_NE(diags.formatAll().find("s.pov:1:20"), std::string::npos) << diags.formatAll();
 }
 
-TEST(HeightField, FunctionFormIsAWarningAndLeftOut) {
+// The function form samples the function (its values: function_test.cpp).
+TEST(HeightField, FunctionFormIsAMeshOfTheFunctionsSamples) {
     Diagnostics diags;
     const Scene s = loadPov("height_field { function 10, 10 { x * y } smooth }\nsphere { 0, 1 }", ".", diags);
-    EXPECT_EQ(diags.warningCount(), 1);
-    ASSERT_EQ(s.objects.size(), 1u);
-    EXPECT_TRUE(std::holds_alternative<Sphere>(s.objects[0].shape));
+    EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
+    ASSERT_EQ(s.objects.size(), 2u);
+    const Mesh* m = std::get_if<Mesh>(&s.objects[0].shape);
+    ASSERT_TRUE(m);
+    EXPECT_EQ(m->vertices.size(), 100u);
+    EXPECT_EQ(m->normals.size(), 100u); // smooth
 }
 
 // ------------------------------------------------------------ image_map

@@ -159,7 +159,7 @@ const ErrorCase kCases[] = {
     {"EmptyMesh", "mesh { }", "mesh has no triangles", 1, 1},
     {"MeshTriangleBrace", "mesh { triangle 0, x, y }", "expected '{' after 'triangle', found '0'", 1, 17},
     {"EmptyUnion", "union { }", "union has no objects", 1, 1},
-    {"OpenOnSphere", "sphere { 0, 1 open }", "'open' applies only to cylinder, cone and prism, and to sor", 1, 15},
+    {"OpenOnSphere", "sphere { 0, 1 open }", "'open' applies only to cylinder, cone and prism, and to sor and isosurface", 1, 15},
     // prism and text
     {"PrismTooFewPoints", "prism { 0, 1, 2, <0, 0>, <1, 0> }", "this prism spline needs at least 3 points", 1, 15},
     {"PrismCubicTooFewPoints", "prism { cubic_spline 0, 1, 5, <0, 0>, <1, 0>, <1, 1>, <0, 1>, <0, 0> }", "this prism spline needs at least 6 points", 1, 28},
@@ -174,7 +174,7 @@ const ErrorCase kCases[] = {
     {"TextNeedsString", "text { font \"timrom.ttf\" thickness 1 }", "expected 'string' and the text in quotes, found 'thickness'", 1, 26},
     {"TextNeedsThickness", "text { font \"timrom.ttf\" string \"a\" }", "expected 'thickness' and the depth of the letters, found '}'", 1, 37},
     {"TextZeroThickness", "text { font \"timrom.ttf\" string \"a\" thickness 0 }", "text thickness must not be zero", 1, 47},
-    {"OpenOnText", "text { font \"timrom.ttf\" string \"a\" thickness 1 open }", "'open' applies only to cylinder, cone and prism, and to sor", 1, 49},
+    {"OpenOnText", "text { font \"timrom.ttf\" string \"a\" thickness 1 open }", "'open' applies only to cylinder, cone and prism, and to sor and isosurface", 1, 49},
     {"MotionTwice", "sphere { 0, 1 motion { translate x translate y } }", "'translate' given twice in motion", 1, 36},
     {"MotionScaleZero", "sphere { 0, 1 motion { scale 0 } }", "motion scale has a zero component, got <0, 0, 0>", 1, 30},
     {"MotionUnknown", "sphere { 0, 1 motion { rotat y } }", "unknown keyword 'rotat'; did you mean 'rotate'?", 1, 24},

@@ -33,6 +33,8 @@ struct FidelityScene {
 
 // The figure of the fix's scene before the fix, for the record:
 //   checker_edge     0.366 (cell tolerance 1e-3: the floor just below y = 0 took the cells above)
+//   function_pattern (function patterns were the average colour of their maps; 0.0006 with them)
+//   isosurface       (isosurfaces were left out; 0.0008 with them)
 //   interior_fade    0.028 (fade_power 1000+ taken as a power law; shadow rays not faded)
 //   leopard_normal   0.061 (normals tilted by the world-space gradient: steep at small scales)
 //   normal_gradient  0.077 (gradient normals were ignored)
@@ -40,7 +42,9 @@ struct FidelityScene {
 //   waves            0.065 (invented wave sources and weights)
 const FidelityScene kScenes[] = {
     {"checker_edge", 0.01},
+    {"function_pattern", 0.005},
     {"interior_fade", 0.012},
+    {"isosurface", 0.005},
     {"leopard_normal", 0.015},
     {"normal_gradient", 0.02},
     {"place_patterns", 0.005},

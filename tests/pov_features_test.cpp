@@ -30,7 +30,7 @@ TEST(PovFeatures, MinAndMaxExtent) {
                         "#warning vstr(3, min_extent(B), \",\", 0, 0)\n"
                         "#warning vstr(3, max_extent(D), \",\", 0, 0)\n"
                         "#warning vstr(3, max_extent(plane { y, 0 }), \",\", 0, 0)\n"
-                        "#declare T = isosurface { function { x * x + y * y + z * z - 1 } }\n"
+                        "#declare T = ovus { 1, 0.5 }\n"
                         "#warning vstr(3, min_extent(T) + max_extent(T), \",\", 0, 0)\n",
                         diags);
     ASSERT_TRUE(s) << diags.formatAll();
@@ -90,12 +90,12 @@ TEST(PovFeatures, TraceAndInsideAnswerFromTheObjectsGeometry) {
     EXPECT_NE(r.err.find("M=0.000,0.000,0.000"), std::string::npos) << r.err;
 }
 
-// A shape drt leaves out (isosurface) is not in the scene: trace() misses it and
+// A shape drt leaves out (ovus) is not in the scene: trace() misses it and
 // inside() is 0, each with a warning at the call; the scene still renders as
 // the rest of it. A light has no surface: a located error.
 TEST(PovFeatures, TraceOfALeftOutShapeMissesWithAWarningAndOfALightIsAnError) {
     const std::string dir = test::tempDir();
-    const std::string leftOut = test::writeFile(dir + "/iso.pov", R"(#declare Iso = isosurface { function { x * x + y * y + z * z - 1 } }
+    const std::string leftOut = test::writeFile(dir + "/iso.pov", R"(#declare Iso = ovus { 1, 0.5 }
 #declare Q = trace(Iso, <0, 0, -5>, <0, 0, 1>);
 #declare J = inside(Iso, <0, 0, 0>);
 #warning concat("Q=", vstr(3, Q, ",", 0, 3), " J=", str(J, 0, 0))

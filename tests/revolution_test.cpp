@@ -298,7 +298,7 @@ TEST(DrtRevolution, ErrorsNameTheLineAndColumn) {
          3},
         {"sor { 4, <0, 0>, <1, 1>, <1, 2>, <-1, 3> }", "a sor point needs a radius >= 0", 1, 34},
         {"lathe { 2, <0, 0>, 1 }", "expected a point <radius, height>, found a number", 1, 20},
-        {"lathe { 2, <0, 0>, <1, 1> open }", "'open' applies only to cylinder, cone and prism, and to sor", 1, 27},
+        {"lathe { 2, <0, 0>, <1, 1> open }", "'open' applies only to cylinder, cone and prism, and to sor and isosurface", 1, 27},
     };
     for (const BadInput& c : cases) {
         Diagnostics diags;

@@ -4,6 +4,7 @@
 // express is reported.
 #include "lang/load.h"
 #include "lang/writer.h"
+#include "lang/writer_function.h"
 #include "lang/writer_detail.h"
 #include "render/render.h"
 #include "test_support.h"
@@ -37,8 +38,17 @@ struct Differ {
         // The renderer uses the inverse too: compare both.
         return (a.matrix() == b.matrix() && a.inverseMatrix() == b.inverseMatrix()) || differs(path);
     }
+    // Functions: the same parameters and the same text (their pattern operands are copies).
+    bool function(const std::shared_ptr<const Function>& a, const std::shared_ptr<const Function>& b,
+                  const std::string& p) {
+        if (!a || !b) return eq(bool(a), bool(b), p);
+        std::set<std::string> problems;
+        return eq(a->params, b->params, p + ".params") && eq(a->colour, b->colour, p + ".colour") &&
+               eq(writer::functionText(*a, problems), writer::functionText(*b, problems), p + ".text");
+    }
     bool pigment(const Pigment& a, const Pigment& b, const std::string& p) {
         bool ok = eq(a.pattern, b.pattern, p + ".pattern") && eq(a.color, b.color, p + ".color") &&
+                  function(a.function, b.function, p + ".function") &&
                   eq(a.gradientAxis, b.gradientAxis, p + ".gradientAxis") &&
                   eq(a.brickSize, b.brickSize, p + ".brickSize") && eq(a.mortar, b.mortar, p + ".mortar") &&
                   eq(a.wave.kind, b.wave.kind, p + ".wave.kind") &&
@@ -170,6 +180,12 @@ struct Differ {
                         true, p + ".transform");
             }
             return ok;
+        }
+        if (auto* s = std::get_if<Isosurface>(&a)) {
+            auto& t = std::get<Isosurface>(b);
+            Isosurface x = *s, y = t;
+            x.function = y.function = nullptr;
+            return function(s->function, t.function, p + ".function") && eq(x == y, true, p + ".isosurface");
         }
         auto& s = std::get<Csg>(a);
         auto& t = std::get<Csg>(b);
@@ -430,6 +446,14 @@ union { sphere { <-1, 0, 0>, 0.3 } sphere { <1, 0, 0>, 0.3 pigment { rgb <0, 0, 
 sphere { 0, 1 scale 2 clipped_by { box { -1, <1, 0.5, 1> } plane { x, 0.3 inverse } } translate <4, 1, 0> }
 union { sphere { 0, 1 clipped_by { plane { y, 0 } } } box { -1, 1 translate 3 * x } clipped_by { sphere { x, 1.5 } } rotate 20 * z }
 difference { box { -1, 1 translate -4 * x } sphere { 0, 1.2 clipped_by { box { 0, 2 } } translate <-4, 1, 0> } clipped_by { plane { -z, 0.5 } } }
+#declare Sq = function(t) { t * t }
+#declare Pat = function { pattern { gradient x scale 2 } }
+#declare Col = function { pigment { checker rgb <1, 0, 0>, rgb <0, 0, 1> } }
+sphere { 0, 1 pigment { function { Sq(x) * 0.5 + abs(-y) + select(z, 1, 0.5) + (x < 0 ? f_sphere(x, y, z, 0.5) : -2) } color_map { [0 rgb 0] [1 rgb 1] } } translate <0, 5, 0> }
+box { -1, 1 texture { function { Pat(x, y, z) + Col(x, y, z).blue * 0.25 + f_noise3d(x, y, z) * 0.1 } texture_map { [0 pigment { rgb 1 }] [1 pigment { rgb 0 }] } } translate <3, 5, 0> }
+sphere { 0, 1 pigment { rgb 0.5 } normal { function { sin(x * 10) * pow(y, 2) } 0.4 } translate <-3, 5, 0> }
+isosurface { function { f_torus(x, y, z, 0.8, 0.2) + 0.05 * sin(x * 9) } contained_by { box { <-1, -0.4, -1>, <1, 0.4, 1> } } threshold 0.01 accuracy 0.002 max_gradient 1.6 translate <0, 5, 3> }
+isosurface { function(a, b, c) { a * a + b * b + c * c - 0.5 } contained_by { sphere { 0, 1 } } open all_intersections evaluate 1, 2, 0.9 translate <3, 5, 3> }
 )");
     ASSERT_TRUE(scene);
     std::string text;

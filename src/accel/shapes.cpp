@@ -5,6 +5,7 @@
 #include "accel/polynomial.h"
 #include "accel/revolution_shape.h"
 #include "accel/blob_shape.h"
+#include "accel/isosurface_shape.h"
 
 #include <algorithm>
 #include <cmath>
@@ -242,6 +243,9 @@ std::optional<AnalyticShape> prepareShape(const Shape& shape) {
     } else if (const auto* blob = std::get_if<Blob>(&shape)) {
         s.kind = ShapeKind::Blob;
         s.blob = std::make_shared<const BlobGeometry>(*blob);
+    } else if (const auto* iso = std::get_if<Isosurface>(&shape)) {
+        s.kind = ShapeKind::Isosurface;
+        s.isosurface = std::make_shared<const IsosurfaceGeometry>(*iso);
     } else {
         return std::nullopt;
     }
@@ -277,6 +281,12 @@ int intersectShape(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossin
         for (const Crossing& c : many) list.add(c.t, c.normal);
         return list.count;
     }
+    case ShapeKind::Isosurface: {
+        thread_local std::vector<Crossing> many;
+        s.isosurface->intersect(o, d, -INFINITY, INFINITY, kMaxCrossings, many);
+        for (const Crossing& c : many) list.add(c.t, c.normal);
+        return list.count;
+    }
     }
     return 0;
 }
@@ -298,6 +308,11 @@ int allCrossings(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossing 
         first = many.data();
         return static_cast<int>(many.size());
     }
+    if (s.kind == ShapeKind::Isosurface) {
+        s.isosurface->intersect(o, d, -INFINITY, INFINITY, SIZE_MAX, many);
+        first = many.data();
+        return static_cast<int>(many.size());
+    }
     first = fixed;
     return intersectShape(s, o, d, fixed);
 }
@@ -307,6 +322,12 @@ bool firstCrossingListed(const AnalyticShape& s, const Vec3& o, const Vec3& d, d
     // Not zero-initialised per call: kMaxCrossings entries are a kilobyte.
     thread_local Crossing fixed[kMaxCrossings];
     thread_local std::vector<Crossing> many;
+    if (s.kind == ShapeKind::Isosurface) { // marches only as far as the first crossing
+        s.isosurface->intersect(o, d, tMin, tMax, 1, many);
+        if (many.empty()) return false;
+        out = many.front();
+        return true;
+    }
     const Crossing* c = nullptr;
     const int n = allCrossings(s, o, d, fixed, many, c);
     for (int i = 0; i < n; ++i)
@@ -323,6 +344,7 @@ bool isSolidShape(const AnalyticShape& s) {
     case ShapeKind::Cone: return !s.open;
     case ShapeKind::Extrusion: return s.extrusion->solid();
     case ShapeKind::Revolution: return s.revolution->solid();
+    case ShapeKind::Isosurface: return s.isosurface->solid();
     default: return true;
     }
 }
@@ -353,6 +375,7 @@ bool insideShape(const AnalyticShape& s, const Vec3& p) {
     case ShapeKind::Extrusion: return s.extrusion->inside(p);
     case ShapeKind::Revolution: return s.revolution->inside(p);
     case ShapeKind::Blob: return s.blob->inside(p);
+    case ShapeKind::Isosurface: return s.isosurface->inside(p);
     }
     return false;
 }
@@ -402,6 +425,7 @@ bool shapeBounds(const AnalyticShape& s, Vec3& lower, Vec3& upper) {
     case ShapeKind::Extrusion: s.extrusion->bounds(lower, upper); return true;
     case ShapeKind::Revolution: s.revolution->bounds(lower, upper); return true;
     case ShapeKind::Blob: s.blob->bounds(lower, upper); return true;
+    case ShapeKind::Isosurface: s.isosurface->bounds(lower, upper); return true;
     }
     return false;
 }

@@ -242,13 +242,16 @@ void Evaluator::declareDirective(const Token& t, bool local) {
     pending_ = &pending;
     Value value;
     const SourceLoc start = peek().loc;
+    const std::string outerName = std::exchange(declaringName_, name.text);
     try {
         value = rvalue();
     } catch (...) {
         pending_ = outer;
+        declaringName_ = outerName;
         throw;
     }
     pending_ = outer;
+    declaringName_ = outerName;
     value.warnings = pending.empty() ? nullptr : std::make_shared<const std::vector<PendingWarning>>(std::move(pending));
     if (value.kind == Value::Kind::Float || value.kind == Value::Kind::Vector || value.kind == Value::Kind::Color) {
         const std::string text = declarationText(start);

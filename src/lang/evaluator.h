@@ -161,6 +161,16 @@ public:
     Value rvalue();
     bool builtin(const Token& name, Value& out); // functions.cpp
     Value traceOrInside(const Token& name);      // trace(object, from, direction [, normal]) and inside(object, point)
+    // User-defined functions (function_syntax.cpp). After 'function': its
+    // parameters and body, compiled.
+    std::shared_ptr<const Function> functionBody(const Token& keyword);
+    // After 'pattern' or 'pigment' inside a function: the pattern or pigment.
+    Pigment functionPattern(const Token& keyword);
+    // After 'function' in a pigment, texture or normal: a function of x, y, z.
+    std::shared_ptr<const Function> patternFunction(const Token& keyword);
+    // A call of the declared function `f` (named `name`, consumed): its arguments, then its value.
+    Value callFunction(const Token& name, const Function& f);
+    std::string declaringName_; // the name a #declare is giving a value, while it is read
     Value primary();
     Value postfix(Value v, SourceLoc loc);
     Value arrayLiteral(SourceLoc loc); // after 'array'
@@ -359,6 +369,9 @@ private:
     bool limitReached_ = false; // a resource limit ended the read (failLimit)
     int abandonedFile_ = -1; // an included file that is no scene, read no further after its first error
 };
+
+// functions.inc's internal function `number` (one drt has: internalArity(number) >= 0) as a function.
+std::shared_ptr<const Function> internalFunction(int number);
 
 // The world-space bounding box of an object (POV-Ray's min_extent / max_extent);
 // unbounded shapes give +-1e10 as POV-Ray's BOUND_HUGE/2 does.

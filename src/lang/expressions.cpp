@@ -32,6 +32,7 @@ std::string kindName(Value::Kind kind) {
     case Kind::Opaque: return "an unsupported item";
     case Kind::SkySphere: return "a sky_sphere";
     case Kind::Media: return "a media";
+    case Kind::Function: return "a function";
     }
     return "a value";
 }

@@ -40,7 +40,8 @@ std::string formatNumber(double value, int width, int precision) {
 bool Evaluator::startsFloat(const Token& t) const {
     if (t.kind == TokenKind::Number || t.is("(") || t.is("-") || t.is("+") || t.is("!")) return true;
     if (t.kind != TokenKind::Word) return false;
-    if (const Cell c = lookup(t.text)) return c->kind == Kind::Float || c->kind == Kind::Macro;
+    if (const Cell c = lookup(t.text))
+        return c->kind == Kind::Float || c->kind == Kind::Macro || (c->kind == Kind::Function && !c->function->colour);
     static const std::set<std::string> words = {
         "pi", "tau", "true", "false", "yes", "no", "on", "off", "clock", "image_width", "image_height", "version",
         "abs", "acos", "asin", "atan", "atan2", "ceil", "cos", "cosh", "degrees", "div", "exp", "floor", "int", "ln",
@@ -92,7 +93,7 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         "sqrt", "tan", "tanh", "select", "bitwise_and", "bitwise_or", "bitwise_xor", "vaxis_rotate", "vcross",
         "vdot", "vlength", "vnormalize", "vrotate", "vturbulence", "concat", "str", "chr", "substr", "strlen",
         "val", "asc", "strupr", "strlwr", "vstr", "dimension_size", "dimensions", "defined", "file_exists",
-        "inside", "trace", "min_extent", "max_extent", "noise3d", "f_noise3d", "strcmp", "sqr", "prod", "sum", "datetime"};
+        "inside", "trace", "min_extent", "max_extent", "noise3d", "strcmp", "sqr", "prod", "sum", "datetime"};
     if (!functions.count(w)) return false;
 
     if (w == "defined") {
@@ -299,7 +300,7 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         out = Value::makeVector(r);
         return true;
     }
-    if (w == "noise3d" || w == "f_noise3d") {
+    if (w == "noise3d") {
         warnOnce("noise", name.loc, "noise functions are not supported; '" + w + "' returns 0.5");
         setFloat(0.5);
         return true;

@@ -50,18 +50,18 @@ const std::map<Block, Words>& table() {
                                       "looks_like", "parallel", "projected_through", "photons", "motion"},
                                      kTransforms);
         Words texture{"pigment", "finish", "normal", "texture_map", "tiles", "checker", "hexagon",
-                      "brick",   "gradient", "average", "uv_mapping"};
+                      "brick",   "gradient", "average", "function", "uv_mapping"};
         for (const PlacePatternWord& w : placePatternWords()) texture.push_back(w.word);
         m[Block::Texture] = with(texture, kTransforms);
         Words pigment{"color", "colour", "rgb", "rgbf", "rgbt", "rgbft", "srgb", "checker", "hexagon", "brick",
                       "brick_size", "mortar", "gradient", "color_map", "colour_map",
                       "pigment_map", "average", "image_map", "turbulence", "octaves", "omega", "lambda", "warp",
-                      "quick_color", "uv_mapping"};
+                      "quick_color", "uv_mapping", "function"};
         for (const std::string& w : noisePatternNames()) pigment.push_back(w);
         for (const PlacePatternWord& w : placePatternWords()) pigment.push_back(w.word);
         pigment = with(pigment, waveWords());
         m[Block::Pigment] = with(pigment, kTransforms);
-        Words normal{"turbulence", "octaves", "omega", "lambda", "accuracy", "bump_size"};
+        Words normal{"turbulence", "octaves", "omega", "lambda", "accuracy", "bump_size", "function"};
         for (const std::string& w : noisePatternNames()) normal.push_back(w);
         normal = with(normal, waveWords());
         m[Block::Normal] = with(normal, kTransforms);
@@ -204,7 +204,7 @@ const char* placePatternWord(PatternKind kind) { return wordOfKind(placePatternW
 bool isApproximatedPattern(const std::string& word) {
     static const std::set<std::string> words = {
         "spiral1", "spiral2", "mandel", "julia", "cells", "quilted", "cubic",
-        "tiling", "pavement", "facets", "function", "density_file", "object", "aoi", "slope", "pigment_pattern",
+        "tiling", "pavement", "facets", "density_file", "object", "aoi", "slope", "pigment_pattern",
         "magnet", "fractal", "wave", "noise"};
     return words.count(word) > 0;
 }

@@ -71,7 +71,7 @@ ShapeReader shapeReader(const std::string& keyword) {
 }
 
 bool isUnsupportedShape(const std::string& keyword) {
-    static const std::set<std::string> words = {"isosurface", "julia_fractal", "parametric",
+    static const std::set<std::string> words = {"julia_fractal", "parametric",
                                                 "sphere_sweep", "bicubic_patch", "ovus"};
     return words.count(keyword) > 0;
 }
@@ -362,8 +362,10 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
             else if (Extrusion* ex = std::get_if<Extrusion>(&o.shape); ex && ex->prism) ex->open = true;
             else if (Revolution* rv = std::get_if<Revolution>(&o.shape); rv && rv->kind == Revolution::Kind::Sor)
                 rv->open = true;
-            else if (syntax().strictValues) error(t.loc, "'open' applies only to cylinder, cone and prism, and to sor");
-            else warnOnce("open", t.loc, "'open' applies to cylinder, cone, prism and sor only; ignored");
+            else if (Isosurface* iso = std::get_if<Isosurface>(&o.shape)) iso->open = true;
+            else if (syntax().strictValues)
+                error(t.loc, "'open' applies only to cylinder, cone and prism, and to sor and isosurface");
+            else warnOnce("open", t.loc, "'open' applies to cylinder, cone, prism, sor and isosurface only; ignored");
         } else if (m == "sturm" || m == "smooth" || m == "split_union" || m == "hierarchy") {
             const bool on = optionalBool(true);
             if (Algebraic* a = std::get_if<Algebraic>(&o.shape); a && m == "sturm" && a->form != Algebraic::Form::Quadric)

@@ -165,7 +165,7 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
             if (syntax().unsupportedIsError) fail(t.loc, "pattern '" + t.text + "' is not supported");
             approximated = t.text;
             approximatedLoc = t.loc;
-            if (t.text == "function" || t.text == "pigment_pattern" || t.text == "object") {
+            if (t.text == "pigment_pattern" || t.text == "object") {
                 if (peek().is("{")) next(), skipBlock();
             } else if (t.text == "density_file") { // density_file df3 "file" [interpolate n]
                 if (peek().isWord("df3")) next();
@@ -308,6 +308,12 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         p.children.clear();
         greyRamp(p);
         noiseNote(w, t.loc);
+    } else if (w == "function") {
+        next();
+        p.pattern = PatternKind::Function;
+        p.function = patternFunction(t);
+        p.children.clear();
+        greyRamp(p);
     } else if (w == "average") {
         next();
         p.pattern = PatternKind::Average;

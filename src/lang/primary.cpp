@@ -110,7 +110,10 @@ Value Evaluator::primary() {
     }
     if (t.kind != TokenKind::Word) failExpected(t, "a value (a number, a vector <x, y, z> or a name)");
 
-    if (const Cell c = useIndexed(t)) return postfix(*c, t.loc);
+    if (const Cell c = useIndexed(t)) {
+        if (c->kind == Kind::Function) return postfix(callFunction(t, *c->function), t.loc);
+        return postfix(*c, t.loc);
+    }
 
     const std::string& w = t.text;
     if (isColorKeyword(w)) {
@@ -139,6 +142,8 @@ Value Evaluator::primary() {
         return Value::makeColor(c);
     }
     if (w == "color" || w == "colour") return Value::makeColor(colorExpr());
+    if (const int internal = internalNamed(w); internal >= 0) // f_sphere, f_r, ... without functions.inc
+        return postfix(callFunction(t, *internalFunction(internal)), t.loc);
     Value out;
     if (builtin(t, out)) return postfix(out, t.loc);
     std::vector<std::string> known{"x",           "y",           "z",           "pi",           "color",
@@ -314,8 +319,14 @@ Value Evaluator::rvalue() {
             next();
             return arrayLiteral(t.loc);
         }
+        if (w == "function") {
+            next();
+            v.kind = Kind::Function;
+            v.function = functionBody(t);
+            return v;
+        }
         static const std::set<std::string> opaque = {
-            "function", "spline", "pigment_map", "normal_map", "texture_map", "slope_map", "density_map",
+            "spline", "pigment_map", "normal_map", "texture_map", "slope_map", "density_map",
             "material_map", "interior_texture", "rainbow", "fog", "photons", "radiosity"};
         if (opaque.count(w)) {
             next();

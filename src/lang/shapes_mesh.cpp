@@ -5,7 +5,9 @@
 //   mesh2 { vertex_vectors ... face_indices ... }  (shapes_mesh_indexed.cpp)
 //   polygon { n, p1, ..., pn }   (triangulated as a fan: exact for convex outlines)
 //   height_field { [type] "file" [smooth] [water_level w] }  (the image is read after parsing)
+//   height_field { function W, H { ... } [smooth] [water_level w] }  (sampled now)
 #include "lang/mesh_syntax.h"
+#include "scene/height_field.h"
 #include "lang/writer_detail.h"
 
 #include <filesystem>
@@ -104,22 +106,40 @@ void readPolygon(Evaluator& e, const Token& keyword, Mesh& m) {
 }
 
 // height_field: a mesh whose triangles come from the image after parsing
-// (Mesh::source, assets/assets.h). Nothing for a function height field (not supported).
+// (Mesh::source, assets/assets.h), or from a function now:
+//   height_field { function W, H { ... } [smooth] [water_level w] }
+// samples the function of x, y (z = 0) on a W x H grid, as POV-Ray does: the
+// vertex at x = i / (W - 1), z = j / (H - 1) has the height
+// F(i / (W - 1), 1 - j / (H - 1), 0), clamped to [0, 1].
 bool readHeightField(Evaluator& e, Mesh& m) {
     if (e.peek().isWord("function")) {
-        e.unsupported("height_field-function", e.peek().loc,
-                      "height_field { function ... } is not supported; the object is left out");
-        e.next();
-        e.floatExpr();
-        e.acceptSymbol(",");
-        e.floatExpr();
-        e.expectSymbol("{", "after the function's resolution");
-        e.skipBlock();
-        while (e.peek().isWord("smooth") || e.peek().isWord("water_level") || e.peek().isWord("hierarchy")) {
-            const Token w = e.next();
-            if (!w.isWord("smooth")) e.floatExpr();
+        const Token keyword = e.next();
+        const int columns = e.countExpr("the height_field function's width", 2, 8192);
+        e.comma("width");
+        const int rows = e.countExpr("the height_field function's height", 2, 8192);
+        const std::shared_ptr<const Function> f = e.patternFunction(keyword);
+        bool smooth = false;
+        double waterLevel = 0;
+        for (;;) {
+            const Token t = e.peek();
+            if (t.isWord("smooth")) e.next(), smooth = true;
+            else if (t.isWord("water_level")) e.next(), waterLevel = e.floatExpr();
+            else if (t.isWord("hierarchy")) e.next(), e.optionalBool();
+            else break;
         }
-        return false;
+        std::vector<double> heights(size_t(columns) * size_t(rows));
+        for (int j = 0; j < rows; ++j)
+            for (int i = 0; i < columns; ++i) {
+                const double v = f->at(Vec3(double(i) / (columns - 1), 1 - double(j) / (rows - 1), 0));
+                heights[size_t(j) * size_t(columns) + size_t(i)] = std::clamp(v, 0.0, 1.0);
+            }
+        Mesh built = heightFieldMesh(heights, columns, rows, smooth, waterLevel);
+        if (built.triangles.empty()) {
+            e.warn(keyword.loc, "the height_field lies entirely below its water_level; it is left out");
+            return false;
+        }
+        m = std::move(built);
+        return true;
     }
     static const std::set<std::string> types = {"gif", "tga", "iff", "ppm", "pgm", "png",
                                                 "jpeg", "tiff", "sys", "exr", "hdr", "pot"};

@@ -72,7 +72,7 @@ bool Evaluator::isTexturePatternWord(const Token& t) const {
     if (t.kind != TokenKind::Word || lookup(t.text)) return false;
     const std::string& w = t.text;
     return w == "texture_map" || w == "material_map" || w == "tiles" || w == "checker" || w == "hexagon" ||
-           w == "brick" || w == "gradient" || w == "average" || placePatternNamed(w).has_value() ||
+           w == "brick" || w == "gradient" || w == "average" || w == "function" || placePatternNamed(w).has_value() ||
            noisePatternNamed(w).has_value() || isApproximatedPattern(w);
 }
 
@@ -194,6 +194,9 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
         pattern.pattern = *place;
     } else if (w == "average") {
         pattern.pattern = PatternKind::Average;
+    } else if (w == "function") {
+        pattern.pattern = PatternKind::Function;
+        pattern.function = patternFunction(word);
     } else if (const std::optional<PatternKind> kind = noisePatternNamed(w)) {
         pattern.pattern = *kind;
         noiseNote(w, word.loc);
@@ -229,7 +232,7 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
     } else {
         if (syntax().unsupportedIsError) fail(word.loc, "texture pattern '" + w + "' is not supported");
         approximated = w;
-        if (w == "function" || w == "pigment_pattern" || w == "object") {
+        if (w == "pigment_pattern" || w == "object") {
             if (peek().is("{")) next(), skipBlock();
         } else if (w == "mandel" || w == "magnet" || w == "spiral1" || w == "spiral2") {
             floatExpr();
@@ -373,6 +376,16 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 use(t.text);
                 if (c->normal) n = *c->normal, known = true;
                 if (n.uvMapping) uv = true, n.uvMapping = false; // a declared uv-mapped normal
+                first = false;
+                continue;
+            }
+            if (t.text == "function") { // normal { function { ... } [amount] }
+                next();
+                n.pattern = PatternKind::Function;
+                n.function = patternFunction(t);
+                known = true;
+                const Token a = peek();
+                if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
                 first = false;
                 continue;
             }

@@ -74,7 +74,7 @@ struct Origin {
 struct Value {
     enum class Kind {
         Float, Vector, Color, String, Array, Object, Texture, Pigment, Finish, Interior, Material,
-        Normal, Camera, Light, Transform, ColorMap, Macro, Opaque, SkySphere, Media,
+        Normal, Camera, Light, Transform, ColorMap, Macro, Opaque, SkySphere, Media, Function,
     };
     Kind kind = Kind::Float;
     double number = 0;
@@ -95,6 +95,7 @@ struct Value {
     std::shared_ptr<const drt::Transform> transform;
     std::shared_ptr<const std::vector<ColorMapEntry>> colorMap;
     std::shared_ptr<const lang::Macro> macro;
+    std::shared_ptr<const drt::Function> function;
     std::shared_ptr<const std::vector<PendingWarning>> warnings; // see PendingWarning
     std::shared_ptr<const Origin> origin;                         // numbers read from an identifier
 

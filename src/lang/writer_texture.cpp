@@ -2,6 +2,7 @@
 // transforms chosen so the parser rebuilds them exactly), finishes, interiors.
 #include "lang/keywords.h"
 #include "lang/writer_detail.h"
+#include "lang/writer_function.h"
 
 #include <algorithm>
 #include <limits>
@@ -73,7 +74,12 @@ std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& e
         exact = exact && writer::sameTransform(writer::compose(placedBy, writer::compose(own)), n.toWorld);
     }
     const char* keyword = noiseKeyword(n.pattern);
-    return std::string(n.uvMapping ? " uv_mapping " : " ") + (keyword ? keyword : "bumps") + " " + number(n.amount) +
+    std::string pattern = keyword ? keyword : "bumps";
+    if (n.pattern == PatternKind::Function && n.function) {
+        std::set<std::string> problems; // none for a function of x, y, z without patterns
+        pattern = functionHead(*n.function) + "{ " + functionText(*n.function, problems) + " }";
+    }
+    return std::string(n.uvMapping ? " uv_mapping " : " ") + pattern + " " + number(n.amount) +
            turbulenceText(n.turbulence) + waveText(n.wave) + formatSteps(own);
 }
 
@@ -187,6 +193,10 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         if (!p.pigmentMap.empty())
             colorMap();
         break;
+    case PatternKind::Function:
+        text += " " + functionHead(*p.function) + "{ " + functionText(*p.function, problems) + " }";
+        colorMap();
+        break;
     case PatternKind::ImageMap:
         if (p.imageMap) text += imageMapText(*p.imageMap);
         else problems.insert("an image_map without its image");
@@ -214,6 +224,10 @@ static std::string texturePatternWord(const Pigment& p) {
     case PatternKind::Brick: return "brick";
     case PatternKind::Gradient: return "gradient " + vector(p.gradientAxis);
     case PatternKind::Average: return "average";
+    case PatternKind::Function: {
+        std::set<std::string> problems; // the pigment's own are reported where it is written
+        return functionHead(*p.function) + "{ " + functionText(*p.function, problems) + " }";
+    }
     default: {
         if (const char* place = lang::placePatternWord(p.pattern)) return place;
         const char* word = noiseKeyword(p.pattern);
@@ -228,7 +242,8 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
         std::string text = " pigment {" + pigmentBody(t.pigment, suffix, exact, problems) + " }";
         if (t.normal) {
             text += " normal {" + normalBody(*t.normal, suffix, exact) + " }";
-            if (!noiseKeyword(t.normal->pattern)) problems.insert("a normal pattern other than the noise patterns");
+            if (!noiseKeyword(t.normal->pattern) && t.normal->pattern != PatternKind::Function)
+                problems.insert("a normal pattern other than the noise patterns");
             if (t.normal->accuracy != Normal{}.accuracy) problems.insert("a normal's accuracy");
         }
         if (!isDefaultFinish(t.finish))

@@ -42,8 +42,11 @@ Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraF
             ++counts.camera;
         else
             ++counts.secondary;
-        Hit traced;
-        // The camera ray's hit was found by the caller.
+        // The camera ray's hit was found by the caller. `traced` is one record
+        // per thread, not one per loop pass: a Hit is about 230 bytes of
+        // initialised members, and Accelerator::intersect writes every field
+        // a found hit is read by.
+        thread_local Hit traced;
         const bool found = first ? cameraFound : accel_.intersect(pending.ray, traced);
         const Hit& hit = first ? cameraHit : traced;
         Color seen = pending.weight; // what reaches the eye of what the ray sees

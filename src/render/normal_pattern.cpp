@@ -75,6 +75,7 @@ Vec3 perturbation(const Normal& bump, const Vec3& q) {
         shape.pattern = bump.pattern;
         shape.gradientAxis = bump.gradientAxis;
         shape.wave = bump.wave;
+        if (bump.pattern == PatternKind::Function) shape.function = bump.function;
         const double delta = bump.accuracy > 0 && std::isfinite(bump.accuracy) ? bump.accuracy : 0.02;
         const double weight = -5 * bump.amount * 0.02 / delta;
         Vec3 sum(0.0);

@@ -2,6 +2,7 @@
 
 #include "core/limits.h"
 
+#include "render/function_hooks.h"
 #include "render/image_pattern.h"
 #include "render/noise.h"
 #include "render/pattern_wave.h"
@@ -105,6 +106,11 @@ double boxedValue(const Vec3& p) {
     return std::max(0.0, 1.0 - std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
 }
 
+namespace {
+// Links render/function_hooks.cpp (and its start-up installation) into every program that shades.
+[[maybe_unused]] const bool kFunctionHooks = installFunctionHooks();
+} // namespace
+
 ColorFT lookupColorMap(const std::vector<ColorMapEntry>& map, double value) {
     if (map.empty()) return ColorFT{Color(value), 0, 0};
     if (value <= map.front().value) return map.front().color;
@@ -144,6 +150,7 @@ PatternSample samplePatternAt(const Pigment& pigment, const Vec3& p) {
     case PatternKind::Planar: value = planarValue(p); break;
     case PatternKind::Cylindrical: value = cylindricalValue(p); break;
     case PatternKind::Boxed: value = boxedValue(p); break;
+    case PatternKind::Function: value = pigment.function ? pigment.function->at(p) : 0.0; break; // see installFunctionHooks
     default: break;
     }
     // POV-Ray's pattern step: fmod(v frequency + phase, 1.00001), then the wave.

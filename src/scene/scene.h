@@ -11,7 +11,9 @@
 #include "scene/algebraic.h"
 #include "scene/blob.h"
 #include "scene/extrusion.h"
+#include "scene/function.h"
 #include "scene/indexed_mesh.h"
+#include "scene/isosurface.h"
 #include "scene/motion.h"
 
 #include <algorithm>
@@ -43,6 +45,7 @@ enum class PatternKind {
     Planar,    // colour map of max(0, 1 - |y|) (POV-Ray's planar)
     Cylindrical, // colour map of max(0, 1 - distance from the y axis) (POV-Ray's cylindrical)
     Boxed,     // colour map of max(0, 1 - max(|x|, |y|, |z|)) (POV-Ray's boxed)
+    Function,  // colour map of a user-defined function's value (Pigment::function, scene/function.h)
     // Noise patterns (render/noise.h): drt's own gradient noise, shaped like
     // POV-Ray's documented patterns but not value-for-value equal to them.
     Bozo,     // colour map of plain noise (POV-Ray's bozo and spotted)
@@ -83,6 +86,7 @@ struct ImageMap;
 struct Pigment {
     PatternKind pattern = PatternKind::Solid;
     std::shared_ptr<const ImageMap> imageMap; // ImageMap: the decoded image and its mapping
+    std::shared_ptr<const Function> function; // Function: its value at the pattern point
     ColorFT color;                        // Solid (POV-Ray default: black)
     std::vector<Pigment> children;        // Checker, Hexagon, Brick sub-pigments
     std::vector<ColorMapEntry> colorMap;  // Gradient, Radial, Onion
@@ -149,6 +153,7 @@ struct Normal {
     PatternWave wave; // shapes the pattern's value (not for the five with formulas of their own)
     Transform toWorld; // as Pigment::toWorld
     Vec3 gradientAxis{0, 1, 0}; // Gradient
+    std::shared_ptr<const Function> function; // Function
     double accuracy = 0.02;     // POV-Ray's `accuracy`: the slope's sample spacing
     // uv_mapping: the pattern lives in the surface's uv space (u, v, 0), which
     // the object's transforms do not move; its tilt is carried to the surface by
@@ -383,9 +388,9 @@ struct Csg {
 };
 
 // Algebraic and Superellipsoid: scene/algebraic.h; Extrusion: scene/extrusion.h;
-// Revolution: scene/revolution.h; Blob: scene/blob.h.
+// Revolution: scene/revolution.h; Blob: scene/blob.h; Isosurface: scene/isosurface.h.
 using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid,
-                           Extrusion, Revolution, Blob>;
+                           Extrusion, Revolution, Blob, Isosurface>;
 
 struct Object {
     Shape shape;

@@ -1,0 +1,112 @@
+// User-defined functions (POV-Ray's `function { ... }`): a compiled float
+// expression of its parameters (x, y, z by default), evaluated by the
+// front end (a call in an expression) and by the renderer (function
+// patterns, isosurfaces, height fields). The program is a small postfix
+// code run on a fixed stack: evaluation allocates nothing and only reads the
+// program, so one Function serves every thread.
+//
+// A function calls only functions declared before it (they are held here by
+// pointer), so no call can recurse. Its body may instead be a pattern or a
+// pigment (`function { pattern { ... } }`, `function { pigment { ... } }`):
+// those are evaluated by the renderer's pattern code through the hooks at the
+// end of this header.
+#pragma once
+
+#include "core/vec.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace drt {
+
+struct Pigment;
+
+enum class FnOp : uint8_t {
+    Const,   // push value
+    Param,   // push args[index]
+    Add, Sub, Mul, Div, Neg, Not,
+    Lt, Le, Eq, Ne, Ge, Gt, And, Or,
+    Cond,    // c a b -> c != 0 ? a : b
+    Math1,   // a -> f(a), f = FnMath1(index)
+    Math2,   // a b -> f(a, b), f = FnMath2(index)
+    Select,  // count 3: s a b -> s < 0 ? a : b; count 4: s a b c -> s < 0 ? a : s == 0 ? b : c
+    Call,    // count arguments -> callees[index](arguments), channel `channel` of a colour function
+    Internal,// count arguments -> the internal function `index` (FnInternal)
+    Pattern, // x y z -> the value of patterns[index] at <x, y, z> (in [0, 1])
+    Colour,  // x y z -> channel `channel` of pigment patterns[index] at <x, y, z>
+};
+
+enum class FnMath1 : uint16_t {
+    Abs, Acos, Acosh, Asin, Asinh, Atan, Atanh, Ceil, Cos, Cosh, Degrees, Exp, Floor, Int, Ln, Log, Radians,
+    Sin, Sinh, Sqrt, Sqr, Tan, Tanh,
+};
+enum class FnMath2 : uint16_t { Pow, Atan2, Mod, Div, Min, Max };
+
+// POV-Ray's internal functions of functions.inc that drt implements, by
+// their number there (internal(N)).
+enum class FnInternal : uint16_t {
+    Ph = 47,            // f_ph(x, y, z): the angle from +y, acos(y / r)
+    R = 57,             // f_r(x, y, z): distance from the origin
+    RoundedBox = 60,    // f_rounded_box(x, y, z, radius, sx, sy, sz)
+    Sphere = 61,        // f_sphere(x, y, z, radius)
+    Superellipsoid = 68,// f_superellipsoid(x, y, z, e, n): 1 - ((|x|^(2/e) + |y|^(2/e))^(e/n) + |z|^(2/n))^(n/2)
+    Th = 69,            // f_th(x, y, z): atan2(x, z)
+    Torus = 70,         // f_torus(x, y, z, major, minor)
+    Noise3d = 76,       // f_noise3d(x, y, z): noise in [0, 1] (drt's noise)
+    NoiseGenerator = 78,// f_noise_generator(x, y, z, generator): drt's one noise
+};
+// The number of arguments of internal function `number`, or -1 when drt lacks it.
+int internalArity(int number);
+// functions.inc's name of internal function `number` ("f_sphere"), or "" when drt lacks it.
+const char* internalName(int number);
+// The number of the internal function called `name` ("f_sphere" -> 61), or -1.
+int internalNamed(const std::string& name);
+
+struct FnInstr {
+    FnOp op = FnOp::Const;
+    uint8_t count = 0;   // arguments (Call, Internal, Select)
+    uint8_t channel = 0; // Call of a colour function, Colour: 0 red .. 4 transmit, 5 gray
+    uint16_t index = 0;  // Param, Math1, Math2, Call, Internal, Pattern, Colour
+    double value = 0;    // Const
+};
+
+struct Function {
+    std::vector<std::string> params; // names, in order (x y z for `function { }`)
+    std::vector<FnInstr> code;
+    std::vector<std::shared_ptr<const Function>> callees;
+    std::vector<std::shared_ptr<const Pigment>> patterns; // Pattern and Colour operands
+    int stackSize = 0;  // the deepest the stack gets, callees excluded
+    int totalStack = 0; // stackSize plus the largest totalStack of the callees
+    // `function { pigment { ... } }`: a colour function, whose value is a
+    // colour; a call picks its channel (`F(x, y, z).red`), red by default.
+    bool colour = false;
+    // An internal function drt lacks: it takes any arguments and gives 0.
+    bool anyArity = false;
+
+    // The value at `args` (params.size() of them): channel `channel` of a
+    // colour function. Never NaN: a NaN result is 0, infinities are +-1e300.
+    double operator()(const double* args, int channel = 0) const;
+    double at(const Vec3& p) const {
+        const double a[3] = {p.x, p.y, p.z};
+        return (*this)(a);
+    }
+    bool operator==(const Function& o) const; // the same program and operands
+};
+
+// The most stack slots a function may need, its callees' included (the front
+// end refuses deeper expressions and call chains).
+inline constexpr int kFunctionTotalStackLimit = 1024;
+
+// The renderer's pattern code, for noise and for pattern and pigment bodies
+// (set by src/render when it is linked; without it noise is 0.5 and patterns
+// 0). `channel` as FnInstr::channel.
+struct FunctionHooks {
+    double (*noise)(const Vec3& p) = nullptr;
+    double (*pattern)(const Pigment& pattern, const Vec3& p) = nullptr;
+    double (*colour)(const Pigment& pigment, const Vec3& p, int channel) = nullptr;
+};
+void setFunctionHooks(const FunctionHooks& hooks);
+
+} // namespace drt
