@@ -136,7 +136,7 @@ std::string square(const std::string& normal, const std::string& placed) {
 // comparison can fail).
 TEST(UvNormal, OnAMeshWhoseUvsAreItsXyItEqualsTheSpatialNormalAndMovesWithIt) {
     const std::string place = "  translate <-0.5, -0.5, 0> rotate <0, 0, 30> scale 1.4 translate <0.5, 0.5, 0>\n";
-    for (const std::string name : {"n.drt", "n.pov"}) {
+    for (const char* name : {"n.drt", "n.pov"}) {
         Diagnostics d1, d2, d3, d4;
         const auto uv = parse(square("uv_mapping bumps 0.9 scale 0.1", ""), d1, name);
         const auto spatial = parse(square("bumps 0.9 scale <0.1, 0.1, -0.1>", ""), d2, name);
@@ -197,8 +197,8 @@ mesh2 {
 })";
     const std::string checker = "checker texture { pigment { color rgb <1,0,0> } finish { ambient 1 diffuse 0 } } "
                                 "texture { pigment { color rgb <0,0,1> } finish { ambient 1 diffuse 0 } } scale 0.25";
-    for (const std::string name : {"p.drt", "p.pov"})
-        for (const std::string pattern : {"uv_mapping " + checker, checker + " uv_mapping"}) {
+    for (const char* name : {"p.drt", "p.pov"})
+        for (const std::string& pattern : {"uv_mapping " + checker, checker + " uv_mapping"}) {
             std::string text = body;
             text.replace(text.find("PATTERN"), 7, pattern);
             Diagnostics diags;
