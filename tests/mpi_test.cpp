@@ -290,7 +290,9 @@ TEST(Mpi, ARankThatDiesEndsAWholeFrameJobNonZeroWithoutAHang) {
 
 TEST(Mpi, AnInterruptedWholeFrameJobResumesOnAnotherNumberOfRanks) {
     const std::string dir = test::tempDir();
-    const std::string options = " --frames 0..9 --width 80 --height 60 --spp 40 --threads 1 -q";
+    // Enough samples that the other ranks are still inside a frame when the first one is written (at 40
+    // spp they had sometimes finished every frame, or were between frames, with nothing to checkpoint).
+    const std::string options = " --frames 0..9 --width 80 --height 60 --spp 200 --threads 1 -q";
     const std::string scene = test::sourcePath("examples/pendulum.drt");
     ASSERT_EQ(test::runDrt("render '" + scene + "' -o '" + dir + "/one_%02d.exr'" + options).exitCode, 0);
     // Every rank is sent SIGTERM once a first frame is written (as Slurm's --signal does). Any frame,
