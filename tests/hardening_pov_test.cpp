@@ -84,6 +84,18 @@ TEST(HardeningPov, AWhileLoopWithoutProgressStopsAtTheIterationLimit) {
                            "loop_iterations = 100000; raise it with --limit loop_iterations=N)");
 }
 
+// Directives met while another directive reads its tokens run inside it; the fuzzer's
+// `#declare A = #if ( #declare A = #if ( ...` recursed until the stack overflowed (a
+// segfault). The nesting limit now stops it with a located error.
+TEST(HardeningPov, DirectivesNestedInDirectivesStopAtTheNestingLimit) {
+    std::string text;
+    for (int i = 0; i < 5000; ++i) text += "#declare A = #if (";
+    const Outcome o = checkPov(text);
+    EXPECT_EQ(o.exitCode, 1) << o.err;
+    EXPECT_CONTAINS(o.err, "s.pov:1:");
+    EXPECT_CONTAINS(o.err, "error: nesting depth 201 is over the limit of 200 (limit nesting_depth = 200");
+}
+
 TEST(HardeningPov, InfiniteMacroRecursionStopsAtTheCallDepth) {
     const Outcome o = checkPov("#macro M(N)\n  M(N + 1)\n#end\nM(0)\n");
     EXPECT_EQ(o.exitCode, 1);

@@ -81,6 +81,9 @@ Token Evaluator::skipTo(const std::set<std::string>& stops, const Token& start) 
 // ------------------------------------------------------------ directives
 
 void Evaluator::directive(const Token& t) {
+    // A directive met while another one reads its tokens (`#declare A = #if (#declare B = ...`) runs
+    // inside it: the nesting limit bounds that recursion as it bounds nested blocks.
+    DepthGuard guard(*this, t.loc);
     const std::string& d = t.text;
     if (d == "declare") declareDirective(t, false);
     else if (d == "local") declareDirective(t, true);
