@@ -34,6 +34,14 @@ Image renderSmall(const Scene& scene) {
     return render(scene, options).color;
 }
 
+// `drt convert POV -o DRT`, which must succeed with no warning; the .drt text.
+std::string convertCleanly(const std::string& pov, const std::string& drt) {
+    const auto r = runDrt("convert '" + pov + "' -o '" + drt + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("0 warnings"), std::string::npos) << r.out << r.err;
+    return test::readFile(drt);
+}
+
 // The POV-Ray scene and its conversion, each read by its own front end; an
 // error in either fails the test.
 void loadBoth(const std::string& pov, const std::string& drt, std::optional<Scene>& original,
@@ -70,10 +78,7 @@ sphere { y, 1 texture { pigment { rgb <0.2, 0.4, 0.9> } finish { reflection 0.2 
 plane { y, 0 texture { gradient x texture_map { [0.2 pigment { rgb 1 }] [0.8 pigment { rgb 0.1 } finish { reflection 0.4 }] } } }
 box { <1, 0, 1>, <2, 1, 2> texture { tiles { texture { pigment { rgb x } } texture { Decal } tile2 texture { pigment { rgb z } } } scale 0.25 } }
 )");
-    const auto r = runDrt("convert '" + pov + "' -o '" + dir + "/layers.drt'");
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.out.find("0 warnings"), std::string::npos) << r.out << r.err;
-    const std::string text = test::readFile(dir + "/layers.drt");
+    const std::string text = convertCleanly(pov, dir + "/layers.drt");
     EXPECT_NE(text.find("texture_map"), std::string::npos) << text;
     EXPECT_NE(text.find("tiles {"), std::string::npos) << text;
 
@@ -94,10 +99,7 @@ camera { location <0, 2, -4> look_at <0, 0, 0> }
 light_source { <0, 4, 0> color rgb 1 spotlight radius -20 falloff -35 tightness 3 point_at <0.5, 0, 0> }
 plane { y, 0 pigment { rgb 1 } }
 )");
-    const auto r = runDrt("convert '" + pov + "' -o '" + dir + "/spot.drt'");
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.out.find("0 warnings"), std::string::npos) << r.out << r.err;
-    const std::string text = test::readFile(dir + "/spot.drt");
+    const std::string text = convertCleanly(pov, dir + "/spot.drt");
     EXPECT_NE(text.find("radius 20 falloff 35"), std::string::npos) << text;
     std::optional<Scene> original, converted;
     loadBoth(pov, dir + "/spot.drt", original, converted);

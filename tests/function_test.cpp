@@ -18,19 +18,8 @@
 namespace drt {
 namespace {
 
-struct Run {
-    std::optional<Scene> scene;
-    Diagnostics diags;
-    std::vector<std::string> messages; // the #warning texts, in order
-};
-
-std::unique_ptr<Run> run(const std::string& text, bool pov = true) {
-    auto r = std::make_unique<Run>();
-    if (pov) r->scene = loadPovSceneText(text, "t.pov", r->diags);
-    else r->scene = loadSceneText(text, "t.drt", r->diags);
-    for (const Diagnostic& d : r->diags.all())
-        if (d.message.rfind("#warning: ", 0) == 0) r->messages.push_back(d.message.substr(10));
-    return r;
+std::unique_ptr<test::SceneRun> run(const std::string& text, bool pov = true) {
+    return test::readSceneText(text, pov);
 }
 
 // The value of a float expression after `declarations`, printed with 9 decimals.
@@ -215,8 +204,10 @@ TEST(Isosurface, TheContainerClosesTheSolidUnlessOpen) {
         accel::Crossing c[accel::kMaxCrossings];
         const int n = accel::intersectShape(iso, Vec3(0, -5, 0.2), Vec3(0, 1, 0), c);
         ASSERT_EQ(n, open ? 1 : 2);
-        if (!open) EXPECT_NEAR(c[0].t, 4, 1e-12); // the box's bottom
-        EXPECT_NEAR(c[n - 1].t, 5, 1e-6);          // the surface y = 0
+        if (!open) {
+            EXPECT_NEAR(c[0].t, 4, 1e-12); // the box's bottom
+        }
+        EXPECT_NEAR(c[n - 1].t, 5, 1e-6); // the surface y = 0
     }
 }
 

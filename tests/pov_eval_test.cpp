@@ -9,18 +9,8 @@
 namespace drt {
 namespace {
 
-struct Run {
-    std::optional<Scene> scene;
-    Diagnostics diags;
-    std::vector<std::string> messages; // the #warning texts, in order
-};
-
-std::unique_ptr<Run> run(const std::string& text, PovOptions options = {}) {
-    auto r = std::make_unique<Run>();
-    r->scene = loadPovSceneText(text, "t.pov", r->diags, options);
-    for (const Diagnostic& d : r->diags.all())
-        if (d.message.rfind("#warning: ", 0) == 0) r->messages.push_back(d.message.substr(10));
-    return r;
+std::unique_ptr<test::SceneRun> run(const std::string& text, PovOptions options = {}) {
+    return test::readSceneText(text, true, options);
 }
 
 // The value of a float expression, printed by str() with 6 decimals.

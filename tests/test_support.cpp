@@ -1,6 +1,7 @@
 #include "test_support.h"
 
 #include "assets/assets.h"
+#include "lang/load.h"
 
 #include <gtest/gtest.h>
 
@@ -60,6 +61,15 @@ CommandResult runDrt(const std::string& arguments) {
     r.out = readFile(outPath);
     r.err = readFile(errPath);
     fs::remove_all(dir);
+    return r;
+}
+
+std::unique_ptr<SceneRun> readSceneText(const std::string& text, bool pov, const PovOptions& options) {
+    auto r = std::make_unique<SceneRun>();
+    if (pov) r->scene = loadPovSceneText(text, "t.pov", r->diags, options);
+    else r->scene = loadSceneText(text, "t.drt", r->diags);
+    for (const Diagnostic& d : r->diags.all())
+        if (d.message.rfind("#warning: ", 0) == 0) r->messages.push_back(d.message.substr(10));
     return r;
 }
 

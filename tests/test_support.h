@@ -2,8 +2,11 @@
 #pragma once
 
 #include "accel/accel.h"
+#include "core/diagnostics.h"
+#include "pov/load.h"
 #include "scene/scene.h"
 
+#include <memory>
 #include <optional>
 #include <random>
 #include <string>
@@ -46,6 +49,16 @@ inline std::string testNameOf(const std::string& description) {
 std::string drtExecutable();
 // Runs the drt executable with the given argument string (shell-quoted by the caller).
 CommandResult runDrt(const std::string& arguments);
+
+// A scene text read in process (the .pov or the .drt front end), its
+// diagnostics, and the texts of its #warning directives in order: how the
+// expression tests read a value (`#warning str(E, 0, 9)`).
+struct SceneRun {
+    std::optional<Scene> scene;
+    Diagnostics diags;
+    std::vector<std::string> messages;
+};
+std::unique_ptr<SceneRun> readSceneText(const std::string& text, bool pov = true, const PovOptions& options = {});
 
 // The scene with the files it names read (assets/assets.h), as drt render
 // reads them after parsing; adds a test failure if that reports an error.
