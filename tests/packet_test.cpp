@@ -3,7 +3,9 @@
 // renderer relies on that for images that do not depend on how rays are traced.
 #include "accel/accel.h"
 #include "lang/load.h"
+#include "render/integrator.h"
 #include "render/render.h"
+#include "sampling/sampler.h"
 #include "scene/motion.h"
 #include "test_support.h"
 
@@ -103,6 +105,141 @@ TEST(Packet, EveryRayGetsTheHitItGetsAlone) {
         }
     }
     EXPECT_GT(hits, rays / 3); // the rays do hit things
+}
+
+// Shadow rays go in packets too (Accelerator::occludedPacket): each must get
+// the answer occluded() gives it alone, coherent (one hit area toward one
+// light) or not, from near the surfaces as shadow rays start.
+TEST(Packet, EveryShadowRayGetsTheAnswerItGetsAlone) {
+    const Scene scene = mixedScene();
+    const Accelerator accel(scene);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    int blocked = 0, rays = 0;
+    for (int packet = 0; packet < 400; ++packet) {
+        const int count = 1 + packet % Accelerator::kPacketSize;
+        const bool coherent = packet % 2 == 0;
+        const Vec3 light{-6 + 12 * u(rng), 2 + 6 * u(rng), -6 + 12 * u(rng)};
+        const Vec3 near{-4 + 8 * u(rng), -1 + 0.2 * u(rng), -2 + 6 * u(rng)}; // on or near the ground plane
+        Ray batch[Accelerator::kPacketSize];
+        for (int i = 0; i < count; ++i) {
+            Ray& r = batch[i];
+            r.origin = coherent ? near + Vec3{0.05 * u(rng), 0, 0.05 * u(rng)}
+                                : Vec3{-6 + 12 * u(rng), -1 + 5 * u(rng), -6 + 12 * u(rng)};
+            r.direction = light - r.origin; // the light at t = 1
+            r.tMin = 0;
+            r.tMax = packet % 7 == 0 ? 0.5 : 1;
+            r.time = u(rng);
+        }
+        bool packed[Accelerator::kPacketSize];
+        accel.occludedPacket(batch, count, packed);
+        for (int i = 0; i < count; ++i, ++rays) {
+            const bool alone = accel.occluded(batch[i]);
+            ASSERT_EQ(alone, packed[i]) << "shadow ray " << rays;
+            blocked += alone;
+        }
+    }
+    EXPECT_GT(blocked, rays / 10); // some are blocked
+    EXPECT_LT(blocked, rays - rays / 10); // and some are not
+}
+
+// The renderer traces the shadow rays of a packet's camera hits ahead
+// (Integrator::traceCameraShadows) and the shading takes their answers: every
+// sample must be the bits, and count the rays, it gives with each shadow ray
+// traced alone. The scene has what may and what may not go in packets (a
+// point light, a spotlight, an area light, a shadowless light), a bumped
+// surface whose normal is not the one the rays were planned with, layers, and
+// camera rays that miss.
+TEST(Packet, ShadowRaysTracedAheadGiveTheSameSamples) {
+    Diagnostics diagnostics;
+    std::optional<Scene> scene = loadSceneText(R"(
+camera { location <0, 2, -6> look_at <0, 0.5, 0> angle 60 }
+light_source { <-4, 6, -4>, color rgb 0.7 }
+light_source { <3, 5, -3>, color rgb 0.5 spotlight point_at <0, 0, 0> radius 20 falloff 30 }
+light_source { <0, 8, 2>, color rgb 0.4 area_light <1, 0, 0>, <0, 0, 1>, 2, 2 }
+light_source { <2, 3, -5>, color rgb 0.3 shadowless }
+light_source { <5, 0.3, 0>, color rgb 0.3 }
+background { color rgb <0.3, 0.4, 0.6> }
+plane { y, 0 pigment { checker rgb 0.8, rgb 0.4 } normal { bumps 0.6 scale 0.2 } }
+sphere { <0, 0.8, 0>, 0.8 pigment { color rgb <0.8, 0.3, 0.2> } finish { reflection 0.3 phong 0.5 } }
+sphere { <1.6, 0.5, 1>, 0.5 texture { pigment { color rgb <0.2, 0.5, 0.8> } }
+                            texture { pigment { color rgbt <1, 1, 1, 0.6> } finish { specular 0.4 } } no_shadow }
+box { <-2.5, 0, -1>, <-1.5, 1.2, 0> pigment { color rgb 0.9 } rotate y*20 }
+)", "shadow-packets.drt", diagnostics);
+    ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
+    const Accelerator accel(*scene);
+    const Integrator integrator(*scene, accel);
+    const std::unique_ptr<Sampler> sampler = makeSampler("sobol", 8, 3);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0, 1);
+    const Vec3 eye{0, 2, -6};
+    int samples = 0;
+    RayCounts aheadCounts, aloneCounts;
+    for (int pixel = 0; pixel < 300; ++pixel) {
+        const int x = pixel % 20, y = pixel / 20;
+        const Vec3 aim{-3.5 + 7 * (x + 0.5) / 20, 2.5 - 3 * (y + 0.5) / 15, 0};
+        Ray rays[Accelerator::kPacketSize];
+        for (Ray& r : rays) {
+            r.origin = eye;
+            r.direction = aim + Vec3{0.3 * u(rng), 0.2 * u(rng), 0} - eye;
+            r.time = 0;
+        }
+        Hit hits[Accelerator::kPacketSize];
+        bool found[Accelerator::kPacketSize];
+        accel.intersectPacket(rays, Accelerator::kPacketSize, hits, found);
+        CameraShadows ahead;
+        integrator.traceCameraShadows(rays, hits, found, Accelerator::kPacketSize, ahead);
+        for (int k = 0; k < Accelerator::kPacketSize; ++k, ++samples) {
+            sampler->startPixelSample(x, y, k);
+            const Color withAhead = integrator.trace(rays[k], hits[k], found[k], *sampler, aheadCounts, &ahead);
+            sampler->startPixelSample(x, y, k);
+            const Color alone = integrator.trace(rays[k], hits[k], found[k], *sampler, aloneCounts);
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(std::bit_cast<uint64_t>(withAhead[c]), std::bit_cast<uint64_t>(alone[c]))
+                    << "sample " << samples << " channel " << c;
+        }
+    }
+    EXPECT_EQ(aheadCounts.camera, aloneCounts.camera);
+    EXPECT_EQ(aheadCounts.shadow, aloneCounts.shadow);
+    EXPECT_EQ(aheadCounts.secondary, aloneCounts.secondary);
+    EXPECT_GT(aloneCounts.shadow, uint64_t(samples)); // the lights do send shadow rays
+}
+
+// What decides which lights go ahead: the first and the last light of the
+// scene above (plain point lights) do, the others do not; with a caster that
+// lets light through none does.
+TEST(Packet, OnlyLightsOneOcclusionQueryAnswersAreTracedAhead) {
+    const auto lightsAhead = [](const char* text) {
+        Diagnostics diagnostics;
+        std::optional<Scene> scene = loadSceneText(text, "ahead.drt", diagnostics);
+        EXPECT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
+        const Accelerator accel(*scene);
+        const Integrator integrator(*scene, accel);
+        Ray ray;
+        ray.origin = {0, 2, -6};
+        ray.direction = Vec3{0, 0, 0} - ray.origin;
+        Hit hit;
+        bool found = accel.intersect(ray, hit);
+        EXPECT_TRUE(found);
+        CameraShadows ahead;
+        integrator.traceCameraShadows(&ray, &hit, &found, 1, ahead);
+        std::vector<size_t> lights;
+        for (size_t i = 0; i < ahead.answers_.size(); i += Accelerator::kPacketSize)
+            if (ahead.answers_[i] != 0) lights.push_back(i / Accelerator::kPacketSize);
+        return lights;
+    };
+    const std::string lights = R"(
+camera { location <0, 2, -6> look_at <0, 0, 0> }
+light_source { <-4, 6, -4>, color rgb 0.7 }
+light_source { <3, 5, -3>, color rgb 0.5 spotlight point_at <0, 0, 0> }
+light_source { <0, 8, 2>, color rgb 0.4 area_light <1, 0, 0>, <0, 0, 1>, 2, 2 }
+light_source { <2, 3, -5>, color rgb 0.3 shadowless }
+light_source { <5, 6, 0>, color rgb 0.3 }
+light_source { <5, 6, 0>, color rgb 0 }
+plane { y, 0 pigment { color rgb 0.8 } }
+)";
+    EXPECT_EQ(lightsAhead(lights.c_str()), (std::vector<size_t>{0, 4}));
+    EXPECT_TRUE(lightsAhead((lights + "sphere { <3, 1, 3>, 1 pigment { color rgbf <1, 1, 1, 0.5> } }").c_str()).empty());
 }
 
 // A render traces a pixel's camera rays in packets of up to kPacketSize from

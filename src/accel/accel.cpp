@@ -360,6 +360,39 @@ bool Accelerator::occluded(const Ray& ray) const {
     return r.tfar < 0;
 }
 
+void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) const {
+    static_assert(kPacketSize == 8, "rtcOccluded8 traces the packet");
+    if (count <= 1) { // nothing to share
+        if (count == 1) blocked[0] = occluded(rays[0]);
+        return;
+    }
+    count = std::min(count, kPacketSize);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    alignas(32) RTCRay8 packet;
+    alignas(32) int valid[kPacketSize];
+    for (int i = 0; i < kPacketSize; ++i) {
+        valid[i] = i < count ? -1 : 0;
+        RTCRay r;
+        fillRay(rays[i < count ? i : 0], *impl_, r, kShadowMask);
+        packet.org_x[i] = r.org_x;
+        packet.org_y[i] = r.org_y;
+        packet.org_z[i] = r.org_z;
+        packet.tnear[i] = r.tnear;
+        packet.dir_x[i] = r.dir_x;
+        packet.dir_y[i] = r.dir_y;
+        packet.dir_z[i] = r.dir_z;
+        packet.time[i] = r.time;
+        packet.tfar[i] = r.tfar;
+        packet.mask[i] = r.mask;
+        packet.id[i] = static_cast<unsigned>(i);
+        packet.flags[i] = 0;
+    }
+    rtcOccluded8(valid, impl_->top.scene, &context, &packet);
+    impl_->device.throwIfFailed("tracing a shadow ray packet");
+    for (int i = 0; i < count; ++i) blocked[i] = packet.tfar[i] < 0;
+}
+
 // Waechter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection"
 // (Ray Tracing Gems, ch. 6): move each float coordinate of the point by
 // int(256 n_i) units in the last place, in the direction of n_i, so the offset

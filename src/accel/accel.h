@@ -107,6 +107,10 @@ public:
     void intersectPacket(const Ray* rays, int count, Hit* hits, bool* found) const;
     // Any hit with tMin < t < tMax by an object that casts shadows. Thread-safe.
     bool occluded(const Ray& ray) const;
+    // occluded() of up to kPacketSize rays at once, traced as one Embree
+    // packet (rtcOccluded8; worth it for coherent rays: a pixel's shadow rays
+    // to one light). blocked[i] is what occluded(rays[i]) gives. Thread-safe.
+    void occludedPacket(const Ray* rays, int count, bool* blocked) const;
 
     // A ray origin just off the surface at `hit`, on the side `direction` points
     // to, robust at every scale (integer-ULP offset along the geometric normal,

@@ -25,7 +25,7 @@ Integrator::Integrator(const Scene& scene, const Accelerator& accel)
 }
 
 Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraFound, Sampler& sampler,
-                        RayCounts& counts) const {
+                        RayCounts& counts, const CameraShadows* cameraShadows) const {
     thread_local std::vector<PendingRay> stack;
     stack.clear();
     // The camera ray is traced first without going through the stack.
@@ -78,7 +78,7 @@ Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraF
             continue;
         }
         if (++shaded > kMaxRaysPerSample) break;
-        shade(pending, seen, hit, sampler, counts, result, stack);
+        shade(pending, seen, hit, sampler, counts, result, stack, first ? cameraShadows : nullptr);
     }
     stack.clear();
     return result;
@@ -122,11 +122,12 @@ Vec3 Integrator::bumpNormal(const Normal& bumps, const Hit& hit, double time, co
 }
 
 void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const Hit& hit, Sampler& sampler,
-                       RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const {
+                       RayCounts& counts, Color& result, std::vector<PendingRay>& stack,
+                       const CameraShadows* cameraShadows) const {
     const Object& object = *hit.object;
     thread_local PointLightSamples lights;
     lights.clear();
-    SurfaceHit surface{pending, hit, Vec3(), true, Vec3(), 1.0, &lights};
+    SurfaceHit surface{pending, hit, Vec3(), true, Vec3(), 1.0, &lights, cameraShadows};
     surface.incoming = normalize(pending.ray.direction);
     surface.entering = dot(surface.incoming, hit.geometricNormal) < 0;
     Vec3 normal = surface.entering ? hit.shadingNormal : -hit.shadingNormal;
@@ -199,6 +200,7 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
 
         ShadingPoint sp;
         sp.hit = &hit;
+        sp.cameraShadows = surface.cameraShadows;
         sp.normal = normal;
         sp.incoming = incoming;
         // Textures move with their object (restPoint); uv_mapping reads the surface's uv.

@@ -42,8 +42,16 @@ public:
     // renderer traces camera rays in packets). The sampler must already be at
     // the pixel sample (startPixelSample). Thread-safe: the only mutable state
     // is the sampler and `counts`, which each thread owns.
+    // cameraShadows: the camera hit's shadow rays traced ahead
+    // (traceCameraShadows), or null.
     Color trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraFound, Sampler& sampler,
-                RayCounts& counts) const;
+                RayCounts& counts, const CameraShadows* cameraShadows = nullptr) const;
+
+    // DirectLighting::traceCameraShadows for a camera packet's hits.
+    void traceCameraShadows(const Ray* rays, const Hit* hits, const bool* found, int count,
+                            CameraShadows& out) const {
+        lighting_.traceCameraShadows(rays, hits, found, count, out);
+    }
 
     int maxTraceLevel() const { return maxTraceLevel_; }
 
@@ -63,10 +71,12 @@ private:
         Vec3 normal;       // facing the incoming ray
         double eta = 1;    // n_incident / n_transmitted
         PointLightSamples* lights = nullptr; // the point's light samples, shared by its layers
+        const CameraShadows* cameraShadows = nullptr; // the camera hit's shadow answers traced ahead
     };
     // seenWeight: the ray's weight after the fog and media in front of the hit.
     void shade(const PendingRay& pending, const Color& seenWeight, const Hit& hit, Sampler& sampler,
-               RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
+               RayCounts& counts, Color& result, std::vector<PendingRay>& stack,
+               const CameraShadows* cameraShadows) const;
     void shadeTexture(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,
                       RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
     void shadePatterned(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,

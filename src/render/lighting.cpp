@@ -14,14 +14,19 @@
 
 namespace drt {
 
-Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
-                          RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {
+Ray shadowRay(const Hit& from, const Vec3& target, double time) {
     Ray ray;
     ray.origin = Accelerator::offsetOrigin(from, target - from.point);
     ray.direction = target - ray.origin; // the light sits at t = 1
     ray.tMin = 0;
     ray.tMax = 1;
     ray.time = time;
+    return ray;
+}
+
+Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
+                          RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {
+    Ray ray = shadowRay(from, target, time);
     ++counts.shadow;
     // Media between ray.origin and the end of the segment (hit == nullptr: the light).
     thread_local MediaList media;
@@ -279,7 +284,71 @@ DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel)
       anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)) {
     cones_.reserve(scene.lights.size());
     for (const Light& light : scene.lights) cones_.push_back(spotCones(light));
+    // One occlusion query answers these lights' shadow rays (shadowTransmittance
+    // with opaque casters and no media): they can be traced ahead in packets.
+    if (opaqueCasters_)
+        for (size_t i = 0; i < scene.lights.size(); ++i) {
+            const Light& light = scene.lights[i];
+            const bool media = hasMedia_ && light.mediaAttenuation && light.mediaInteraction;
+            if (!light.area && !light.spotlight && !light.shadowless && !lightMoves(light) && !media &&
+                !isBlack(light.color))
+                packetLights_.push_back(static_cast<int>(i));
+        }
 }
+
+void DirectLighting::traceCameraShadows(const Ray* rays, const Hit* hits, const bool* found, int count,
+                                        CameraShadows& out) const {
+    constexpr int kPacket = Accelerator::kPacketSize;
+    out.hits_ = hits;
+    out.count_ = std::clamp(count, 0, kPacket);
+    if (packetLights_.empty() || out.count_ == 0) {
+        out.count_ = 0;
+        return;
+    }
+    out.answers_.assign(scene_.lights.size() * kPacket, 0);
+    // Each hit's normal as the integrator turns it to the viewer (Integrator::shade).
+    Vec3 normals[kPacket];
+    for (int k = 0; k < out.count_; ++k) {
+        if (!found[k]) continue;
+        const Hit& hit = hits[k];
+        const Vec3 incoming = normalize(rays[k].direction);
+        const bool entering = dot(incoming, hit.geometricNormal) < 0;
+        Vec3 normal = entering ? hit.shadingNormal : -hit.shadingNormal;
+        if (dot(normal, incoming) >= 0) normal = entering ? hit.geometricNormal : -hit.geometricNormal;
+        normals[k] = normal;
+    }
+    for (const int i : packetLights_) {
+        const Vec3& position = scene_.lights[size_t(i)].position;
+        Ray shadow[kPacket];
+        int lane[kPacket];
+        int n = 0;
+        for (int k = 0; k < out.count_; ++k) {
+            if (!found[k]) continue;
+            const Vec3 toLight = position - hits[k].point;
+            if (!(dot(normals[k], toLight) > 0)) continue; // facing away: the shading sends no ray
+            shadow[n] = shadowRay(hits[k], position, rays[k].time);
+            lane[n++] = k;
+        }
+        bool blocked[kPacket];
+        accel_.occludedPacket(shadow, n, blocked);
+        for (int j = 0; j < n; ++j) out.answers_[size_t(i) * kPacket + size_t(lane[j])] = blocked[j] ? 2 : 1;
+    }
+}
+
+namespace {
+
+// The answer traced ahead for the shadow ray of light i from sp's hit, if any
+// (CameraShadows: 0 none, 1 visible, 2 blocked).
+uint8_t cameraShadow(const ShadingPoint& sp, size_t i) {
+    const CameraShadows* pre = sp.cameraShadows;
+    if (!pre) return 0;
+    // Compared as addresses: sp.hit need not be one of the packet's.
+    const auto at = reinterpret_cast<uintptr_t>(sp.hit), first = reinterpret_cast<uintptr_t>(pre->hits_);
+    if (at < first || at >= first + sizeof(Hit) * size_t(pre->count_)) return 0;
+    return pre->answers_[i * Accelerator::kPacketSize + (at - first) / sizeof(Hit)];
+}
+
+} // namespace
 
 Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sampler& sampler,
                             RayCounts& counts) const {
@@ -321,9 +390,15 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         const Scene* media = hasMedia_ && light->mediaAttenuation && light->mediaInteraction ? &scene_ : nullptr;
         const auto visibility = [&](PointLightSamples::Sample& s) -> const Color& {
             if (!s.tested) {
-                s.visibility = light->shadowless ? Color(1)
-                                                : shadowTransmittance(accel_, *sp.hit, s.position, sp.time, counts,
-                                                                      media, opaqueCasters_);
+                const uint8_t answer = cameraShadow(sp, i);
+                if (answer != 0) { // traced ahead: the same ray, the same answer
+                    ++counts.shadow;
+                    s.visibility = Color(answer == 1 ? 1.0 : 0.0);
+                } else {
+                    s.visibility = light->shadowless ? Color(1)
+                                                    : shadowTransmittance(accel_, *sp.hit, s.position, sp.time,
+                                                                          counts, media, opaqueCasters_);
+                }
                 s.tested = true;
             }
             return s.visibility;

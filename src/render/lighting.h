@@ -93,8 +93,25 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
 // light through (filter or transmit anywhere, image maps counted as able to).
 bool shadowsAreOpaque(const Scene& scene);
 
+// The shadow rays of a camera packet's hits, traced ahead of their shading
+// as packets (one per light: DirectLighting::traceCameraShadows). Only for
+// what one occlusion query answers exactly (a point light that neither moves
+// nor is a spotlight, area light or shadowless, no media along its rays, no
+// shadow caster that lets light through); the shading then takes the answer
+// instead of tracing the same ray alone, and counts the ray when it does.
+// A shadow ray the shading does not ask for is traced and not counted.
+struct CameraShadows {
+    // Written by traceCameraShadows, read by DirectLighting::shade.
+    const Hit* hits_ = nullptr; // the packet's hits
+    int count_ = 0;
+    // By light * Accelerator::kPacketSize + hit: 0 not traced, 1 visible, 2 blocked.
+    std::vector<uint8_t> answers_;
+};
+
 struct ShadingPoint {
     const Hit* hit = nullptr; // the surface point, not copied
+    // A camera hit's shadow answers traced ahead (or null).
+    const CameraShadows* cameraShadows = nullptr;
     Vec3 normal;   // unit, facing the incoming ray
     Vec3 incoming; // unit ray direction
     ColorFT pigment;
@@ -154,6 +171,15 @@ public:
     // surface point, kept while its layers are shaded.
     Color shade(const ShadingPoint& point, PointLightSamples& samples, Sampler& sampler, RayCounts& counts) const;
 
+    // Traces, light by light as one packet, the shadow rays the shading of
+    // camera hits hits[0..count) will ask for (where found[k]), into `out`:
+    // the rays shadowTransmittance would trace from hits[k] at rays[k].time
+    // toward each light that CameraShadows allows and the surface, as the
+    // integrator turns its normal to the viewer, faces. Nothing for a scene
+    // without such lights.
+    void traceCameraShadows(const Ray* rays, const Hit* hits, const bool* found, int count,
+                            CameraShadows& out) const;
+
 private:
     const Scene& scene_;
     const Accelerator& accel_;
@@ -161,6 +187,10 @@ private:
     bool hasMedia_; // media anywhere: shadow rays of lights that interact with them look for them
     bool anyLightMoves_; // some light moves over the shutter (render/light_path.h)
     std::vector<SpotCones> cones_; // by light, as written (a moving light's are taken at each point)
+    std::vector<int> packetLights_; // the lights whose camera shadow rays go in packets (CameraShadows)
 };
+
+// The shadow ray shadowTransmittance traces first from `from` to `target`.
+Ray shadowRay(const Hit& from, const Vec3& target, double time);
 
 } // namespace drt

@@ -253,6 +253,7 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
         Hit hits[kPacket];
         bool found[kPacket];
         bool covered[kPacket];
+        CameraShadows shadows; // the hits' shadow rays, traced ahead in packets
     };
     const auto takeSamples = [&](Packet& packet, Sampler& sampler, PixelAccumulator& pixel, int x, int y, int first,
                                  int last, RayCounts& counts) {
@@ -277,13 +278,14 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
                 if (covered[j]) rays[traced++] = at.generateRay(position.x, position.y, lens, time);
             }
             accel.intersectPacket(rays, traced, hits, found);
+            integrator.traceCameraShadows(rays, hits, found, traced, packet.shadows);
             for (int j = 0, k = 0; j < n; ++j) {
                 if (!covered[j]) {
                     pixel.add(Color(0));
                     continue;
                 }
                 sampler.startPixelSample(x, y, start + j);
-                pixel.add(integrator.trace(rays[k], hits[k], found[k], sampler, counts));
+                pixel.add(integrator.trace(rays[k], hits[k], found[k], sampler, counts, &packet.shadows));
                 ++k;
             }
         }
