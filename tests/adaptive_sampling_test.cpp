@@ -3,6 +3,7 @@
 // line, and the samples-per-pixel image. The bias test against a fixed-sample
 // reference is in statistical/adaptive_test.cpp.
 #include "render/render.h"
+#include "render/tile_state.h"
 
 #include "lang/load.h"
 #include "test_support.h"
@@ -10,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 
 namespace drt {
@@ -77,15 +80,93 @@ TEST(Adaptive, LooserTargetsTakeFewerSamples) {
     const RenderResult tight = render(scene, adaptiveOptions(24, 18, 4, 512, 0.005));
     const RenderResult loose = render(scene, adaptiveOptions(24, 18, 4, 512, 0.1));
     EXPECT_LT(loose.stats.pixelSamples, tight.stats.pixelSamples);
-    // And the stopping rule holds wherever a pixel stopped before the maximum.
+    // And the guard on a pixel's own variance holds wherever a pixel stopped
+    // before the maximum: var / n <= 16 E^2 (mean^2 + 0.01) in every channel.
     for (int y = 0; y < 18; ++y)
         for (int x = 0; x < 24; ++x) {
             if (loose.sampleCount.at(x, y, 0) >= 512) continue;
             for (int c = 0; c < 3; ++c) {
                 const double mean = loose.color.at(x, y, c), var = loose.variance.at(x, y, c);
-                EXPECT_LE(var, 0.1 * 0.1 * (mean * mean + 0.01) * (1 + 1e-5)) << x << "," << y;
+                EXPECT_LE(var, 16 * 0.1 * 0.1 * (mean * mean + 0.01) * (1 + 1e-5)) << x << "," << y;
             }
         }
+}
+
+// The stopping rule itself (render/tile_state.cpp, decideNextRound), on pixel
+// states set by hand: one 15x15 tile, error target E = 0.1, rounds 4, 8, ...
+class AdaptiveRule : public ::testing::Test {
+protected:
+    static constexpr double kTarget = 0.1 * 0.1;
+    AdaptiveRule() : state_(options()) {}
+    static RenderOptions options() {
+        RenderOptions o = adaptiveOptions(15, 15, 4, 64, 0.1);
+        o.tileSize = 15;
+        return o;
+    }
+    void setAll(double error, double varianceError) {
+        for (int y = 0; y < 15; ++y)
+            for (int x = 0; x < 15; ++x) {
+                AdaptivePixel& p = state_.adaptivePixel(x, y);
+                p.taken = 4;
+                p.error = error;
+                p.varianceError = varianceError;
+            }
+    }
+    AdaptivePixel& at(int x, int y) { return state_.adaptivePixel(x, y); }
+    // Ends the round; the pixels that sample in the next, as a set.
+    std::set<std::pair<int, int>> endRound() {
+        state_.completeTile(0, TileCounts{});
+        std::set<std::pair<int, int>> active;
+        for (int y = 0; y < 15; ++y)
+            for (int x = 0; x < 15; ++x)
+                if (state_.adaptivePixel(x, y).active) active.insert({x, y});
+        return active;
+    }
+    RenderState state_;
+};
+
+TEST_F(AdaptiveRule, APixelWhoseOwnSamplesAgreeSamplesAgainInANoisyNeighbourhood) {
+    setAll(4 * kTarget, 0);
+    at(7, 7).error = 0; // its halves agree by chance: a mean of 24/25 of 4 E^2 is still above E^2
+    EXPECT_TRUE(endRound().count({7, 7}));
+    EXPECT_EQ(state_.round(), 1);
+}
+
+TEST_F(AdaptiveRule, EveryPixelStopsWhenItsNeighbourhoodMeetsTheTarget) {
+    setAll(0.5 * kTarget, 0);
+    at(7, 7).error = 10 * kTarget; // one noisy pixel among quiet ones: the 5x5 mean is 0.88 E^2
+    EXPECT_TRUE(endRound().empty());
+    EXPECT_TRUE(state_.finished());
+}
+
+TEST_F(AdaptiveRule, APixelFarAboveTheTargetOnItsOwnSamplesAgain) {
+    setAll(0, 0);
+    at(3, 4).varianceError = 17 * kTarget;
+    EXPECT_EQ(endRound(), (std::set<std::pair<int, int>>{{3, 4}}));
+}
+
+TEST_F(AdaptiveRule, AnUnknownOrNonFiniteErrorKeepsItsNeighbourhoodSampling) {
+    setAll(0, 0);
+    at(2, 2).error = std::numeric_limits<double>::infinity(); // halves not known
+    at(12, 12).error = std::numeric_limits<double>::quiet_NaN();
+    const std::set<std::pair<int, int>> active = endRound();
+    for (int y = 0; y < 15; ++y)
+        for (int x = 0; x < 15; ++x) {
+            const bool near = (std::abs(x - 2) <= 2 && std::abs(y - 2) <= 2) ||
+                              (std::abs(x - 12) <= 2 && std::abs(y - 12) <= 2);
+            EXPECT_EQ(active.count({x, y}) == 1, near) << x << "," << y;
+        }
+}
+
+TEST_F(AdaptiveRule, AStoppedPixelNeverSamplesAgainButStillCountsInItsNeighbours) {
+    setAll(0, 0);
+    at(7, 7).active = false;
+    at(7, 7).error = 100 * kTarget; // stopped earlier (say at the last round's decision)
+    const std::set<std::pair<int, int>> active = endRound();
+    EXPECT_FALSE(active.count({7, 7}));
+    EXPECT_TRUE(active.count({6, 7}));
+    EXPECT_TRUE(active.count({9, 9}));
+    EXPECT_FALSE(active.count({10, 7}));
 }
 
 TEST(Adaptive, ImageIsBitIdenticalForAnyThreadCountAndTileSize) {

@@ -165,3 +165,24 @@ TEST(PerfSceneRule, BenchmarkFirstThenByHash) {
         EXPECT_LT(fnv1a64(ordered[i - 1]), fnv1a64(ordered[i]));
     EXPECT_EQ(orderScenes(ordered), ordered); // a fixed order, whatever the input order
 }
+
+namespace drt::perf {
+namespace {
+
+TEST(PerfAdaptive, AnAdaptiveDrtRendersItsSweepStepsAsErrorTargets) {
+    std::vector<DrtBinary> binaries = {{"fixed", "/bin/true"}, {"adaptive", "/bin/true"}};
+    EXPECT_EQ(drtSampleArgs(binaries[0], 16), (std::vector<std::string>{"--spp", "16"}));
+    markAdaptive(binaries, "adaptive=8,512,0.2");
+    EXPECT_FALSE(binaries[0].adaptive);
+    EXPECT_EQ(drtSampleArgs(binaries[1], 16),
+              (std::vector<std::string>{"--adaptive", "--adaptive-error", "0.05", "--min-spp", "8", "--max-spp", "512"}));
+    markAdaptive(binaries, "fixed"); // the defaults: 4..1024, 0.05 / sqrt(N)
+    EXPECT_EQ(drtSampleArgs(binaries[0], 4),
+              (std::vector<std::string>{"--adaptive", "--adaptive-error", "0.025", "--min-spp", "4", "--max-spp", "1024"}));
+    EXPECT_THROW(markAdaptive(binaries, "nobody"), std::invalid_argument);
+    EXPECT_THROW(markAdaptive(binaries, "fixed=8"), std::invalid_argument);
+    EXPECT_THROW(markAdaptive(binaries, "fixed=16,8"), std::invalid_argument);
+}
+
+} // namespace
+} // namespace drt::perf

@@ -69,16 +69,17 @@ TEST(CropWindow, PixelsEqualTheFullRenderForFixedAndAdaptiveSampling) {
     }
 }
 
-TEST(CropWindow, AdaptiveCropsRenderAMarginOfOnePixelPerRoundAfterTheFirst) {
+TEST(CropWindow, AdaptiveCropsRenderAMarginOfTheNeighbourhoodRadiusPerRoundAfterTheFirst) {
     RenderOptions options = smallOptions(true);
     options.crop = PixelWindow{10, 20, 10, 20};
     const RenderState state(options);
-    // min 2, max 32: rounds end at 2, 4, 8, 16, 32 -> 5 rounds, a margin of 4.
+    // min 2, max 32: rounds end at 2, 4, 8, 16, 32 -> 5 rounds, a margin of 4 radii of 2.
+    static_assert(kAdaptiveRadius == 2);
     EXPECT_EQ(state.roundCount(), 5);
-    EXPECT_EQ(state.window(), (PixelWindow{6, 24, 6, 24}));
+    EXPECT_EQ(state.window(), (PixelWindow{2, 28, 2, 28}));
     EXPECT_EQ(state.output(), (PixelWindow{10, 20, 10, 20}));
     options.crop = PixelWindow{0, 3, 28, 30}; // clipped by the image
-    EXPECT_EQ(RenderState(options).window(), (PixelWindow{0, 7, 24, 30}));
+    EXPECT_EQ(RenderState(options).window(), (PixelWindow{0, 11, 20, 30}));
 }
 
 TEST(CropWindow, OutsideTheImageIsARenderError) {

@@ -83,7 +83,8 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_flag("--adaptive,!--no-adaptive", a.adaptive,
                      "Adaptive sampling: each pixel samples until its error is small (overrides the scene)");
     render->add_option("--adaptive-error", a.adaptiveError,
-                       "Adaptive target: standard error of a pixel's mean relative to sqrt(mean^2 + 0.01)")
+                       "Adaptive target: the relative error (square root of relMSE) each 5x5 neighbourhood of "
+                       "pixels aims at")
         ->check(CLI::PositiveNumber);
     render->add_option("--min-spp", a.minSpp, "Adaptive: samples every pixel takes first")
         ->check(CLI::Range(1, 1 << 24));

@@ -10,26 +10,45 @@
 // one at the next power of two (capped at max_spp), because the Sobol sampler's
 // samples are stratified per power-of-two prefix (an aligned block of a
 // (0,m,2)-net); other round ends would leave a partial, unevenly spread block.
-// After each round a pixel passes the stopping rule if, in every channel c,
-//     sqrt(var_c / n) <= E * sqrt(mean_c^2 + f^2),
-// var_c the unbiased sample variance, E the adaptive error and f the dark
-// floor: E^2 bounds the pixel's expected contribution var/(r^2 + f^2) to
-// relMSE (docs/accuracy.md; f = 0.1 matches relMSE's 0.01). It stops once it and
-// its 8 neighbours pass (a stopped pixel takes no more samples).
-// Why the neighbours: a pixel whose first min_spp samples all miss a sliver of
-// an edge sees zero variance and would stop with the sliver lost; that bias
-// dominated the error (examples/minimal.drt, min_spp 16: a relMSE floor of
-// 2.9e-6, all from such pixels), and an edge almost always shows in a
-// neighbour. Rounds are image-wide passes with a barrier between them (RenderState
-// in render/tile_state.cpp applies the neighbour rule), and each
-// decision reads only samples taken by the end of the round, so the image is
-// still bit-identical for any thread count and tile size.
-// Remaining bias: features smaller than about 1/min_spp of a pixel, isolated
-// from any feature a neighbour sees, can be missed. Owen-scrambled Sobol's nets
-// make that rarer than independent samples do;
-// tests/statistical/adaptive_test.cpp bounds the effect on an image against a
-// fixed-sample reference. The stratified sampler's strata are permuted over
-// max_spp, so its prefixes are unbiased but not stratified.
+//
+// The error estimate (after Dammertz et al., "A hierarchical automatic stopping
+// condition for Monte Carlo global illumination", 2009): at a round end n the
+// pixel's mean I of all its samples is compared with the mean A of the first
+// n/2, and its estimated contribution to relMSE (docs/accuracy.md) is
+//     e = mean over channels c of (I_c - A_c)^2 / (I_c^2 + f^2),
+// f the dark floor (0.1 matches relMSE's 0.01). For independent samples
+// E[(I - A)^2] = Var(I) exactly; for the stratified Sobol prefixes it is
+// somewhat more (the half converges more slowly than the whole), so e errs on
+// the safe side, but much less than var/n does: the sample variance ignores
+// stratification altogether. When the round started after n/2 (a min_spp that
+// is not a power of two) e is unknown (+inf) for that round.
+//
+// The stopping rule. A pixel samples again while the mean of e over the
+// (2r + 1)^2 pixels within r = kAdaptiveRadius of it (render/tile_state.h) is
+// above E^2, E the adaptive error, or its own var/n/(mean^2 + f^2) in some
+// channel is above 16 E^2 (an isolated noisy pixel); once it stops it takes no
+// more samples. Why a neighbourhood and not the pixel alone: in a penumbra a
+// pixel's first few samples often agree by chance (each sees the whole light),
+// its own estimate is then 0 and it would stop with a large error that is
+// also a bias (the pixels that stop early are the ones whose samples agreed).
+// The per-pixel rule this replaces (each pixel's var/n against E^2, stopping
+// once it and its 8 neighbours passed) flattened near relMSE 2e-5 on
+// POV-Ray's arealit2 for that reason (docs/performance.md). Averaged over 25
+// pixels the estimate rests on 25 times the samples, so a penumbra shows in it
+// even where one pixel's samples missed it, and one pixel's own samples weigh
+// 1/25 in its decision, which keeps the correlation between when a pixel stops
+// and what its samples said small. Every window mean at most E^2 means the
+// image's expected relMSE is about E^2 or less (up to the pixels stopped at
+// max_spp), so E = 0.01 aims at relMSE 1e-4.
+//
+// Rounds are image-wide passes with a barrier between them (RenderState in
+// render/tile_state.cpp applies the rule), and each decision reads only
+// samples taken by the end of the round, so the image is still bit-identical
+// for any thread count and tile size. Remaining bias: a feature smaller than
+// about 1/min_spp of a pixel that no pixel within r sees in its first samples
+// can be missed; tests/statistical/adaptive_test.cpp bounds the effect on
+// images against fixed-sample references. The stratified sampler's strata are
+// permuted over max_spp, so its prefixes are unbiased but not stratified.
 #include "render/render.h"
 #include "assets/assets.h"
 
@@ -107,14 +126,25 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool converged(const PixelAccumulator& pixel, const RenderOptions& options) {
-    if (pixel.count() < 2) return false;
-    const Color mean = pixel.mean(), varianceOfMean = pixel.varianceOfMean();
-    const double e2 = options.adaptiveError * options.adaptiveError;
+// (I - A)^2 / (I^2 + f^2), the mean over channels (see "Adaptive sampling").
+double halvesError(const Color& all, const Color& firstHalf, const RenderOptions& options) {
     const double floor2 = options.adaptiveDarkFloor * options.adaptiveDarkFloor;
-    for (int c = 0; c < 3; ++c)
-        if (!(varianceOfMean[c] <= e2 * (mean[c] * mean[c] + floor2))) return false;
-    return true;
+    double sum = 0;
+    for (int c = 0; c < 3; ++c) {
+        const double d = all[c] - firstHalf[c];
+        sum += d * d / (all[c] * all[c] + floor2);
+    }
+    return sum / 3;
+}
+
+// var / n / (mean^2 + f^2), the largest over channels; +inf under two samples.
+double varianceError(const PixelAccumulator& pixel, const RenderOptions& options) {
+    if (pixel.count() < 2) return std::numeric_limits<double>::infinity();
+    const Color mean = pixel.mean(), varianceOfMean = pixel.varianceOfMean();
+    const double floor2 = options.adaptiveDarkFloor * options.adaptiveDarkFloor;
+    double worst = 0;
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, double(varianceOfMean[c]) / (mean[c] * mean[c] + floor2));
+    return worst;
 }
 
 bool anyFinish(const std::vector<Object>& objects, const auto& predicate) {
@@ -315,9 +345,18 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
                 }
                 AdaptivePixel pixel = state.adaptivePixel(x, y);
                 if (pixel.active) {
-                    takeSamples(packet, *sampler, pixel.samples, x, y, pixel.taken, roundEnd, counts);
+                    // The first half's mean, on the way (see "Adaptive sampling").
+                    const int half = roundEnd / 2;
+                    const bool halves = half >= 1 && pixel.taken <= half;
+                    if (halves) takeSamples(packet, *sampler, pixel.samples, x, y, pixel.taken, half, counts);
+                    const PixelAccumulator firstHalf = pixel.samples;
+                    takeSamples(packet, *sampler, pixel.samples, x, y, std::max(pixel.taken, half), roundEnd,
+                                counts);
                     pixel.taken = roundEnd;
-                    pixel.unconverged = !converged(pixel.samples, options);
+                    pixel.error = halves && firstHalf.count() > 0 && pixel.samples.count() > firstHalf.count()
+                                      ? halvesError(pixel.samples.mean(), firstHalf.mean(), options)
+                                      : std::numeric_limits<double>::infinity();
+                    pixel.varianceError = varianceError(pixel.samples, options);
                 }
                 result.adaptive.push_back(pixel);
             }

@@ -34,9 +34,9 @@ struct RenderOptions {
     int tileSize = 32;
     // Adaptive sampling (render.cpp, "Adaptive sampling"): each pixel takes
     // samples in rounds that double its count, from minSamplesPerPixel, until
-    // the standard error of its mean is at most adaptiveError * sqrt(mean^2 +
-    // adaptiveDarkFloor^2) in every channel, or it has maxSamplesPerPixel.
-    // samplesPerPixel is then unused.
+    // the mean estimated relative error of its 5x5 neighbourhood (relative to
+    // sqrt(mean^2 + adaptiveDarkFloor^2)) is at most adaptiveError^2, or it
+    // has maxSamplesPerPixel. samplesPerPixel is then unused.
     bool adaptive = false;
     double adaptiveError = 0.02;
     double adaptiveDarkFloor = 0.1; // the 0.01 = 0.1^2 of relMSE's denominator

@@ -14,6 +14,10 @@ namespace {
 
 constexpr int kMaxImageSide = 1 << 16;
 constexpr int kMaxAdaptiveSamples = 1 << 24;
+// A pixel whose own variance error is this many times the target samples
+// again whatever its neighbourhood says (an isolated noisy pixel: a thin
+// feature, a glint); its own estimate is too noisy to be trusted below that.
+constexpr double kAdaptiveOwnFactor = 16;
 
 void validate(const RenderOptions& options) {
     if (std::string problem = renderLimitProblem(options); !problem.empty()) throw RenderError(problem);
@@ -108,8 +112,8 @@ RenderState::RenderState(const RenderOptions& options) : options_(options) {
             roundEnds_.push_back(n);
             if (n >= options.maxSamplesPerPixel) break;
         }
-        // tile_state.h, "Crop windows": a pixel depends on those within rounds - 1.
-        const int margin = roundCount() - 1;
+        // tile_state.h, "Crop windows": a pixel depends on those within r (rounds - 1).
+        const int margin = kAdaptiveRadius * (roundCount() - 1);
         window_ = {std::max(0, output_.x0 - margin), std::min(options.width, output_.x1 + margin),
                    std::max(0, output_.y0 - margin), std::min(options.height, output_.y1 + margin)};
         pixels_.resize(size_t(window_.width()) * size_t(window_.height()));
@@ -185,26 +189,33 @@ void RenderState::completeTile(int index, const TileCounts& counts) {
     }
 }
 
-// The neighbour rule (render.cpp, "Adaptive sampling"): a pixel samples again
-// if it is still active and it or one of its 8 neighbours in the window is
-// active and failed the stopping rule; none does after the last round.
+// The neighbourhood rule (render.cpp, "Adaptive sampling"): a pixel samples
+// again if it is still active and either the mean error of the pixels within
+// kAdaptiveRadius of it (in the window; every pixel, stopped or not, at its
+// latest estimate) is above the target or its own variance error is far above
+// it; none does after the last round. Sums are taken in a fixed order over a
+// window clipped to the rendered window, so a pixel far enough inside it
+// (tile_state.h, "Crop windows") decides as in a full render.
 bool RenderState::decideNextRound() {
     const int w = window_.width(), h = window_.height();
     const bool lastRound = roundEnd(round_) >= options_.maxSamplesPerPixel;
+    const double target = options_.adaptiveError * options_.adaptiveError;
     bool any = false;
     std::vector<uint8_t> next(pixels_.size(), 0);
-    for (int y = 0; y < h; ++y)
+    constexpr int r = kAdaptiveRadius;
+    for (int y = 0; y < h && !lastRound; ++y)
         for (int x = 0; x < w; ++x) {
             const AdaptivePixel& pixel = pixels_[size_t(y) * size_t(w) + size_t(x)];
-            if (!pixel.active || lastRound) continue;
-            bool again = false;
-            for (int dy = -1; dy <= 1 && !again; ++dy)
-                for (int dx = -1; dx <= 1 && !again; ++dx) {
-                    const int nx = x + dx, ny = y + dy;
-                    if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-                    const AdaptivePixel& neighbour = pixels_[size_t(ny) * size_t(w) + size_t(nx)];
-                    again = neighbour.active && neighbour.unconverged;
+            if (!pixel.active) continue;
+            double sum = 0;
+            int count = 0;
+            for (int ny = std::max(0, y - r); ny <= std::min(h - 1, y + r); ++ny)
+                for (int nx = std::max(0, x - r); nx <= std::min(w - 1, x + r); ++nx) {
+                    sum += pixels_[size_t(ny) * size_t(w) + size_t(nx)].error;
+                    ++count;
                 }
+            // Written so that NaN or infinity means "sample again".
+            const bool again = !(sum <= target * count) || !(pixel.varianceError <= kAdaptiveOwnFactor * target);
             next[size_t(y) * size_t(w) + size_t(x)] = again;
             any = any || again;
         }

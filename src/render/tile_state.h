@@ -8,17 +8,19 @@
 // Rounds. A fixed sample count is one round over every tile. Adaptive
 // sampling (render.cpp) takes rounds with image-wide decisions between them:
 // after a round, the pixels that sample in the next one are those still
-// active that failed the stopping rule or have such a neighbour. So a tile's
-// pixel states go from round to round, and the decision needs every tile of
-// the round: a round is complete only when all its tiles are. A checkpoint
+// active whose neighbourhood (the pixels within kAdaptiveRadius) has not yet
+// met the error target. So a tile's pixel states go from round to round, and
+// the decision needs every tile of the round: a round is complete only when
+// all its tiles are. A checkpoint
 // saves the round and which of its tiles are done; a tile is the unit that
 // moves between processes.
 //
 // Crop windows. A crop's pixels are bit-identical to a full render's. Fixed
 // sampling renders exactly the crop. Under adaptive sampling a pixel's sample
-// count depends, through the neighbour rule, on the pixels within (rounds - 1)
-// of it, so the rendered window is the crop grown by that many pixels (within
-// the image) and the result keeps only the crop.
+// count depends, through the neighbourhood rule, on the pixels within
+// kAdaptiveRadius * (rounds - 1) of it, so the rendered window is the crop
+// grown by that many pixels (within the image) and the result keeps only the
+// crop.
 #pragma once
 
 #include "render/film.h"
@@ -28,6 +30,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -35,12 +38,23 @@
 
 namespace drt {
 
+// Adaptive sampling's neighbourhood: a pixel stops when the mean estimated
+// error of the (2r + 1)^2 pixels around it (within the image) meets the target.
+inline constexpr int kAdaptiveRadius = 2;
+
 // Adaptive sampling's state of one pixel between rounds.
 struct AdaptivePixel {
     PixelAccumulator samples;
     int taken = 0;
-    bool active = true;      // samples in the coming round
-    bool unconverged = true; // failed the stopping rule at the last round end
+    bool active = true; // samples in the coming round
+    // The pixel's estimated contribution to relMSE at the last round end, from
+    // the two halves of its samples (render.cpp, "Adaptive sampling"); +inf
+    // when the halves are not known (the round did not start at or before
+    // its middle).
+    double error = std::numeric_limits<double>::infinity();
+    // Its own error by the sample variance, var / n / (mean^2 + floor^2),
+    // the largest of the channels: a guard against isolated noisy pixels.
+    double varianceError = std::numeric_limits<double>::infinity();
 };
 
 // What one tile task adds to the render's statistics.
@@ -122,7 +136,7 @@ private:
         return size_t(y - window_.y0) * size_t(window_.width()) + size_t(x - window_.x0);
     }
     void startRound();
-    bool decideNextRound(); // adaptive: the neighbour rule; false when no pixel samples again
+    bool decideNextRound(); // adaptive: the neighbourhood rule; false when no pixel samples again
 
     RenderOptions options_;
     PixelWindow output_, window_;

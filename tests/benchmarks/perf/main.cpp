@@ -15,14 +15,23 @@
 namespace {
 
 // --drt LABEL=PATH (repeatable); none: the drt built beside this tool.
+std::vector<std::string> adaptiveTexts; // --drt-adaptive of versus-povray and time-to-error
+
 std::vector<drt::perf::DrtBinary> drtBinaries(const std::vector<std::string>& texts) {
     std::vector<drt::perf::DrtBinary> binaries;
     for (const std::string& text : texts)
         binaries.push_back(drt::perf::parseDrtBinary(text));
     if (binaries.empty())
         binaries.push_back(drt::perf::builtDrt());
+    for (const std::string& text : adaptiveTexts)
+        drt::perf::markAdaptive(binaries, text);
     return binaries;
 }
+
+constexpr const char* kAdaptiveHelp =
+    "LABEL[=MIN,MAX[,SCALE]]: measure that --drt with adaptive sampling (repeatable): a sweep step of N spp "
+    "renders --adaptive --adaptive-error SCALE/sqrt(N) --min-spp MIN --max-spp MAX (default 4,1024,0.05); give "
+    "the same PATH twice under two labels to compare fixed and adaptive sampling";
 
 } // namespace
 
@@ -47,6 +56,7 @@ int main(int argc, char** argv) {
     versusCommand->add_option("--threads", versus.threads, "Threads for both renderers")
         ->check(CLI::Range(1, 256));
     versusCommand->add_option("--pov-examples", versus.povExamples, "POV-Ray's sample scene folder");
+    versusCommand->add_option("--drt-adaptive", adaptiveTexts, kAdaptiveHelp);
     versusCommand->add_flag("--quick", versus.quick, "Fewer settings and lighter references (a few minutes)");
 
     drt::perf::RaysOptions rays;
@@ -106,6 +116,7 @@ int main(int argc, char** argv) {
         ->required();
     timeCommand->add_option("--drt", drtTexts,
                             "LABEL=PATH of a drt to measure (repeatable; the first renders the reference)");
+    timeCommand->add_option("--drt-adaptive", adaptiveTexts, kAdaptiveHelp);
     timeCommand->add_option("--scene", timeToError.scene, "A drt scene (default examples/cook.drt)");
     timeCommand->add_option("--target", timeToError.target,
                             "Label of the drt whose error at --target-spp is the target (default: the last)");

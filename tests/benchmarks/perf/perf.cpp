@@ -1,5 +1,8 @@
 #include "perf.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -24,6 +27,39 @@ DrtBinary parseDrtBinary(const std::string& text) {
     if (binary.label.empty() || access(binary.path.c_str(), X_OK) != 0)
         throw std::invalid_argument(fmt::format("'{}' is not LABEL=PATH with an executable PATH", text));
     return binary;
+}
+
+std::vector<std::string> drtSampleArgs(const DrtBinary& drt, int spp) {
+    if (!drt.adaptive)
+        return {"--spp", std::to_string(spp)};
+    return {"--adaptive",
+            "--adaptive-error",
+            fmt::format("{:.6g}", drt.adaptiveScale / std::sqrt(double(std::max(1, spp)))),
+            "--min-spp",
+            std::to_string(drt.adaptiveMinSpp),
+            "--max-spp",
+            std::to_string(drt.adaptiveMaxSpp)};
+}
+
+void markAdaptive(std::vector<DrtBinary>& binaries, const std::string& text) {
+    const size_t eq = text.find('=');
+    const std::string label = text.substr(0, eq);
+    int low = 4, high = 1024;
+    double scale = 0.05;
+    if (eq != std::string::npos) {
+        const int read = std::sscanf(text.c_str() + eq + 1, "%d,%d,%lf", &low, &high, &scale);
+        if (read < 2 || low < 1 || high < low || !(scale > 0 && scale < 1))
+            throw std::invalid_argument(fmt::format("'{}' is not LABEL, LABEL=MIN,MAX or LABEL=MIN,MAX,SCALE", text));
+    }
+    for (DrtBinary& binary : binaries)
+        if (binary.label == label) {
+            binary.adaptive = true;
+            binary.adaptiveMinSpp = low;
+            binary.adaptiveMaxSpp = high;
+            binary.adaptiveScale = scale;
+            return;
+        }
+    throw std::invalid_argument(fmt::format("--drt-adaptive {}: no --drt labelled '{}'", text, label));
 }
 
 DrtBinary builtDrt() {

@@ -16,7 +16,19 @@ namespace drt::perf {
 struct DrtBinary {
     std::string label;
     std::string path;
+    // Measured with adaptive sampling (--drt-adaptive): a sweep step of N
+    // samples per pixel renders with these bounds and the error adaptiveScale / sqrt(N).
+    bool adaptive = false;
+    int adaptiveMinSpp = 4, adaptiveMaxSpp = 1024;
+    double adaptiveScale = 0.05; // drt aims at relMSE error^2 or less: 0.05 / sqrt(N) spans 2.5e-3 to 1e-5
 };
+// The render arguments of one sweep step of N samples per pixel: "--spp N", or
+// for an adaptive drt "--adaptive --adaptive-error E --min-spp A --max-spp B".
+std::vector<std::string> drtSampleArgs(const DrtBinary& drt, int spp);
+// "LABEL", "LABEL=MIN,MAX" or "LABEL=MIN,MAX,SCALE" of --drt-adaptive: marks
+// that drt of `binaries` adaptive. Throws std::invalid_argument for an
+// unknown label or bad values.
+void markAdaptive(std::vector<DrtBinary>& binaries, const std::string& text);
 // "LABEL=PATH", or a bare PATH (labelled "drt"). Throws std::invalid_argument
 // if the file is not an executable.
 DrtBinary parseDrtBinary(const std::string& text);

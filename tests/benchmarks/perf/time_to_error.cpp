@@ -113,8 +113,8 @@ int runTimeToError(const TimeToErrorOptions& o, std::ostream& log) {
                              rep,
                              (work / fmt::format("{}-{}spp-{}.exr", o.drt[d].label, spp, rep)).string(),
                              {}};
-                    std::vector<std::string> args = {"--spp", std::to_string(spp), "--seed",
-                                                     std::to_string(rep)};
+                    std::vector<std::string> args = drtSampleArgs(o.drt[d], spp);
+                    args.insert(args.end(), {"--seed", std::to_string(rep)});
                     args.insert(args.end(), threads.begin(), threads.end());
                     r.run = runDrtRender(o.drt[d], scene, r.image, args, work.string());
                     if (!r.run.process.succeeded())
@@ -174,6 +174,11 @@ int runTimeToError(const TimeToErrorOptions& o, std::ostream& log) {
             "renders of {} spp by drt {} (its noise {:.2e}, taken out of every relMSE).\n\n",
             fs::path(scene).filename().string(), machineDescription(), loadAverage(), o.threads, repetitions,
             target, targetLabel, o.targetSpp, parts.size(), o.referenceSpp, o.drt.front().label, noise);
+        for (const DrtBinary& d : o.drt)
+            if (d.adaptive)
+                md += fmt::format("- drt {} samples adaptively: its \"N spp\" is `--adaptive --adaptive-error "
+                                  "{}/sqrt(N) --min-spp {} --max-spp {}`.\n\n",
+                                  d.label, d.adaptiveScale, d.adaptiveMinSpp, d.adaptiveMaxSpp);
         md += "| drt | time to the target (wall) | (CPU) | speed-up over " + targetLabel +
               " (wall) | (CPU) | shadow rays per camera sample | secondary rays per camera sample |\n"
               "|---|---|---|---|---|---|---|\n";

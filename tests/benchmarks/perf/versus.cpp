@@ -258,12 +258,13 @@ SceneResult runScene(const Context& c, const VersusScene& scene) {
                 row.renderer = "drt " + drt.label;
                 row.setting = fmt::format("{} spp", spps[job.setting]);
                 row.spp = spps[job.setting];
-                const DrtRender run = runDrtRender(
-                    drt, scenePath, candidate,
-                    {"--width", std::to_string(c.options.width), "--height", std::to_string(c.options.height),
-                     "--spp", std::to_string(spps[job.setting]), "--threads",
-                     std::to_string(c.options.threads), "--seed", std::to_string(rep)},
-                    c.work.string());
+                std::vector<std::string> args = {"--width", std::to_string(c.options.width), "--height",
+                                                 std::to_string(c.options.height)};
+                const std::vector<std::string> samples = drtSampleArgs(drt, spps[job.setting]);
+                args.insert(args.end(), samples.begin(), samples.end());
+                args.insert(args.end(),
+                            {"--threads", std::to_string(c.options.threads), "--seed", std::to_string(rep)});
+                const DrtRender run = runDrtRender(drt, scenePath, candidate, args, c.work.string());
                 row.process = run.process;
                 row.reportedSeconds = run.reported && run.loadSeconds >= 0
                                           ? run.loadSeconds + run.renderSeconds()
