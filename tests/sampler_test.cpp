@@ -334,6 +334,9 @@ TEST(Sobol, ValuesAreTheXorOfTheDirectionNumbers) {
             ASSERT_EQ(owenScrambledSobol(index, d, seed), owenScramble(expected, seed.seed))
                 << "index " << index << ", dimension " << d;
         }
+        // The byte reversal table the sampler's shuffle reads for up to 256 samples.
+        ASSERT_EQ(uint32_t(sobol_detail::kReversedByte[index & 255u]) << 24, sobol_detail::reverseBits(index & 255u));
+        ASSERT_EQ(sobol_detail::kReversedByte[index >> 24], sobol_detail::reverseBits(index) & 255u);
     }
 }
 

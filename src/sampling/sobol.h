@@ -105,6 +105,15 @@ constexpr uint32_t reverseBits(uint32_t x) {
     return x;
 }
 
+// The bits of each byte value reversed: reverseBits(v) == kReversedByte[v] << 24
+// for v < 256, and reverseBits(x) & 255 == kReversedByte[x >> 24].
+constexpr std::array<uint8_t, 256> makeReversedBytes() {
+    std::array<uint8_t, 256> t{};
+    for (uint32_t v = 0; v < 256; ++v) t[v] = static_cast<uint8_t>(reverseBits(v) >> 24);
+    return t;
+}
+inline constexpr std::array<uint8_t, 256> kReversedByte = makeReversedBytes();
+
 // Dimensions 1.. of the sequence bit-reversed, a byte of the index at a time:
 // kReversedBytes[d - 1][b][v] is the XOR of the reversed direction numbers
 // reverseBits(v_d[8 b + j]) over the set bits j of v. Reversing commutes with

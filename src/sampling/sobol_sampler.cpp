@@ -123,6 +123,11 @@ private:
     }
     uint32_t shuffledIndex(const OwenSeed& shuffleSeed) const {
         const auto i = static_cast<uint32_t>(index_);
+        if ((i | mask_) <= 0xffu) { // up to 256 samples: both reversals are one byte's, from a table
+            using sobol_detail::kReversedByte;
+            const uint32_t scrambled = sobol_detail::scrambleReversed(uint32_t(kReversedByte[i]) << 24, shuffleSeed);
+            return (i & ~mask_) | (kReversedByte[scrambled >> 24] & mask_);
+        }
         return (i & ~mask_) | (owenScramble(i, shuffleSeed) & mask_);
     }
     const OwenSeed& jointSeed(int dimension) {
