@@ -202,5 +202,30 @@ TEST(HardeningCli, ALongRenderStopsOnSigtermAndLeavesNoFileBehind) {
     fs::remove_all(dir);
 }
 
+// A scene that takes minutes to read (a loop of 10^9 passes) stops on the
+// first SIGTERM: nothing is rendered yet, so there is nothing to finish or
+// save (before, the first signal only asked the render to stop once it
+// started, and drt read on).
+TEST(HardeningCli, OneSigtermWhileTheSceneIsReadQuitsAtOnce) {
+    const std::string dir = test::tempDir();
+    const std::string scene = test::writeFile(
+        dir + "/slow.drt", "#declare I = 0;\n#while (I < 1e9)\n  #declare I = I + 1;\n#end\nsphere { 0, 1 }\n");
+    const pid_t pid = startRender(quoted(scene) + " -o " + quoted(dir + "/o.png") +
+                                      " --limit loop_iterations=2000000000 --width 16 --height 16",
+                                  dir + "/err.txt");
+    ASSERT_GT(pid, 0) << "fork failed";
+    std::this_thread::sleep_for(std::chrono::milliseconds(700));
+    ASSERT_EQ(::kill(pid, SIGTERM), 0);
+    const int status = waitFor(pid, 10);
+    ASSERT_NE(status, -1) << "drt read on for 10 s after one SIGTERM";
+    EXPECT_TRUE((WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) ||
+                (WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM))
+        << status;
+    EXPECT_FALSE(fs::exists(dir + "/o.png"));
+    for (const auto& entry : fs::directory_iterator(dir))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+    fs::remove_all(dir);
+}
+
 } // namespace
 } // namespace drt

@@ -201,7 +201,11 @@ namespace {
 
 TEST(TokenStream, ReleaseFreesWholeBlocksBeforeTheMarkButKeepsKeptRanges) {
     std::string text;
-    for (int i = 0; i < 5000; ++i) text += "w" + std::to_string(i) + " ";
+    for (int i = 0; i < 5000; ++i) {
+        text += 'w';
+        text += std::to_string(i);
+        text += ' ';
+    }
     TokenStream tokens(text, 0, true);
     ASSERT_EQ(tokens[4999].text, "w4999");
     tokens.keep(1500, 1600); // inside the second block, [1024, 2048)
@@ -231,7 +235,14 @@ TEST(TokenStream, MacrosAndLoopsStillReplayAfterTheReaderReleasedTokens) {
     // goes back to its condition on each pass.
     for (const bool pov : {true, false}) {
         std::string scene = "#macro Report(X) #warning str(X, 0, 0) #end\n";
-        for (int i = 0; i < 4000; ++i) scene += "#declare A" + std::to_string(i) + " = " + std::to_string(i) + ";\n";
+        for (int i = 0; i < 4000; ++i) {
+            const std::string n = std::to_string(i);
+            scene += "#declare A";
+            scene += n;
+            scene += " = ";
+            scene += n;
+            scene += ";\n";
+        }
         scene += "#declare N = 0;\n#declare S = 0;\n#while (N < 3)\n";
         for (int i = 0; i < 600; ++i) scene += "#declare S = S + 1;\n";
         scene += "#declare N = N + 1;\n#end\n";

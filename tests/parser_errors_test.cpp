@@ -303,3 +303,34 @@ TEST(ParserErrors, IncludesNestedTooDeeply) {
 
 } // namespace
 } // namespace drt
+
+namespace drt {
+namespace {
+
+// Lines are found through an index of line starts made when the file is added
+// (each #declare asks for its line): they must be what splitting at '\n' gives.
+TEST(SourceFiles, LinesAreTheTextBetweenNewlines) {
+    const std::vector<std::string> texts = {"", "a", "a\n", "a\nb", "\n\n\nlast", "one\r\ntwo\r\n\r\nfour", "x\n\ny\n"};
+    SourceFiles files;
+    for (const std::string& text : texts) {
+        const int id = files.add("t.drt", text);
+        std::vector<std::string> expected;
+        size_t start = 0;
+        for (;;) {
+            const size_t end = text.find('\n', start);
+            std::string line = text.substr(start, end == std::string::npos ? std::string::npos : end - start);
+            if (!line.empty() && line.back() == '\r') line.pop_back();
+            expected.push_back(line);
+            if (end == std::string::npos) break;
+            start = end + 1;
+        }
+        for (size_t i = 0; i < expected.size(); ++i)
+            EXPECT_EQ(files.line(id, int(i) + 1), expected[i]) << "line " << i + 1 << " of '" << text << "'";
+        EXPECT_EQ(files.line(id, int(expected.size()) + 1), "");
+        EXPECT_EQ(files.line(id, 0), "");
+        EXPECT_EQ(files.line(id, -3), "");
+    }
+}
+
+} // namespace
+} // namespace drt

@@ -11,6 +11,7 @@ namespace drt::cli {
 namespace {
 
 std::atomic<bool> stopRequested{false};
+std::atomic<bool> quitAtOnce{false}; // InterruptHandler::NothingToSave
 std::atomic<int> firstSignal{0};
 struct sigaction previousInt, previousTerm;
 
@@ -22,6 +23,12 @@ void writeMessage(const char* text) {
 // Only async-signal-safe calls here: atomics, write, unlink, _exit.
 extern "C" void onSignal(int number) {
     int none = 0;
+    if (quitAtOnce.load()) {
+        firstSignal.compare_exchange_strong(none, number);
+        removeRegisteredTemporaryFiles();
+        writeMessage("\ndrt: interrupted before the render started: quitting, nothing to save\n");
+        ::_exit(128 + number);
+    }
     if (firstSignal.compare_exchange_strong(none, number)) {
         stopRequested.store(true);
         writeMessage("\ndrt: interrupted: finishing the tiles in progress, then saving the finished ones and a "
@@ -50,6 +57,9 @@ InterruptHandler::~InterruptHandler() {
     sigaction(SIGINT, &previousInt, nullptr);
     sigaction(SIGTERM, &previousTerm, nullptr);
 }
+
+InterruptHandler::NothingToSave::NothingToSave() { quitAtOnce.store(true); }
+InterruptHandler::NothingToSave::~NothingToSave() { quitAtOnce.store(false); }
 
 const std::atomic<bool>* InterruptHandler::flag() const { return &stopRequested; }
 

@@ -23,6 +23,17 @@ public:
     int signal() const;
     // The exit status that says so: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
     int exitStatus() const { return 128 + signal(); }
+
+    // While one lives, nothing is rendered yet (the scene is read, the
+    // accelerator built: minutes for a scene that traces at parse time), so
+    // the first signal quits at once instead of waiting for tiles to save.
+    class NothingToSave {
+    public:
+        NothingToSave();
+        ~NothingToSave();
+        NothingToSave(const NothingToSave&) = delete;
+        NothingToSave& operator=(const NothingToSave&) = delete;
+    };
 };
 
 } // namespace drt::cli

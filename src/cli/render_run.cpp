@@ -29,6 +29,7 @@
 #include <fmt/format.h>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <thread>
@@ -240,7 +241,15 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
     std::ostringstream held;
     std::ostream& messages = rank0 ? err : held;
     Prepared p;
-    int status = prepare(command, rank0, messages, p);
+    int status = kSuccess;
+    {
+        // A lone process quits on the first signal while it reads the scene;
+        // MPI ranks stop together at the first tile instead (a rank that quit
+        // alone would leave the others waiting in a collective).
+        std::optional<InterruptHandler::NothingToSave> quit;
+        if (!mpi) quit.emplace();
+        status = prepare(command, rank0, messages, p);
+    }
     if (mpi) {
         const int rank0Status = int(mpi->broadcast(uint64_t(status)));
         // Collective: every rank takes part when rank 0 could start, even one that could not.

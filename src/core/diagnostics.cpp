@@ -6,18 +6,19 @@
 namespace drt {
 
 int SourceFiles::add(std::string path, std::string text, bool quotable) {
-    files_.push_back({std::move(path), std::move(text), quotable});
+    File f{std::move(path), std::move(text), quotable, {0}};
+    for (size_t at = f.text.find('\n'); at != std::string::npos; at = f.text.find('\n', at + 1))
+        f.lineStarts.push_back(at + 1);
+    files_.push_back(std::move(f));
     return static_cast<int>(files_.size()) - 1;
 }
 
 std::string SourceFiles::line(int id, int line) const {
-    const std::string& t = text(id);
-    size_t start = 0;
-    for (int l = 1; l < line; ++l) {
-        start = t.find('\n', start);
-        if (start == std::string::npos) return {};
-        ++start;
-    }
+    const File& f = files_.at(id);
+    const std::string& t = f.text;
+    if (line < 1 || size_t(line) > f.lineStarts.size()) return {};
+    const size_t start = f.lineStarts[size_t(line) - 1];
+    if (start > t.size()) return {};
     size_t end = t.find('\n', start);
     std::string s = t.substr(start, end == std::string::npos ? std::string::npos : end - start);
     if (!s.empty() && s.back() == '\r') s.pop_back();

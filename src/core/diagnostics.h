@@ -32,6 +32,7 @@ private:
         std::string path;
         std::string text;
         bool quotable = true;
+        std::vector<size_t> lineStarts; // offset of each line's first byte: line() is called per #declare
     };
     std::vector<File> files_;
 };

@@ -391,8 +391,15 @@ const Token& TokenStream::operator[](size_t i) const {
     if (i >= count_) i = count_ - 1;
     const auto& block = blocks_[i >> kBlockBits];
     if (!block) [[unlikely]]
-        throw std::logic_error("internal: token " + std::to_string(i) + " was read after the reader released it");
+        releasedTokenRead(i);
     return block[i & (kBlock - 1)];
+}
+
+void TokenStream::releasedTokenRead(size_t i) {
+    std::string message = "internal: token ";
+    message += std::to_string(i);
+    message += " was read after the reader released it";
+    throw std::logic_error(message);
 }
 
 void TokenStream::release(size_t before) {

@@ -124,6 +124,7 @@ public:
 private:
     class Scanner;
     void lexOne() const;
+    [[noreturn]] static void releasedTokenRead(size_t i);
     const std::string& text() const;
 
     const SourceFiles* files_ = nullptr;
