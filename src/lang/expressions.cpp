@@ -193,7 +193,25 @@ bool Evaluator::startsColor(const Token& t) const {
                                                 "gray", "grey"};
     if (words.count(t.text)) return true;
     const Cell c = lookup(t.text);
+    if (c && c->kind == Kind::Array) { // an element of an array of colours or numbers (`Colors[2]`)
+        const Value* item = arrayItemSample(*c);
+        return item && item->isNumeric();
+    }
     return c && c->isNumeric();
+}
+
+const Value* arrayItemSample(const Value& array) {
+    const Value* v = &array;
+    while (v && v->kind == Kind::Array && v->array) {
+        const Value* next = nullptr;
+        for (const Cell& item : v->array->items)
+            if (item) {
+                next = item.get();
+                break;
+            }
+        v = next;
+    }
+    return v;
 }
 
 namespace {
