@@ -1,5 +1,6 @@
 // Unit tests of the samplers (src/sampling/sampler.h): determinism, range,
 // the stratification each sampler promises, and the factory's errors.
+#include "core/hash.h"
 #include "sampling/filter.h"
 #include "sampling/sampler.h"
 #include "sampling/sobol.h"
@@ -8,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -283,6 +285,58 @@ TEST(Owen, ScrambleIsABijectionKeepingPrefixes) {
         std::vector<bool> seen(1 << 12, false);
         for (uint32_t v = 0; v < (1u << 12); ++v) seen[owenScramble(v << 20, seed) >> 20] = true;
         EXPECT_EQ(std::count(seen.begin(), seen.end(), true), 1 << 12);
+    }
+}
+
+// Every image depends on the Sobol sampler's values to the bit (the exact
+// goldens, the determinism tests), so a faster sampler must give the same
+// ones: a digest of its values over sample counts, seeds, pixels, every kind
+// of request and dimensions from the camera's to the lights' (8197 on), with
+// sequence indices past 2^8 and 2^16 (get2DStratified's count * spp), taken
+// from the sampler as it was before it was tuned (2026-12-03).
+TEST(SobolSampler, ValuesAreThoseOfTheReferenceSampler) {
+    uint64_t digest = 0x243f6a8885a308d3ULL;
+    const auto mixIn = [&](double v) { digest = hashValues({digest, std::bit_cast<uint64_t>(v)}); };
+    for (const int spp : {1, 5, 16, 64, 1024})
+        for (const uint64_t seed : {0ull, 7ull, 0xfedcba9876543210ull})
+            for (const auto& [x, y] : {std::pair{0, 0}, std::pair{13, -4}, std::pair{1000, 77}}) {
+                auto sampler = makeSampler("sobol", spp, seed);
+                for (int i = 0; i < std::min(spp, 40); ++i) {
+                    sampler->startPixelSample(x, y, spp > 40 ? i * (spp / 40) + 1 : i);
+                    for (const int d : {0, 1, 2, 3, 4, 5, 6, 7, 12, 13, 21, 40, 8197, 8199, 10245, 1 << 29}) {
+                        mixIn(sampler->get1D(d));
+                        const Vec2 w = sampler->get2D(d);
+                        mixIn(w.x), mixIn(w.y);
+                        for (const int count : {4, 289, 70000}) {
+                            const Vec2 s = sampler->get2DStratified(d, count - 1 - i % count, count);
+                            mixIn(s.x), mixIn(s.y);
+                        }
+                    }
+                }
+            }
+    EXPECT_EQ(digest, 0xbf0c22d523e8acc3ull);
+}
+
+// The direction numbers' XOR over the index bits, as the Sobol construction
+// defines it, against the tables sobolValue reads, on random indices.
+TEST(Sobol, ValuesAreTheXorOfTheDirectionNumbers) {
+    uint64_t state = 12345;
+    for (int n = 0; n < 20000; ++n) {
+        state = mix64(state + 1);
+        const auto index = static_cast<uint32_t>(n < 1000 ? uint64_t(n) : state >> (state & 31));
+        for (int d = 0; d < kSobolDimensions; ++d) {
+            uint32_t expected = 0;
+            for (int j = 0; j < 32; ++j)
+                if ((index >> j) & 1u) expected ^= sobol_detail::kDirections[size_t(d)][size_t(j)];
+            ASSERT_EQ(sobolValue(index, d), expected) << "index " << index << ", dimension " << d;
+            // The scrambled value, by the plain composition of its definition.
+            const OwenSeed seed(static_cast<uint32_t>(state >> 32));
+            ASSERT_EQ(owenScrambledSobol(index, d, seed), owenScramble(expected, seed.seed))
+                << "index " << index << ", dimension " << d;
+        }
+        // The byte reversal table the sampler's shuffle reads for up to 256 samples.
+        ASSERT_EQ(uint32_t(sobol_detail::kReversedByte[index & 255u]) << 24, sobol_detail::reverseBits(index & 255u));
+        ASSERT_EQ(sobol_detail::kReversedByte[index >> 24], sobol_detail::reverseBits(index) & 255u);
     }
 }
 

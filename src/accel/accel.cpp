@@ -350,12 +350,24 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
     }
 }
 
+// Shadow rays in a scene with moving objects carry their double-precision
+// query too: an analytic shape inside a moving object is then solved on the
+// ray moved into its level in double (RayQuery::levelRay), the same surface
+// the camera ray's hit was solved on. Embree's own float transform of the ray
+// lands up to ~1e-5 away from that surface, more than the origin offset
+// (offsetOrigin), and a sphere turning about a far pivot shadowed half of
+// itself. A still scene's shadow rays take Embree's ray as they are.
 bool Accelerator::occluded(const Ray& ray) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
     RTCRay r;
     fillRay(ray, *impl_, r, kShadowMask);
-    rtcOccluded1(impl_->top.scene, &context, &r);
+    if (!impl_->instances.empty()) {
+        RayQuery query(*impl_, ray.origin, ray.direction);
+        rtcOccluded1(impl_->top.scene, &query.context, &r);
+    } else {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        rtcOccluded1(impl_->top.scene, &context, &r);
+    }
     impl_->device.throwIfFailed("tracing a shadow ray");
     return r.tfar < 0;
 }
@@ -367,8 +379,20 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
         return;
     }
     count = std::min(count, kPacketSize);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    // With moving objects each ray keeps its double-precision query, found by
+    // its id through the first query's context (occluded; intersectPacket).
+    static_assert(std::is_trivially_destructible_v<RayQuery>, "the queries are never destroyed");
+    alignas(RayQuery) unsigned char storage[kPacketSize][sizeof(RayQuery)];
+    RayQuery* lanes[kPacketSize];
+    RTCIntersectContext plain;
+    RTCIntersectContext* context = &plain;
+    if (!impl_->instances.empty()) {
+        for (int i = 0; i < count; ++i) lanes[i] = new (storage[i]) RayQuery(*impl_, rays[i].origin, rays[i].direction);
+        lanes[0]->lanes = lanes;
+        context = &lanes[0]->context;
+    } else {
+        rtcInitIntersectContext(&plain);
+    }
     alignas(32) RTCRay8 packet;
     alignas(32) int valid[kPacketSize];
     for (int i = 0; i < kPacketSize; ++i) {
@@ -388,7 +412,7 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
         packet.id[i] = static_cast<unsigned>(i);
         packet.flags[i] = 0;
     }
-    rtcOccluded8(valid, impl_->top.scene, &context, &packet);
+    rtcOccluded8(valid, impl_->top.scene, context, &packet);
     impl_->device.throwIfFailed("tracing a shadow ray packet");
     for (int i = 0; i < count; ++i) blocked[i] = packet.tfar[i] < 0;
 }

@@ -186,10 +186,18 @@ static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
     if (p.noShadow) return;
     const unsigned N = args->N;
     RTCRayN* ray = args->ray;
+    // Inside a moving object the ray comes from its query, moved into this
+    // level in double (Accelerator::occluded); at the top level it is Embree's.
+    const unsigned instID = args->context->instID[0];
     for (unsigned i = 0; i < N; ++i) {
         if (!args->valid[i]) continue;
-        const Vec3 o{RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)};
-        const Vec3 d{RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)};
+        Vec3 o, d;
+        if (instID != RTC_INVALID_GEOMETRY_ID) {
+            RayQuery::of(args->context).lane(RTCRayN_id(ray, N, i)).levelRay(instID, RTCRayN_time(ray, N, i), o, d);
+        } else {
+            o = {RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)};
+            d = {RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)};
+        }
         const float tnear = RTCRayN_tnear(ray, N, i);
         float& tfar = RTCRayN_tfar(ray, N, i);
         if (p.plain) { // any crossing blocks: no normal needed

@@ -120,6 +120,9 @@ int crandDimension(int depth, int lightIndex) {
 
 namespace {
 
+// The cones of a light that is not a spotlight (never read).
+const SpotCones kNoCones{};
+
 // U for crand (lighting.h crandDimension); 0 without crand, so no sample is drawn.
 double crandNoise(const ShadingPoint& sp, int lightIndex, Sampler& sampler) {
     if (!(sp.finish->crand > 0)) return 0;
@@ -153,6 +156,7 @@ Color lightIntensityAt(const Light& light, const SpotCones& cones, const Vec3& l
                        bool atCentre) {
     // The distance only for a fading light (fadeAttenuation is 1 otherwise).
     const bool fades = light.fadeDistance > 0 && light.fadePower > 0;
+    if (!light.spotlight && !fades) return light.color; // the colour times 1 * 1: the same bits
     return light.color * (spotlightAttenuation(light, cones, lightPosition, point, atCentre) *
                           (fades ? fadeAttenuation(light, length(lightPosition - point)) : 1.0));
 }
@@ -361,12 +365,15 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         const bool moved = anyLightMoves_ && lightMoves(*light);
         if (moved) light = &(cache.moved_ = lightAt(*light, sp.time));
         if (isBlack(light->color)) continue;
-        const SpotCones cones = !light->spotlight ? SpotCones{} : moved ? spotCones(*light) : cones_[i];
+        SpotCones movedCones;
+        if (light->spotlight && moved) movedCones = spotCones(*light);
+        const SpotCones& cones = !light->spotlight ? kNoCones : moved ? movedCones : cones_[i];
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
         PointLightSamples::Range& range = cache.lights_[i];
         if (range.generation != cache.generation_) { // the first layer at this point: no samples drawn yet
             range.generation = cache.generation_;
             range.count = 0;
+            range.single.tested = false;
         }
         // The light's samples at this point, drawn the first time a layer needs
         // them: a light whose centre sends nothing here (a spotlight's cone, a
@@ -375,14 +382,10 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         const auto drawSamples = [&] {
             if (range.count > 0) return;
             range.begin = static_cast<int>(cache.samples_.size());
-            if (!light->area) {
-                cache.samples_.push_back({light->position, 1.0, false, Color(0)});
-            } else {
-                const AreaSampler points(*light, sp.hit->point, sp.depth, index);
-                for (int k = 0; k < points.count(); ++k) {
-                    const AreaSample a = points.sample(sampler, k);
-                    cache.samples_.push_back({a.position, a.weight, false, Color(0)});
-                }
+            const AreaSampler points(*light, sp.hit->point, sp.depth, index); // (only area lights draw samples)
+            for (int k = 0; k < points.count(); ++k) {
+                const AreaSample a = points.sample(sampler, k);
+                cache.samples_.push_back({a.position, a.weight, false, Color(0)});
             }
             range.count = static_cast<int>(cache.samples_.size()) - range.begin;
         };
@@ -423,8 +426,10 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                              crandNoise(sp, index, sampler));
         };
         if (!light->area) {
-            drawSamples();
-            pointLight(light->position, true, 1.0, light->inverseSquare, cache.samples_.data() + range.begin);
+            // Its one sample, the light's position, lives in the range: nothing to draw.
+            range.single.position = light->position;
+            range.single.weight = 1.0;
+            pointLight(light->position, true, 1.0, light->inverseSquare, &range.single);
         } else if (light->areaIllumination) {
             // Each sample point shades as a weighted point light.
             drawSamples();

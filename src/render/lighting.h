@@ -153,6 +153,7 @@ private:
         uint64_t generation = 0; // the samples are drawn for this point if it equals generation_
         int begin = 0;           // the light's first sample in samples_
         int count = 0;
+        Sample single;           // a light without area: its one sample, kept here rather than in samples_
     };
     uint64_t generation_ = 1;
     std::vector<Range> lights_; // by light

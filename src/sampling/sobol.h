@@ -47,6 +47,8 @@ constexpr uint32_t sobolValue(uint32_t index, int dimension);
 constexpr uint32_t owenScramble(uint32_t value, const OwenSeed& seed);
 // == owenScramble(sobolValue(index, 0), seed), with two bit reversals fewer.
 constexpr uint32_t scrambledSobol0(uint32_t index, const OwenSeed& seed);
+// == owenScramble(sobolValue(index, dimension), seed)
+constexpr uint32_t owenScrambledSobol(uint32_t index, int dimension, const OwenSeed& seed);
 
 namespace sobol_detail {
 
@@ -103,6 +105,46 @@ constexpr uint32_t reverseBits(uint32_t x) {
     return x;
 }
 
+// The bits of each byte value reversed: reverseBits(v) == kReversedByte[v] << 24
+// for v < 256, and reverseBits(x) & 255 == kReversedByte[x >> 24].
+constexpr std::array<uint8_t, 256> makeReversedBytes() {
+    std::array<uint8_t, 256> t{};
+    for (uint32_t v = 0; v < 256; ++v) t[v] = static_cast<uint8_t>(reverseBits(v) >> 24);
+    return t;
+}
+inline constexpr std::array<uint8_t, 256> kReversedByte = makeReversedBytes();
+
+// Dimensions 1.. of the sequence bit-reversed, a byte of the index at a time:
+// kReversedBytes[d - 1][b][v] is the XOR of the reversed direction numbers
+// reverseBits(v_d[8 b + j]) over the set bits j of v. Reversing commutes with
+// XOR, so XORing one entry per byte of the index gives the reversed value,
+// which is what the scramble works on: a look-up per byte (one for indices
+// below 256, a pixel's usual sample indices) instead of a step per bit and
+// two reversals.
+using ReversedByteTables = std::array<std::array<std::array<uint32_t, 256>, 4>, kSobolDimensions - 1>;
+constexpr ReversedByteTables makeReversedByteTables() {
+    ReversedByteTables t{};
+    for (int d = 1; d < kSobolDimensions; ++d)
+        for (int b = 0; b < 4; ++b)
+            for (uint32_t v = 0; v < 256; ++v) {
+                uint32_t x = 0;
+                for (int j = 0; j < 8; ++j)
+                    if ((v >> j) & 1u) x ^= reverseBits(kDirections[size_t(d)][size_t(8 * b + j)]);
+                t[size_t(d - 1)][size_t(b)][v] = x;
+            }
+    return t;
+}
+inline constexpr ReversedByteTables kReversedBytes = makeReversedByteTables();
+
+// reverseBits(sobolValue(index, dimension)).
+constexpr uint32_t sobolReversed(uint32_t index, int dimension) {
+    if (dimension == 0) return index; // van der Corput's: the index reversed, reversed back
+    const auto& bytes = kReversedBytes[static_cast<size_t>(dimension - 1)];
+    uint32_t result = bytes[0][index & 255u];
+    for (size_t b = 1; (index >>= 8) != 0; ++b) result ^= bytes[b][index & 255u];
+    return result;
+}
+
 // The scramble on the bit-reversed word, where the first digit is bit 0. Each
 // step changes bit j by a function of bits 0..j-1 only (adding: carries travel
 // upward; x ^= x * even: bit j of the product sees bits below j; x *= odd: x
@@ -124,13 +166,7 @@ constexpr uint32_t scrambleReversed(uint32_t x, const OwenSeed& key) {
 } // namespace sobol_detail
 
 constexpr uint32_t sobolValue(uint32_t index, int dimension) {
-    // Dimension 0 is van der Corput's (v_k = 2^(31-k)): the index with its bits reversed.
-    if (dimension == 0) return sobol_detail::reverseBits(index);
-    const auto& v = sobol_detail::kDirections[static_cast<size_t>(dimension)];
-    uint32_t result = 0;
-    // No branch per bit: index bits are random, such a branch mispredicts half the time.
-    for (int j = 0; index != 0; ++j, index >>= 1) result ^= v[static_cast<size_t>(j)] & (0u - (index & 1u));
-    return result;
+    return sobol_detail::reverseBits(sobol_detail::sobolReversed(index, dimension));
 }
 
 constexpr uint32_t owenScramble(uint32_t value, const OwenSeed& key) {
@@ -141,6 +177,12 @@ constexpr uint32_t owenScramble(uint32_t value, const OwenSeed& key) {
 // scramble, it is the index itself.
 constexpr uint32_t scrambledSobol0(uint32_t index, const OwenSeed& key) {
     return sobol_detail::reverseBits(sobol_detail::scrambleReversed(index, key));
+}
+
+// The value is scrambled bit-reversed: the reversed table gives it so directly.
+constexpr uint32_t owenScrambledSobol(uint32_t index, int dimension, const OwenSeed& key) {
+    return sobol_detail::reverseBits(
+        sobol_detail::scrambleReversed(sobol_detail::sobolReversed(index, dimension), key));
 }
 
 // A double in [0, 1) from a 32-bit fraction.

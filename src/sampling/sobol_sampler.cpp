@@ -40,7 +40,10 @@ public:
             havePixel_ = true;
             pixelKey_ = hashValues({seed_, uint64_t(int64_t(x)), uint64_t(int64_t(y)), 0x50b01ULL});
             jointShuffle_ = OwenSeed(static_cast<uint32_t>(key(kTagJoint, 0) >> 32));
-            for (int d = 0; d < kSobolDimensions; ++d) jointSeeds_[d] = OwenSeed(seed32(kTagJoint, d, 0));
+            // The pixel position's seeds now; time's and the lens's when asked
+            // (a scene without motion blur or focal blur never asks).
+            for (int d = 0; d < 2; ++d) jointSeeds_[d] = OwenSeed(seed32(kTagJoint, d, 0));
+            jointSeedsReady_ = 0b11u;
             ++generation_;
             for (Recent& r : recent_) r.index = -1;
         }
@@ -120,15 +123,27 @@ private:
     }
     uint32_t shuffledIndex(const OwenSeed& shuffleSeed) const {
         const auto i = static_cast<uint32_t>(index_);
+        if ((i | mask_) <= 0xffu) { // up to 256 samples: both reversals are one byte's, from a table
+            using sobol_detail::kReversedByte;
+            const uint32_t scrambled = sobol_detail::scrambleReversed(uint32_t(kReversedByte[i]) << 24, shuffleSeed);
+            return (i & ~mask_) | (kReversedByte[scrambled >> 24] & mask_);
+        }
         return (i & ~mask_) | (owenScramble(i, shuffleSeed) & mask_);
     }
-    double joint(int dimension) const {
+    const OwenSeed& jointSeed(int dimension) {
+        if (!((jointSeedsReady_ >> dimension) & 1u)) {
+            jointSeeds_[dimension] = OwenSeed(seed32(kTagJoint, dimension, 0));
+            jointSeedsReady_ |= 1u << dimension;
+        }
+        return jointSeeds_[dimension];
+    }
+    double joint(int dimension) {
         if (dimension == 0) return fractionToUnit(scrambledSobol0(jointIndex_, jointSeeds_[0]));
-        return fractionToUnit(owenScramble(sobolValue(jointIndex_, dimension), jointSeeds_[dimension]));
+        return fractionToUnit(owenScrambledSobol(jointIndex_, dimension, jointSeed(dimension)));
     }
     static Vec2 padded2D(uint32_t i, const Seeds& s) {
         return {fractionToUnit(scrambledSobol0(i, s.seed[0])),
-                fractionToUnit(owenScramble(sobolValue(i, 1), s.seed[1]))};
+                fractionToUnit(owenScrambledSobol(i, 1, s.seed[1]))};
     }
 
     // The joint (shuffled) index of the pixel's recent sample indices.
@@ -142,6 +157,7 @@ private:
     uint64_t generation_ = 0;
     OwenSeed jointShuffle_;
     OwenSeed jointSeeds_[kSobolDimensions];
+    uint32_t jointSeedsReady_ = 0; // bit d: jointSeeds_[d] is this pixel's
     Seeds cache_[kTags][kCacheSlots];
     uint32_t mask_ = 0;
     uint64_t pixelKey_ = 0;
