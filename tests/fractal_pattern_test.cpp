@@ -230,8 +230,8 @@ const FractalError kFractalErrors[] = {
      "'exponent' is only for 'mandel' and 'julia', not for 'magnet'", 1, 44},
     {"NegativeIterations", "sphere { 0, 1 normal { mandel -5 } }",
      "the iteration count must be between 0 and 4294967295, got -5", 1, 31},
-    {"JuliaWithoutConstant", "sphere { 0, 1 pigment { julia 10 } }",
-     "expected '<' to start the julia constant, found '}'", 1, 34},
+    {"JuliaWithoutCount", "sphere { 0, 1 pigment { julia 10 } }",
+     "expected a value (a number, a vector <x, y, z> or a name), found '}'", 1, 34},
 };
 // clang-format on
 

@@ -386,6 +386,9 @@ private:
 // The first element given a value in an array (through nested arrays), or
 // null: what an indexed element of it is likely to be.
 const Value* arrayItemSample(const Value& array);
+// Whether every element given a value in an array (through nested arrays) is a
+// number, vector or colour, and there is one: an element then reads as a colour.
+bool arrayOfNumbers(const Value& array);
 
 // functions.inc's internal function `number` (one drt has: internalArity(number) >= 0) as a function.
 std::shared_ptr<const Function> internalFunction(int number);

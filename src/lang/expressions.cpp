@@ -193,11 +193,19 @@ bool Evaluator::startsColor(const Token& t) const {
                                                 "gray", "grey"};
     if (words.count(t.text)) return true;
     const Cell c = lookup(t.text);
-    if (c && c->kind == Kind::Array) { // an element of an array of colours or numbers (`Colors[2]`)
-        const Value* item = arrayItemSample(*c);
-        return item && item->isNumeric();
-    }
+    if (c && c->kind == Kind::Array) return arrayOfNumbers(*c); // an element of an array of colours (`Colors[2]`)
     return c && c->isNumeric();
+}
+
+bool arrayOfNumbers(const Value& array) {
+    if (array.kind != Kind::Array || !array.array) return false;
+    bool any = false;
+    for (const Cell& item : array.array->items) {
+        if (!item) continue;
+        if (item->kind == Kind::Array ? !arrayOfNumbers(*item) : !item->isNumeric()) return false;
+        any = true;
+    }
+    return any;
 }
 
 const Value* arrayItemSample(const Value& array) {

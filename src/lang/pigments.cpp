@@ -212,8 +212,7 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
     if (t.kind != TokenKind::Word && !t.is("<") && t.kind != TokenKind::Number) return false;
     const std::string w = t.text;
     Cell c = t.kind == TokenKind::Word ? use(w) : nullptr;
-    const Value* sample = c && c->kind == Kind::Array ? arrayItemSample(*c) : nullptr;
-    const bool colourArray = sample && sample->isNumeric(); // read as a colour expression below
+    const bool colourArray = c && arrayOfNumbers(*c); // an element is read as a colour expression below
     if (c && c->kind == Kind::Array && !colourArray) { // an array element: a pigment or a colour map
         next();
         c = indexArray(c, t);
