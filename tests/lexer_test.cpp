@@ -195,3 +195,54 @@ TEST(Lexer, ArbitraryBytesAlwaysReachTheEnd) {
 
 } // namespace
 } // namespace drt::lang
+
+namespace drt::lang {
+namespace {
+
+TEST(TokenStream, ReleaseFreesWholeBlocksBeforeTheMarkButKeepsKeptRanges) {
+    std::string text;
+    for (int i = 0; i < 5000; ++i) text += "w" + std::to_string(i) + " ";
+    TokenStream tokens(text, 0, true);
+    ASSERT_EQ(tokens[4999].text, "w4999");
+    tokens.keep(1500, 1600); // inside the second block, [1024, 2048)
+    tokens.release(4000);    // blocks [0, 1024) and [2048, 3072) go; [3072, 4096) holds token 4000
+    EXPECT_EQ(tokens.releasedBlocks(), 2u);
+    EXPECT_FALSE(tokens.available(10));
+    EXPECT_FALSE(tokens.available(2100));
+    EXPECT_TRUE(tokens.available(1024));
+    EXPECT_TRUE(tokens.available(3500));
+    EXPECT_THROW(tokens[10], std::logic_error);
+    EXPECT_THROW(tokens[3071], std::logic_error);
+    EXPECT_EQ(tokens[1500].text, "w1500");
+    EXPECT_EQ(tokens[1024].text, "w1024");
+    EXPECT_EQ(tokens[3072].text, "w3072");
+    // Releasing again, or less, frees nothing more; the frontier's block always stays.
+    tokens.release(100);
+    tokens.release(1u << 20);
+    EXPECT_EQ(tokens.releasedBlocks(), 3u); // [3072, 4096) too; [4096, ...) holds the last token made
+    EXPECT_EQ(tokens[4999].text, "w4999");
+    EXPECT_EQ(tokens[5000].kind, TokenKind::EndOfFile);
+    EXPECT_FALSE(tokens.rewind(10));
+}
+
+TEST(TokenStream, MacrosAndLoopsStillReplayAfterTheReaderReleasedTokens) {
+    // A macro defined first and called last, after tens of thousands of
+    // tokens the reader has freed; a #while whose body spans several blocks
+    // goes back to its condition on each pass.
+    for (const bool pov : {true, false}) {
+        std::string scene = "#macro Report(X) #warning str(X, 0, 0) #end\n";
+        for (int i = 0; i < 4000; ++i) scene += "#declare A" + std::to_string(i) + " = " + std::to_string(i) + ";\n";
+        scene += "#declare N = 0;\n#declare S = 0;\n#while (N < 3)\n";
+        for (int i = 0; i < 600; ++i) scene += "#declare S = S + 1;\n";
+        scene += "#declare N = N + 1;\n#end\n";
+        scene += "Report(S) Report(A3999 + N)\n";
+        const auto run = test::readSceneText(scene, pov);
+        EXPECT_FALSE(run->diags.hasErrors()) << (pov ? "pov" : "drt");
+        ASSERT_EQ(run->messages.size(), 2u) << (pov ? "pov" : "drt");
+        EXPECT_EQ(run->messages[0], "1800");
+        EXPECT_EQ(run->messages[1], "4002");
+    }
+}
+
+} // namespace
+} // namespace drt::lang

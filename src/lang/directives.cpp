@@ -486,6 +486,9 @@ void Evaluator::macroDefinition(const Token& t) {
     m->bodyStart = frames_.back().pos;
     m->dialect = frames_.back().dialect;
     skipTo({"end"}, t);
+    // Each call replays the body: the reader must not free it.
+    if (frames_.back().tokens == m->tokens) m->tokens->keep(m->bodyStart, frames_.back().pos);
+    else m->tokens->keep(m->bodyStart, m->tokens->lexed());
     Value v;
     v.kind = Value::Kind::Macro;
     v.macro = m;

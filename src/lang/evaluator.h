@@ -304,6 +304,9 @@ private:
     };
 
     Token rawNext();
+    // Frees the tokens no frame, loop or macro can go back to (after each
+    // statement; TokenStream::release).
+    void releaseReadTokens();
     void endFrame();
     void directive(const Token& t);
     void declareDirective(const Token& t, bool local);

@@ -1,9 +1,12 @@
 #include "lang/lexer.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
 
 namespace drt::lang {
 
@@ -386,11 +389,32 @@ void TokenStream::lexOne() const {
 const Token& TokenStream::operator[](size_t i) const {
     while (i >= count_ && !ended_) lexOne();
     if (i >= count_) i = count_ - 1;
-    return blocks_[i >> kBlockBits][i & (kBlock - 1)];
+    const auto& block = blocks_[i >> kBlockBits];
+    if (!block) [[unlikely]]
+        throw std::logic_error("internal: token " + std::to_string(i) + " was read after the reader released it");
+    return block[i & (kBlock - 1)];
+}
+
+void TokenStream::release(size_t before) {
+    // The block holding the last token made stays: lexOne() writes into it.
+    const size_t end = std::min(before, count_ > 0 ? count_ - 1 : 0) >> kBlockBits;
+    for (size_t b = releasedBefore_; b < end; ++b) {
+        const size_t first = b << kBlockBits, last = first + kBlock;
+        const bool held = std::any_of(kept_.begin(), kept_.end(),
+                                      [&](const auto& r) { return r.first < last && first < r.second; });
+        if (held || !blocks_[b]) continue;
+        blocks_[b].reset();
+        ++releasedBlocks_;
+    }
+    releasedBefore_ = std::max(releasedBefore_, end);
+}
+
+void TokenStream::keep(size_t first, size_t last) {
+    if (first < last) kept_.emplace_back(first, last);
 }
 
 bool TokenStream::rewind(size_t i) {
-    if (i > count_ || count_ - i > kRing) return false;
+    if (i > count_ || count_ - i > kRing || !available(i)) return false;
     if (i == count_) return true;
     scanner_->reset(starts_[i % kRing]);
     for (size_t j = i; j < count_; ++j) blocks_[j >> kBlockBits][j & (kBlock - 1)] = Token{};

@@ -60,6 +60,8 @@ struct LiteralVector {
 // that never move.
 class TokenStream {
 public:
+    static constexpr size_t kBlockBits = 10;
+    static constexpr size_t kBlock = size_t(1) << kBlockBits;
     // The text of file `fileId` in `files` (looked up at each use: the table may grow).
     TokenStream(const SourceFiles& files, int fileId, bool strict);
     // A text of its own.
@@ -77,6 +79,19 @@ public:
     // Forgets tokens [i, lexed()) so the text after token i-1 is read again;
     // only the last few tokens can be forgotten (false otherwise).
     bool rewind(size_t i);
+
+    // Frees the tokens before index `before` that no kept range holds, a block
+    // of kBlock tokens at a time (the reader calls it with what it can no longer
+    // go back to: a scene of a million objects need not hold its tokens). A
+    // freed token read again is a reader bug: std::logic_error.
+    void release(size_t before);
+    // Tokens [first, last) stay readable whatever release() is given (a macro's
+    // body, replayed at each call).
+    void keep(size_t first, size_t last);
+    // Whether token i can be read (made, or still to be made, and not freed).
+    bool available(size_t i) const { return (i >> kBlockBits) >= blocks_.size() || blocks_[i >> kBlockBits]; }
+    // Blocks freed so far (for tests and measurements).
+    size_t releasedBlocks() const { return releasedBlocks_; }
 
     // --- Scanning at the frontier (the text after the last token made). Each
     // scan either consumes what it names and returns true, or consumes nothing
@@ -115,14 +130,15 @@ private:
     std::string own_;
     int fileId_;
     std::unique_ptr<Scanner> scanner_;
-    static constexpr size_t kBlockBits = 10;
-    static constexpr size_t kBlock = size_t(1) << kBlockBits;
     mutable std::vector<std::unique_ptr<Token[]>> blocks_;
     mutable size_t count_ = 0;
     mutable bool ended_ = false; // the EndOfFile token is made
     // Where the last few tokens started, for rewind().
     static constexpr size_t kRing = 16;
     mutable Mark starts_[kRing];
+    std::vector<std::pair<size_t, size_t>> kept_; // keep()'s ranges
+    size_t releasedBefore_ = 0; // blocks below this one were freed or are kept
+    size_t releasedBlocks_ = 0;
 };
 
 } // namespace drt::lang

@@ -217,6 +217,26 @@ void Evaluator::includeDirective(const Token& t) {
     pushFile(fileId, t.loc, dir.empty() ? "." : dir, id, dialectForPath(path));
 }
 
+void Evaluator::releaseReadTokens() {
+    // Tokens a little before the earliest place still needed stay: the reader
+    // looks back at its last few (rawStream, TokenStream::rewind).
+    constexpr size_t kMargin = 256;
+    for (size_t i = 0; i < frames_.size(); ++i) {
+        TokenStream* stream = frames_[i].tokens.get();
+        bool first = true; // each stream once, at its first frame
+        for (size_t j = 0; j < i && first; ++j) first = frames_[j].tokens.get() != stream;
+        if (!first) continue;
+        size_t low = frames_[i].pos;
+        for (size_t j = i + 1; j < frames_.size(); ++j)
+            if (frames_[j].tokens.get() == stream) low = std::min(low, frames_[j].pos);
+        // A loop goes back to its condition (#while) or first body token (#for).
+        for (const Cond& c : conds_)
+            if ((c.type == Cond::Type::While || c.type == Cond::Type::For) && frames_[c.frame].tokens.get() == stream)
+                low = std::min(low, c.pos);
+        if (low > kMargin) stream->release(low - kMargin);
+    }
+}
+
 void Evaluator::endFrame() {
     Frame& f = frames_.back();
     if (conds_.size() > f.condDepth) {
@@ -224,6 +244,8 @@ void Evaluator::endFrame() {
         dropFrameConds();
         fail(c.loc, fmt::format("'{}' has no matching #end before the end of the file", condDirective(c)));
     }
+    // A file read to its end is not read again: only its macros' bodies stay.
+    if (!f.isMacro) f.tokens->release(f.tokens->lexed());
     popFrame();
 }
 
@@ -332,7 +354,7 @@ TokenStream* Evaluator::rawStream() {
         if (c.frame == current && (c.type == Cond::Type::While || c.type == Cond::Type::For)) return nullptr;
     // The look-ahead goes back to the stream when it is exactly this file's last tokens.
     const size_t k = pushed_.size();
-    if (k > f.pos) return nullptr;
+    if (k > f.pos || !f.tokens->available(f.pos - k)) return nullptr;
     for (size_t i = 0; i < k; ++i) {
         const Token& made = (*f.tokens)[f.pos - 1 - i];
         const Token& held = pushed_[i];
@@ -447,6 +469,7 @@ std::optional<Scene> Evaluator::run(int fileId, const std::string& baseDir) {
             const Token t = next();
             if (t.kind == TokenKind::EndOfFile) break;
             statement(t);
+            releaseReadTokens();
         } catch (const Abort&) {
             if (!scene().recoverAfterErrors || limitReached_ || frames_.empty()) return std::nullopt;
             try {
