@@ -45,7 +45,7 @@ TEST(PovFeatures, MinAndMaxExtent) {
     EXPECT_NE(light.formatAll().find("'min_extent' needs an object"), std::string::npos) << light.formatAll();
 }
 
-TEST(PovFeatures, WrittenFilesAreDroppedAndReadingIsAnError) {
+TEST(PovFeatures, WrittenFilesAreDroppedAndFileErrorsAreLocated) {
     // The portfolio scenes write HTML through html_gen.inc.
     Diagnostics diags;
     const auto s = load("#declare Name = \"drt_pov_features_test.html\";\n"
@@ -61,8 +61,10 @@ TEST(PovFeatures, WrittenFilesAreDroppedAndReadingIsAnError) {
         const char* message;
         int column;
     };
-    for (const Case& c : {Case{"#fopen In \"data.txt\" read", "#fopen ... read (file input) is not supported", 22},
-                          Case{"#read (In, V)", "#read (file input) is not supported", 1},
+    // Reading is file_input_test.cpp's; here only that a missing file and an unopened ID are errors.
+    for (const Case& c : {Case{"#fopen In \"no_such_drt_data.txt\" read",
+                               "cannot find the file \"no_such_drt_data.txt\" to read", 11},
+                          Case{"#read (In, V)", "'In' is not an open file", 8},
                           Case{"#fopen In \"data.txt\" writ", "expected 'read', 'write' or 'append' after the file name", 22}}) {
         Diagnostics bad;
         EXPECT_FALSE(load(c.text, bad)) << c.text;
