@@ -163,8 +163,7 @@ void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture,
         shadeLayers(surface, &single, 1, weight, sampler, counts, result, stack);
         return;
     }
-    std::vector<const Texture*> layers;
-    layersTopFirst(texture, layers);
+    const TextureLayers layers(texture);
     shadeLayers(surface, layers.data(), layers.size(), weight, sampler, counts, result, stack);
 }
 
