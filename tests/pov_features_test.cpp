@@ -74,6 +74,22 @@ TEST(PovFeatures, WrittenFilesAreDroppedAndFileErrorsAreLocated) {
     }
 }
 
+// quilted is approximated (the average of its map, a warning); its control0 and control1 are read with it.
+TEST(PovFeatures, QuiltedControlsAreReadWithTheApproximatedPattern) {
+    Diagnostics diags;
+    const auto s = load("sphere { 0, 1 pigment { quilted control0 1 control1 0.5 color_map { [0 rgb 0] [1 rgb 1] } } }\n"
+                        "sphere { 0, 1 texture { quilted control0 0.2 texture_map { [0 pigment { rgb 0 }] [1 pigment { rgb 1 }] }"
+                        " control1 1 } }\n",
+                        diags);
+    ASSERT_TRUE(s) << diags.formatAll();
+    EXPECT_EQ(s->objects.at(0).texture.pigment.color.rgb, Color(0.5));
+    EXPECT_NE(diags.formatAll().find("pattern 'quilted' is approximated"), std::string::npos) << diags.formatAll();
+    Diagnostics bad;
+    EXPECT_FALSE(load("sphere { 0, 1 pigment { bozo control0 1 } }", bad));
+    EXPECT_NE(bad.formatAll().find("f.pov:1:30: error: unknown keyword 'control0'"), std::string::npos)
+        << bad.formatAll();
+}
+
 // trace() and inside() ask the scene's geometry while the scene is read (drt
 // check and render give it): the hit point and normal, a miss as <0, 0, 0>.
 TEST(PovFeatures, TraceAndInsideAnswerFromTheObjectsGeometry) {

@@ -156,6 +156,11 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
             uv = true;
             continue;
         }
+        if (approximated == "quilted" && (t.isWord("control0") || t.isWord("control1"))) {
+            next(); // the approximated quilted pattern's own modifiers
+            floatExpr();
+            continue;
+        }
         if (pigmentItem(p, t)) {
             if (p.uvMapping) uv = true, setUvMapping(p, false); // a declared uv-mapped pigment
             continue;

@@ -257,6 +257,11 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
         if (turbulenceItem(t, pattern.turbulence)) continue;
         if (!block && waveItem(t, pattern.wave)) continue;
         if (fractalModifier(t, pattern.fractal)) continue;
+        if (approximated == "quilted" && (t.isWord("control0") || t.isWord("control1"))) {
+            next(); // the approximated quilted pattern's own modifiers
+            floatExpr();
+            continue;
+        }
         next();
         if (t.kind != TokenKind::Word)
             failInBlock(t, "'texture_map', a pattern modifier, a transform or " + where);
