@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace drt {
 namespace {
@@ -180,6 +181,37 @@ Texture gradientXMap(Texture low, Texture high) {
     t.map.push_back({0.0, std::move(low)});
     t.map.push_back({1.0, std::move(high)});
     return t;
+}
+
+// TextureLayers lists layersTopFirst's layers in a reused per-thread buffer;
+// lists alive at once (a patterned layer's layered entries, listed while the
+// layers above it are being shaded) must not disturb each other.
+TEST(LayeredTexture, LayerListsAliveAtOnceKeepTheirOwnLayers) {
+    Texture a = solid(Color(1, 0, 0));
+    a.layersAbove = {solid(Color(0, 1, 0), 0.5), solid(Color(0, 0, 1), 0, 0.5)};
+    Texture b = solid(Color(0.5, 0.5, 0.5));
+    b.layersAbove = {solid(Color(0.1, 0.2, 0.3), 0.2), solid(Color(0.3, 0.2, 0.1), 0.3), solid(Color(1), 0.4)};
+    const auto expected = [](const Texture& t) {
+        std::vector<const Texture*> layers;
+        layersTopFirst(t, layers);
+        return layers;
+    };
+    const auto listed = [](const TextureLayers& l) { return std::vector<const Texture*>(l.begin(), l.end()); };
+    for (int round = 0; round < 3; ++round) { // the buffers are reused from round to round
+        const TextureLayers outer(a);
+        ASSERT_EQ(listed(outer), expected(a));
+        {
+            const TextureLayers inner(b);
+            const TextureLayers innermost(round == 1 ? a : b);
+            EXPECT_EQ(listed(inner), expected(b));
+            EXPECT_EQ(listed(innermost), expected(round == 1 ? a : b));
+            EXPECT_EQ(listed(outer), expected(a));
+        }
+        const TextureLayers again(b);
+        EXPECT_EQ(listed(again), expected(b));
+        EXPECT_EQ(listed(outer), expected(a));
+        EXPECT_EQ(outer.size(), 3u);
+    }
 }
 
 TEST(PatternedTexture, TextureMapBlendsTwoFullyShadedTextures) {

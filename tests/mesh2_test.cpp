@@ -348,3 +348,24 @@ TEST(Mesh2, EveryErrorIsLocated) {
 
 } // namespace
 } // namespace drt
+
+namespace drt {
+namespace {
+
+// shapes.inc's HF macros write faces as sums of vector identifiers, `F1+A, F2+A,`: after a
+// face's comma a vector identifier starts the next face, not a texture index.
+TEST(Mesh2, FacesFromVectorIdentifiersFollowEachOther) {
+    for (const char* name : {"faces.pov", "faces.drt"}) {
+        Diagnostics diags;
+        const auto scene = parse("#declare F1 = <0, 1, 2>;\n#declare F2 = <0, 2, 3>;\n#declare A = 1;\n"
+                                 "mesh2 { vertex_vectors { 5, <0,0,0>, <1,0,0>, <1,1,0>, <0,1,0>, <2,2,0> }\n"
+                                 "  face_indices { 2, F1+A, F2 + A, } }\n",
+                                 diags, name);
+        ASSERT_TRUE(scene) << diags.formatAll();
+        const IndexedMesh& m = indexedOf(*scene);
+        EXPECT_EQ(m.indices, (std::vector<uint32_t>{1, 2, 3, 1, 3, 4})) << name;
+    }
+}
+
+} // namespace
+} // namespace drt

@@ -148,6 +148,30 @@ TEST(Orthographic, PovRaysScalingRule) {
     EXPECT_EQ(d1.warningCount() + d2.warningCount() + d3.warningCount() + d4.warningCount(), 0);
 }
 
+// A camera straight above its look_at point (looking along the sky vector):
+// POV-Ray keeps right as it is and turns up square to it and to the new
+// direction (textures/pigments/transmitfx.pov); the renderer's look_at,
+// which needs sky and direction apart, never sees such a camera.
+TEST(Orthographic, PovCameraLookingAlongTheSkyKeepsRight) {
+    Diagnostics d1;
+    auto s = loadPov("camera { orthographic location 6 * y look_at 0 }", d1);
+    ASSERT_TRUE(s) << d1.formatAll();
+    EXPECT_FALSE(s->camera.lookAt);
+    EXPECT_NEAR(length(normalize(s->camera.direction) - Vec3(0, -1, 0)), 0, 1e-12);
+    EXPECT_NEAR(length(*s->camera.right - Vec3(1.33 * 6, 0, 0)), 0, 1e-12); // scaled by the distance 6
+    EXPECT_NEAR(length(s->camera.up - Vec3(0, 0, 6)), 0, 1e-12);
+    // A perspective camera too: it renders, with z up in the image.
+    Diagnostics d2;
+    s = loadPov("camera { location <0, 5, 0> look_at 0 angle 60 }\nsphere { <0, 0, 1>, 0.5 }", d2);
+    ASSERT_TRUE(s) << d2.formatAll();
+    const ResolvedCamera cam = resolveCamera(s->camera, 40, 30);
+    const Ray centre = cam.generateRay(20, 15, {}, 0);
+    EXPECT_NEAR(length(normalize(centre.direction) - Vec3(0, -1, 0)), 0, 1e-12);
+    const Ray top = cam.generateRay(20, 0, {}, 0), rightEdge = cam.generateRay(40, 15, {}, 0);
+    EXPECT_GT(top.direction.z, 0.1);
+    EXPECT_GT(rightEdge.direction.x, 0.1);
+}
+
 TEST(Orthographic, PovFocalBlurIsIgnoredWithAWarning) {
     Diagnostics diags;
     auto s = loadPov("camera { orthographic location -10 * z look_at 0 aperture 0.4 blur_samples 10 }", diags);

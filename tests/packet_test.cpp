@@ -65,6 +65,16 @@ Scene mixedScene() {
     return sceneOf(std::move(objects));
 }
 
+// The options of the small renders below: 40x30 pixels on 2 threads.
+RenderOptions smallRender(const Scene& scene, int samplesPerPixel) {
+    RenderOptions options = resolveRenderOptions(scene.render);
+    options.width = 40;
+    options.height = 30;
+    options.threads = 2;
+    options.samplesPerPixel = samplesPerPixel;
+    return options;
+}
+
 // Packets of every size, some coherent (one pixel's rays from a camera),
 // some not (random origins and directions), at random times.
 TEST(Packet, EveryRayGetsTheHitItGetsAlone) {
@@ -256,11 +266,7 @@ sphere { <0, 0.8, 0>, 0.8 pigment { color rgb <0.8, 0.3, 0.2> } finish { reflect
 sphere { <1.6, 0.5, 1>, 0.5 pigment { color rgb <0.2, 0.5, 0.8> } }
 )", "packets.drt", diagnostics);
     ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
-    RenderOptions options = resolveRenderOptions(scene->render);
-    options.width = 40;
-    options.height = 30;
-    options.threads = 2;
-    options.samplesPerPixel = 13; // packets of samples 0-7 and 8-12
+    RenderOptions options = smallRender(*scene, 13); // packets of samples 0-7 and 8-12
     const RenderResult fixed = render(*scene, options);
     options.adaptive = true;      // rounds 0-2, 3, 4-7, 8-12
     options.adaptiveError = 1e-6;
@@ -278,6 +284,52 @@ sphere { <1.6, 0.5, 1>, 0.5 pigment { color rgb <0.2, 0.5, 0.8> } }
                     << "pixel " << x << ", " << y;
         }
     EXPECT_GT(compared, options.width * options.height / 2);
+}
+
+// Integrator::shade takes a short way for the common surface (the object's own
+// plain texture, straight to shadeLayers). It must shade exactly as the general
+// way: the same scene with every texture wrapped in an `average` texture map of
+// one entry (which shades the entry through shadePatterned and shadeTexture,
+// with a weight of exactly 1) gives the same image to the bit, with reflections
+// constant, Fresnel-blended and metallic, a filtering glass ball with
+// conserve_energy, highlights, and point, spot and area lights. (shadeLayers'
+// short way for a constant reflection is on both sides here: its own test is
+// Shading.AConstantReflectionIsItsValueToTheBit.)
+TEST(Packet, PlainTexturesShadeAsTheGeneralPathDoes) {
+    Diagnostics diagnostics;
+    std::optional<Scene> scene = loadSceneText(R"(
+camera { location <0, 2, -6> look_at <0, 0.5, 0> angle 50 aperture 0.2 focal_point <0, 0.5, 0> }
+light_source { <-4, 6, -4>, color rgb 1 area_light <1, 0, 0>, <0, 0, 1>, 2, 2 }
+light_source { <3, 5, -3>, color rgb 0.5 }
+light_source { <0, 6, 0>, color rgb 0.7 spotlight point_at <0, 0, 0> radius 10 falloff 20 }
+background { color rgb <0.3, 0.4, 0.6> }
+plane { y, 0 pigment { checker color rgb 0.7, color rgb 0.2 } finish { reflection 0.2 } }
+sphere { <0, 0.8, 0>, 0.8 pigment { color rgb <0.8, 0.3, 0.2> } finish { phong 0.5 reflection { 0.1, 0.6 fresnel on } } }
+sphere { <1.6, 0.5, 1>, 0.5 pigment { color rgb <0.2, 0.5, 0.8> } finish { specular 0.4 roughness 0.01 reflection { 0.3 metallic 1 } } }
+sphere { <-1.5, 0.6, -0.5>, 0.6 pigment { color rgbf <0.9, 1, 0.9, 0.8> } finish { reflection 0.1 conserve_energy } interior { ior 1.5 } }
+sphere { <-0.5, 0.3, -1.5>, 0.3 pigment { color rgb 0.9 } finish { reflection { 0.25, 0.25 } diffuse 0.5 } }
+)", "plain.drt", diagnostics);
+    ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
+    const RenderOptions options = smallRender(*scene, 4);
+    const RenderResult plain = render(*scene, options);
+    Scene wrapped = *scene;
+    for (Object& object : wrapped.objects) {
+        ASSERT_TRUE(object.texture.plain());
+        Texture map;
+        map.pigment.pattern = PatternKind::Average;
+        map.map.push_back({1.0, object.texture});
+        object.texture = std::move(map);
+    }
+    const RenderResult general = render(wrapped, options);
+    EXPECT_EQ(plain.stats.shadowRays, general.stats.shadowRays);
+    EXPECT_EQ(plain.stats.secondaryRays, general.stats.secondaryRays);
+    EXPECT_GT(plain.stats.secondaryRays, 0u);
+    for (int y = 0; y < options.height; ++y)
+        for (int x = 0; x < options.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(std::bit_cast<uint32_t>(plain.color.at(x, y, c)),
+                          std::bit_cast<uint32_t>(general.color.at(x, y, c)))
+                    << "pixel " << x << ", " << y;
 }
 
 } // namespace

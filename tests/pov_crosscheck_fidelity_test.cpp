@@ -32,7 +32,10 @@ struct FidelityScene {
 };
 
 // The figure of the fix's scene before the fix, for the record:
+//   camera_along_sky 0.600 (a camera straight above look_at kept its old direction and saw nothing)
 //   checker_edge     0.366 (cell tolerance 1e-3: the floor just below y = 0 took the cells above)
+//   fractal_patterns (failed: 'interior' in a pigment was an error, and mandel, julia and magnet were the
+//                    average colour of their maps; 0.004 with them)
 //   function_pattern (function patterns were the average colour of their maps; 0.0006 with them)
 //   isosurface       (isosurfaces were left out; 0.0008 with them)
 //   interior_fade    0.028 (fade_power 1000+ taken as a power law; shadow rays not faded)
@@ -41,7 +44,9 @@ struct FidelityScene {
 //   place_patterns   0.126 (planar, cylindrical and boxed were the average colour of their maps)
 //   waves            0.065 (invented wave sources and weights)
 const FidelityScene kScenes[] = {
+    {"camera_along_sky", 0.01},
     {"checker_edge", 0.01},
+    {"fractal_patterns", 0.012},
     {"function_pattern", 0.005},
     {"interior_fade", 0.012},
     {"isosurface", 0.005},

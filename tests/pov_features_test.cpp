@@ -45,7 +45,7 @@ TEST(PovFeatures, MinAndMaxExtent) {
     EXPECT_NE(light.formatAll().find("'min_extent' needs an object"), std::string::npos) << light.formatAll();
 }
 
-TEST(PovFeatures, WrittenFilesAreDroppedAndReadingIsAnError) {
+TEST(PovFeatures, WrittenFilesAreDroppedAndFileErrorsAreLocated) {
     // The portfolio scenes write HTML through html_gen.inc.
     Diagnostics diags;
     const auto s = load("#declare Name = \"drt_pov_features_test.html\";\n"
@@ -61,8 +61,10 @@ TEST(PovFeatures, WrittenFilesAreDroppedAndReadingIsAnError) {
         const char* message;
         int column;
     };
-    for (const Case& c : {Case{"#fopen In \"data.txt\" read", "#fopen ... read (file input) is not supported", 22},
-                          Case{"#read (In, V)", "#read (file input) is not supported", 1},
+    // Reading is file_input_test.cpp's; here only that a missing file and an unopened ID are errors.
+    for (const Case& c : {Case{"#fopen In \"no_such_drt_data.txt\" read",
+                               "cannot find the file \"no_such_drt_data.txt\" to read", 11},
+                          Case{"#read (In, V)", "'In' is not an open file", 8},
                           Case{"#fopen In \"data.txt\" writ", "expected 'read', 'write' or 'append' after the file name", 22}}) {
         Diagnostics bad;
         EXPECT_FALSE(load(c.text, bad)) << c.text;
@@ -70,6 +72,22 @@ TEST(PovFeatures, WrittenFilesAreDroppedAndReadingIsAnError) {
         EXPECT_NE(bad.all()[0].message.find(c.message), std::string::npos) << bad.formatAll();
         EXPECT_EQ(bad.all()[0].loc.column, c.column) << c.text;
     }
+}
+
+// quilted is approximated (the average of its map, a warning); its control0 and control1 are read with it.
+TEST(PovFeatures, QuiltedControlsAreReadWithTheApproximatedPattern) {
+    Diagnostics diags;
+    const auto s = load("sphere { 0, 1 pigment { quilted control0 1 control1 0.5 color_map { [0 rgb 0] [1 rgb 1] } } }\n"
+                        "sphere { 0, 1 texture { quilted control0 0.2 texture_map { [0 pigment { rgb 0 }] [1 pigment { rgb 1 }] }"
+                        " control1 1 } }\n",
+                        diags);
+    ASSERT_TRUE(s) << diags.formatAll();
+    EXPECT_EQ(s->objects.at(0).texture.pigment.color.rgb, Color(0.5));
+    EXPECT_NE(diags.formatAll().find("pattern 'quilted' is approximated"), std::string::npos) << diags.formatAll();
+    Diagnostics bad;
+    EXPECT_FALSE(load("sphere { 0, 1 pigment { bozo control0 1 } }", bad));
+    EXPECT_NE(bad.formatAll().find("f.pov:1:30: error: unknown keyword 'control0'"), std::string::npos)
+        << bad.formatAll();
 }
 
 // trace() and inside() ask the scene's geometry while the scene is read (drt

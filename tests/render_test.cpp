@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -426,6 +427,32 @@ TEST(Lighting, ALightWhoseConeMissesThePointDrawsNoSamples) {
     EXPECT_FALSE(both.wasAsked(lightDimension(0, 1))) << "the light that cannot reach the point drew a sample";
     EXPECT_EQ(bothCounts.shadow, aloneCounts.shadow);
     EXPECT_EQ(bothCounts.shadow, 1u);
+}
+
+// shadeLayers takes a reflection whose min and max are equal, without a
+// metallic tint, as its value; reflectivity times the tint must give exactly
+// that, for any incidence, ior and pigment.
+TEST(Shading, AConstantReflectionIsItsValueToTheBit) {
+    uint64_t state = 777;
+    const auto next = [&state] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return double(state >> 11) * 0x1.0p-53;
+    };
+    for (int i = 0; i < 5000; ++i) {
+        Finish f;
+        f.reflectionMin = i % 7 == 0 ? Color(0) : Color(next(), next() * 2, -next());
+        f.reflectionMax = f.reflectionMin;
+        f.reflectionFresnel = i % 2 == 0;
+        f.reflectionFalloff = 0.5 + 3 * next();
+        f.reflectionMetallic = i % 3 == 0 ? 0.0 : -next();
+        ColorFT pigment;
+        pigment.rgb = Color(next(), next(), 5 * next());
+        const double cosIncident = next(), eta = 0.5 + next();
+        const Color general =
+            reflectivity(f, cosIncident, eta) * metallicTint(f.reflectionMetallic, pigment, cosIncident);
+        for (int c = 0; c < 3; ++c)
+            ASSERT_EQ(std::bit_cast<uint64_t>(general[c]), std::bit_cast<uint64_t>(f.reflectionMin[c])) << i;
+    }
 }
 
 TEST(Shading, FadeAttenuation) {

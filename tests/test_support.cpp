@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
@@ -71,6 +72,22 @@ std::unique_ptr<SceneRun> readSceneText(const std::string& text, bool pov, const
     for (const Diagnostic& d : r->diags.all())
         if (d.message.rfind("#warning: ", 0) == 0) r->messages.push_back(d.message.substr(10));
     return r;
+}
+
+const Diagnostic* expectErrorAt(const Diagnostics& diags, const std::string& file, int line, int column,
+                                const std::string& message) {
+    const std::string text = diags.formatAll();
+    const auto& all = diags.all();
+    const auto error = std::find_if(all.begin(), all.end(), [](const Diagnostic& d) { return d.severity == Severity::Error; });
+    EXPECT_NE(error, all.end()) << "no error; diagnostics:\n" << text;
+    if (error == all.end()) return nullptr;
+    EXPECT_EQ(error->message, message) << file;
+    EXPECT_EQ(error->loc.line, line) << file;
+    EXPECT_EQ(error->loc.column, column) << file;
+    const std::string where = file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": error: ";
+    EXPECT_NE(text.find(where), std::string::npos) << text;
+    EXPECT_NE(text.find("\n  " + std::string(size_t(std::max(column - 1, 0)), ' ') + "^\n"), std::string::npos) << text;
+    return &*error;
 }
 
 } // namespace drt::test

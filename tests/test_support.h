@@ -60,6 +60,12 @@ struct SceneRun {
 };
 std::unique_ptr<SceneRun> readSceneText(const std::string& text, bool pov = true, const PovOptions& options = {});
 
+// Checks (as GoogleTest failures) that the first error in `diags` says `message`
+// at `file`:`line`:`column`, and that its printed form has that location and a
+// caret under the column. Returns the error (null when there is none).
+const Diagnostic* expectErrorAt(const Diagnostics& diags, const std::string& file, int line, int column,
+                                const std::string& message);
+
 // The scene with the files it names read (assets/assets.h), as drt render
 // reads them after parsing; adds a test failure if that reports an error.
 Scene withAssets(Scene scene);

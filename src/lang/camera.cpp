@@ -39,6 +39,12 @@ void resolveCameraVectors(CameraSpec& c, bool orthoScale = false) {
             dir = d * length(dir);
             right = ru * (handedness > 0 ? length(right) : -length(right));
             up = cross(d, ru) * length(up);
+        } else if (length(to) > 0 && length(right) > 0) {
+            // Looking along the sky (a camera straight above look_at): POV-Ray keeps
+            // right as it is and turns up to be square to it and to the new direction.
+            const Vec3 d = normalize(to);
+            dir = d * length(dir);
+            up = normalize(cross(d, right)) * length(up);
         }
     }
     if (orthoScale) {
@@ -226,6 +232,9 @@ CameraSpec Evaluator::camera(const CameraSpec& base, SourceLoc loc) {
         }
     }
     const bool planar = c.mapping == CameraMapping::Planar;
+    if (pov && c.lookAt && !(*c.lookAt == c.location) &&
+        length(cross(c.sky, *c.lookAt - c.location)) <= 1e-12 * length(c.sky) * length(*c.lookAt - c.location))
+        resolve(); // look_at along the sky: POV-Ray's rule above, which the renderer's look_at refuses
     if (pov) {
         // POV-Ray blurs only when aperture != 0 and blur_samples > 0; its lens radius
         // is aperture/4, so the model's lens diameter is aperture/2.

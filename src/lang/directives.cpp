@@ -138,20 +138,21 @@ void Evaluator::directive(const Token& t) {
     }
 }
 
-// Files: what a scene writes (#fopen .. write/append, #write, #fclose) is
-// read and dropped, so scenes that write HTML or logs still render; reading
-// (#fopen .. read, #read) needs the file's contents and is an error.
+// Files: what a scene writes (#fopen .. write/append, #write) is read and
+// dropped, so scenes that write HTML or logs still render; reading (#fopen ..
+// read, #read, #fclose) is file_input.cpp's.
 void Evaluator::fileDirective(const Token& t) {
     const std::string& d = t.text;
-    if (d == "read") fail(t.loc, "#read (file input) is not supported");
+    if (d == "read") return readDirective(); // file_input.cpp
     noExpand_ = true;
     const Token handle = d == "write" ? Token{} : expectWord("a file identifier");
     noExpand_ = false;
-    if (d == "fclose") return;
+    if (d == "fclose") return closeDataFile(handle.text);
     if (d == "fopen") {
-        stringExpr(); // the file name
+        const SourceLoc nameLoc = peek().loc;
+        const std::string name = stringExpr();
         const Token mode = expectWord("'read', 'write' or 'append' after the file name");
-        if (mode.text == "read") fail(mode.loc, "#fopen ... read (file input) is not supported");
+        if (mode.text == "read") return openDataFile(handle, name, nameLoc);
         if (mode.text != "write" && mode.text != "append")
             failExpected(mode, "'read', 'write' or 'append' after the file name");
         if (warned_.insert("note-fopen").second)

@@ -211,6 +211,13 @@ public:
     bool waveItem(const Token& t, PatternWave& wave); // frequency/phase/wave types
     void warpBlock(const Token& t, Pigment& p);       // at 'warp'
     void noiseNote(const std::string& kind, SourceLoc loc);
+    // Fractal patterns (fractal_syntax.cpp): after 'mandel', 'julia' or 'magnet'
+    // (`keyword`, consumed), the pattern's own arguments; then its modifiers
+    // (exponent, exterior, interior, max_iteration) at the peeked token `t`,
+    // consumed with their values when `fractal` is set and `t` is one.
+    static bool isFractalWord(const std::string& word);
+    std::shared_ptr<const FractalPattern> fractalPattern(const Token& keyword);
+    bool fractalModifier(const Token& t, std::shared_ptr<const FractalPattern>& fractal);
     std::optional<Pigment> imageMapPigment(SourceLoc keyword); // after 'image_map'
     // A transform keyword (translate rotate scale matrix transform) at the current token, or nothing.
     std::optional<Transform> transformItem();
@@ -353,6 +360,12 @@ private:
     std::vector<Token> pushed_;
     std::vector<std::map<std::string, Cell>> scopes_;
     std::set<std::string> warned_;
+    // Files opened by `#fopen ID "file" read`, by ID (file_input.cpp).
+    struct DataFile;
+    std::map<std::string, std::shared_ptr<DataFile>> dataFiles_;
+    void openDataFile(const Token& handle, const std::string& name, SourceLoc nameLoc);
+    void closeDataFile(const std::string& handle); // also undefines ID
+    void readDirective();                          // after '#read'
     std::vector<PendingWarning>* pending_ = nullptr; // while evaluating a #declare
     std::map<std::string, std::shared_ptr<TokenStream>> lexedFiles_;
     int expressionDepth_ = 0;
@@ -372,6 +385,13 @@ private:
     bool limitReached_ = false; // a resource limit ended the read (failLimit)
     int abandonedFile_ = -1; // an included file that is no scene, read no further after its first error
 };
+
+// The first element given a value in an array (through nested arrays), or
+// null: what an indexed element of it is likely to be.
+const Value* arrayItemSample(const Value& array);
+// Whether every element given a value in an array (through nested arrays) is a
+// number, vector or colour, and there is one: an element then reads as a colour.
+bool arrayOfNumbers(const Value& array);
 
 // functions.inc's internal function `number` (one drt has: internalArity(number) >= 0) as a function.
 std::shared_ptr<const Function> internalFunction(int number);

@@ -193,7 +193,33 @@ bool Evaluator::startsColor(const Token& t) const {
                                                 "gray", "grey"};
     if (words.count(t.text)) return true;
     const Cell c = lookup(t.text);
+    if (c && c->kind == Kind::Array) return arrayOfNumbers(*c); // an element of an array of colours (`Colors[2]`)
     return c && c->isNumeric();
+}
+
+bool arrayOfNumbers(const Value& array) {
+    if (array.kind != Kind::Array || !array.array) return false;
+    bool any = false;
+    for (const Cell& item : array.array->items) {
+        if (!item) continue;
+        if (item->kind == Kind::Array ? !arrayOfNumbers(*item) : !item->isNumeric()) return false;
+        any = true;
+    }
+    return any;
+}
+
+const Value* arrayItemSample(const Value& array) {
+    const Value* v = &array;
+    while (v && v->kind == Kind::Array && v->array) {
+        const Value* next = nullptr;
+        for (const Cell& item : v->array->items)
+            if (item) {
+                next = item.get();
+                break;
+            }
+        v = next;
+    }
+    return v;
 }
 
 namespace {

@@ -56,12 +56,13 @@ const std::map<Block, Words>& table() {
         Words pigment{"color", "colour", "rgb", "rgbf", "rgbt", "rgbft", "srgb", "checker", "hexagon", "brick",
                       "brick_size", "mortar", "gradient", "color_map", "colour_map",
                       "pigment_map", "average", "image_map", "turbulence", "octaves", "omega", "lambda", "warp",
-                      "quick_color", "uv_mapping", "function"};
+                      "quick_color", "uv_mapping", "function", "mandel", "julia", "magnet"};
         for (const std::string& w : noisePatternNames()) pigment.push_back(w);
         for (const PlacePatternWord& w : placePatternWords()) pigment.push_back(w.word);
         pigment = with(pigment, waveWords());
         m[Block::Pigment] = with(pigment, kTransforms);
-        Words normal{"turbulence", "octaves", "omega", "lambda", "accuracy", "bump_size", "function"};
+        Words normal{"turbulence", "octaves", "omega", "lambda", "accuracy", "bump_size", "function",
+                     "mandel", "julia", "magnet"};
         for (const std::string& w : noisePatternNames()) normal.push_back(w);
         normal = with(normal, waveWords());
         m[Block::Normal] = with(normal, kTransforms);
@@ -203,9 +204,9 @@ const char* placePatternWord(PatternKind kind) { return wordOfKind(placePatternW
 
 bool isApproximatedPattern(const std::string& word) {
     static const std::set<std::string> words = {
-        "spiral1", "spiral2", "mandel", "julia", "cells", "quilted", "cubic",
+        "spiral1", "spiral2", "cells", "quilted", "cubic",
         "tiling", "pavement", "facets", "density_file", "object", "aoi", "slope", "pigment_pattern",
-        "magnet", "fractal", "wave", "noise"};
+        "fractal", "wave", "noise"};
     return words.count(word) > 0;
 }
 

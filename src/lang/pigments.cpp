@@ -156,6 +156,11 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
             uv = true;
             continue;
         }
+        if (approximated == "quilted" && (t.isWord("control0") || t.isWord("control1"))) {
+            next(); // the approximated quilted pattern's own modifiers
+            floatExpr();
+            continue;
+        }
         if (pigmentItem(p, t)) {
             if (p.uvMapping) uv = true, setUvMapping(p, false); // a declared uv-mapped pigment
             continue;
@@ -171,10 +176,6 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
                 if (peek().isWord("df3")) next();
                 stringExpr();
                 if (peek().isWord("interpolate")) next(), floatExpr();
-            } else if (t.text == "mandel" || t.text == "magnet") {
-                floatExpr();
-            } else if (t.text == "julia") { // julia <c>, n
-                vectorExpr(), acceptSymbol(","), floatExpr();
             }
             continue;
         }
@@ -216,7 +217,8 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
     if (t.kind != TokenKind::Word && !t.is("<") && t.kind != TokenKind::Number) return false;
     const std::string w = t.text;
     Cell c = t.kind == TokenKind::Word ? use(w) : nullptr;
-    if (c && c->kind == Kind::Array) { // an array element: a pigment, a colour map or a colour
+    const bool colourArray = c && arrayOfNumbers(*c); // an element is read as a colour expression below
+    if (c && c->kind == Kind::Array && !colourArray) { // an array element: a pigment or a colour map
         next();
         c = indexArray(c, t);
         if (c->kind == Kind::Pigment) p = *c->pigment;
@@ -238,7 +240,7 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         p.colorMap = *c->colorMap;
         return true;
     }
-    if (c && !c->isNumeric()) return false; // the caller names what it is
+    if (c && !c->isNumeric() && !colourArray) return false; // the caller names what it is
     if (startsColor(t) && !t.is("-") && !t.is("(")) {
         const Transform keep = p.toWorld;
         p = solid(toColorFT(colorExpr()));
@@ -262,6 +264,13 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
                 next();
                 use(n.text);
                 children.push_back(*named->pigment);
+            } else if (const Value* item = named && named->kind == Kind::Array ? arrayItemSample(*named) : nullptr;
+                       item && item->kind == Kind::Pigment) { // an element of an array of pigments
+                next();
+                const Cell element = indexArray(use(n.text), n);
+                if (element->kind != Kind::Pigment)
+                    fail(n.loc, "'" + n.text + "' element is " + kindName(*element) + ", not a pigment");
+                children.push_back(*element->pigment);
             } else if (startsColor(n) && !n.is("(") && !n.is("-") && !n.isWord("filter")) {
                 children.push_back(solid(toColorFT(colorExpr())));
             } else {
@@ -314,6 +323,13 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         p.function = patternFunction(t);
         p.children.clear();
         greyRamp(p);
+    } else if (isFractalWord(w)) {
+        next();
+        p.pattern = PatternKind::Fractal;
+        p.fractal = fractalPattern(t);
+        p.children.clear();
+        greyRamp(p);
+    } else if (p.pattern == PatternKind::Fractal && fractalModifier(t, p.fractal)) {
     } else if (w == "average") {
         next();
         p.pattern = PatternKind::Average;

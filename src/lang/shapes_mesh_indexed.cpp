@@ -319,7 +319,10 @@ void readMesh2(Evaluator& e, const Token& keyword, Mesh& m) {
             own.clear();
             while (e.peekOperator().is(",")) {
                 Token comma = e.next();
-                if (e.peek().is("<") || e.peek().is("}")) {
+                // The next face: '<', or a vector identifier (shapes.inc writes `F1+A, F2+A,`).
+                const Token after = e.peek();
+                const Cell named = after.kind == TokenKind::Word ? e.lookup(after.text) : nullptr;
+                if (after.is("<") || after.is("}") || (named && named->kind == Value::Kind::Vector)) {
                     e.pushBack(std::move(comma));
                     break;
                 }

@@ -73,7 +73,7 @@ bool Evaluator::isTexturePatternWord(const Token& t) const {
     const std::string& w = t.text;
     return w == "texture_map" || w == "material_map" || w == "tiles" || w == "checker" || w == "hexagon" ||
            w == "brick" || w == "gradient" || w == "average" || w == "function" || placePatternNamed(w).has_value() ||
-           noisePatternNamed(w).has_value() || isApproximatedPattern(w);
+           noisePatternNamed(w).has_value() || isFractalWord(w) || isApproximatedPattern(w);
 }
 
 // `[value, body]` of a map; in an `average` map the value (the weight) may be left out: 1.
@@ -197,6 +197,9 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
     } else if (w == "function") {
         pattern.pattern = PatternKind::Function;
         pattern.function = patternFunction(word);
+    } else if (isFractalWord(w)) {
+        pattern.pattern = PatternKind::Fractal;
+        pattern.fractal = fractalPattern(word);
     } else if (const std::optional<PatternKind> kind = noisePatternNamed(w)) {
         pattern.pattern = *kind;
         noiseNote(w, word.loc);
@@ -234,10 +237,8 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
         approximated = w;
         if (w == "pigment_pattern" || w == "object") {
             if (peek().is("{")) next(), skipBlock();
-        } else if (w == "mandel" || w == "magnet" || w == "spiral1" || w == "spiral2") {
+        } else if (w == "spiral1" || w == "spiral2") {
             floatExpr();
-        } else if (w == "julia") {
-            vectorExpr(), acceptSymbol(","), floatExpr();
         } else if (w == "slope" || w == "aoi") { // slope <v> or slope { <v> [, lo, hi] [altitude ..] }
             if (peek().is("{")) next(), skipBlock();
             else if (w == "slope") vectorExpr();
@@ -255,6 +256,12 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
         }
         if (turbulenceItem(t, pattern.turbulence)) continue;
         if (!block && waveItem(t, pattern.wave)) continue;
+        if (fractalModifier(t, pattern.fractal)) continue;
+        if (approximated == "quilted" && (t.isWord("control0") || t.isWord("control1"))) {
+            next(); // the approximated quilted pattern's own modifiers
+            floatExpr();
+            continue;
+        }
         next();
         if (t.kind != TokenKind::Word)
             failInBlock(t, "'texture_map', a pattern modifier, a transform or " + where);
@@ -389,6 +396,18 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 first = false;
                 continue;
             }
+            if (isFractalWord(t.text)) { // normal { mandel ITERATIONS [,] [amount] }
+                next();
+                n.pattern = PatternKind::Fractal;
+                n.fractal = fractalPattern(t);
+                known = true;
+                acceptSymbol(",");
+                const Token a = peek();
+                if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
+                first = false;
+                continue;
+            }
+            if (n.pattern == PatternKind::Fractal && fractalModifier(t, n.fractal)) continue;
             std::optional<PatternKind> kind = noisePatternNamed(t.text);
             if (kind) noiseNote(t.text, t.loc);
             else if (!isDrt()) kind = normalOnlyPattern(t.text); // POV-Ray's normals by a pattern's slope

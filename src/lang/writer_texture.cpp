@@ -64,6 +64,33 @@ static std::string waveText(const PatternWave& w) {
     return text;
 }
 
+// A fractal pattern's keyword and arguments ("julia <0.3, 0.4, 0> 30"), and its modifiers apart
+// (in a normal the bump amount comes between them).
+static std::string fractalHead(const FractalPattern& f) {
+    std::string text;
+    switch (f.kind) {
+    case FractalKind::Mandel: text = "mandel"; break;
+    case FractalKind::Julia: text = "julia"; break;
+    case FractalKind::Magnet1Mandel: text = "magnet 1 mandel"; break;
+    case FractalKind::Magnet1Julia: text = "magnet 1 julia"; break;
+    case FractalKind::Magnet2Mandel: text = "magnet 2 mandel"; break;
+    case FractalKind::Magnet2Julia: text = "magnet 2 julia"; break;
+    }
+    if (isJuliaForm(f.kind)) text += " " + vector(Vec3(f.cx, f.cy, 0)) + ",";
+    return text + " " + number(double(f.iterations));
+}
+
+static std::string fractalModifiers(const FractalPattern& f) {
+    const FractalPattern d;
+    std::string text;
+    if (f.exponent != d.exponent) text += " exponent " + number(f.exponent);
+    if (f.exteriorType != d.exteriorType || f.exteriorFactor != d.exteriorFactor)
+        text += " exterior " + number(f.exteriorType) + ", " + number(f.exteriorFactor);
+    if (f.interiorType != d.interiorType || f.interiorFactor != d.interiorFactor)
+        text += " interior " + number(f.interiorType) + ", " + number(f.interiorFactor);
+    return text;
+}
+
 std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& exact) {
     // A uv-mapped normal lives in uv space, which the object's transforms do not move.
     const std::vector<Step> placedBy = n.uvMapping ? std::vector<Step>{} : suffix;
@@ -79,7 +106,12 @@ std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& e
         std::set<std::string> problems; // none for a function of x, y, z without patterns
         pattern = functionHead(*n.function) + "{ " + functionText(*n.function, problems) + " }";
     }
-    return std::string(n.uvMapping ? " uv_mapping " : " ") + pattern + " " + number(n.amount) +
+    std::string modifiers;
+    if (n.pattern == PatternKind::Fractal && n.fractal) {
+        pattern = fractalHead(*n.fractal) + ",";
+        modifiers = fractalModifiers(*n.fractal);
+    }
+    return std::string(n.uvMapping ? " uv_mapping " : " ") + pattern + " " + number(n.amount) + modifiers +
            turbulenceText(n.turbulence) + waveText(n.wave) + formatSteps(own);
 }
 
@@ -197,6 +229,10 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         text += " " + functionHead(*p.function) + "{ " + functionText(*p.function, problems) + " }";
         colorMap();
         break;
+    case PatternKind::Fractal:
+        if (p.fractal) text += " " + fractalHead(*p.fractal) + fractalModifiers(*p.fractal);
+        colorMap();
+        break;
     case PatternKind::ImageMap:
         if (p.imageMap) text += imageMapText(*p.imageMap);
         else problems.insert("an image_map without its image");
@@ -224,6 +260,7 @@ static std::string texturePatternWord(const Pigment& p) {
     case PatternKind::Brick: return "brick";
     case PatternKind::Gradient: return "gradient " + vector(p.gradientAxis);
     case PatternKind::Average: return "average";
+    case PatternKind::Fractal: return p.fractal ? fractalHead(*p.fractal) + fractalModifiers(*p.fractal) : "average";
     case PatternKind::Function: {
         std::set<std::string> problems; // the pigment's own are reported where it is written
         return functionHead(*p.function) + "{ " + functionText(*p.function, problems) + " }";
@@ -242,7 +279,8 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
         std::string text = " pigment {" + pigmentBody(t.pigment, suffix, exact, problems) + " }";
         if (t.normal) {
             text += " normal {" + normalBody(*t.normal, suffix, exact) + " }";
-            if (!noiseKeyword(t.normal->pattern) && t.normal->pattern != PatternKind::Function)
+            if (!noiseKeyword(t.normal->pattern) && t.normal->pattern != PatternKind::Function &&
+                t.normal->pattern != PatternKind::Fractal)
                 problems.insert("a normal pattern other than the noise patterns");
             if (t.normal->accuracy != Normal{}.accuracy) problems.insert("a normal's accuracy");
         }

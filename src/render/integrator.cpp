@@ -139,6 +139,14 @@ void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const
     Color weight = seenWeight;
     if (!surface.entering) // the ray crossed the object's interior
         weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
+    const auto& corners = hit.cornerTextures;
+    if (corners[0] == nullptr && corners[1] == nullptr && corners[2] == nullptr && object.texture.plain()) {
+        // The object's own texture, one plain layer: what forEachSurfaceTexture
+        // and shadeTexture come to (with a share of 1: weight * 1 == weight).
+        const Texture* single = &object.texture;
+        shadeLayers(surface, &single, 1, weight, sampler, counts, result, stack);
+        return;
+    }
     forEachSurfaceTexture(hit, [&](const Texture& texture, double share) {
         shadeTexture(surface, texture, weight * share, sampler, counts, result, stack);
     });
@@ -155,8 +163,7 @@ void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture,
         shadeLayers(surface, &single, 1, weight, sampler, counts, result, stack);
         return;
     }
-    std::vector<const Texture*> layers;
-    layersTopFirst(texture, layers);
+    const TextureLayers layers(texture);
     shadeLayers(surface, layers.data(), layers.size(), weight, sampler, counts, result, stack);
 }
 
@@ -214,9 +221,15 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         result += weight * filter * local;
 
         const double cosIncident = std::clamp(-dot(incoming, normal), 0.0, 1.0);
-        const Color reflected = traceChildren ? reflectivity(finish, cosIncident, surface.eta) *
-                                                    metallicTint(finish.reflectionMetallic, sp.pigment, cosIncident)
-                                              : Color(0);
+        // A reflection that does not vary (min == max, no metallic tint) is its
+        // value: reflectivity returns min and the tint is 1, and x * 1 == x.
+        const bool constantReflection =
+            finish.reflectionMin == finish.reflectionMax && !(finish.reflectionMetallic > 0);
+        const Color reflected = !traceChildren        ? Color(0)
+                                : constantReflection ? finish.reflectionMin
+                                                     : reflectivity(finish, cosIncident, surface.eta) *
+                                                           metallicTint(finish.reflectionMetallic, sp.pigment,
+                                                                        cosIncident);
         const Color reflectedWeight = weight * reflected;
         if (traceChildren && worthTracing(reflectedWeight)) {
             const Vec3 direction = lobeDirection(reflect(incoming, normal), finish.reflectionBlur, sampler,

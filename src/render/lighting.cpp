@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 namespace drt {
 
@@ -321,16 +322,20 @@ void DirectLighting::traceCameraShadows(const Ray* rays, const Hit* hits, const 
         if (dot(normal, incoming) >= 0) normal = entering ? hit.geometricNormal : -hit.geometricNormal;
         normals[k] = normal;
     }
+    // The rays are made in place below, the array left unset: a default Ray is
+    // 72 bytes of stores, and an assignment a copy of as many.
+    static_assert(std::is_trivially_destructible_v<Ray> && std::is_trivially_copyable_v<Ray>);
+    alignas(Ray) unsigned char storage[kPacket][sizeof(Ray)];
+    Ray* const shadow = reinterpret_cast<Ray*>(storage);
     for (const int i : packetLights_) {
         const Vec3& position = scene_.lights[size_t(i)].position;
-        Ray shadow[kPacket];
         int lane[kPacket];
         int n = 0;
         for (int k = 0; k < out.count_; ++k) {
             if (!found[k]) continue;
             const Vec3 toLight = position - hits[k].point;
             if (!(dot(normals[k], toLight) > 0)) continue; // facing away: the shading sends no ray
-            shadow[n] = shadowRay(hits[k], position, rays[k].time);
+            ::new (storage[n]) Ray(shadowRay(hits[k], position, rays[k].time));
             lane[n++] = k;
         }
         bool blocked[kPacket];

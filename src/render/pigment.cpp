@@ -5,6 +5,7 @@
 #include "render/function_hooks.h"
 #include "render/image_pattern.h"
 #include "render/noise.h"
+#include "render/pattern_fractal.h"
 #include "render/pattern_wave.h"
 
 #include <cmath>
@@ -151,6 +152,7 @@ PatternSample samplePatternAt(const Pigment& pigment, const Vec3& p) {
     case PatternKind::Cylindrical: value = cylindricalValue(p); break;
     case PatternKind::Boxed: value = boxedValue(p); break;
     case PatternKind::Function: value = pigment.function ? pigment.function->at(p) : 0.0; break; // see installFunctionHooks
+    case PatternKind::Fractal: value = pigment.fractal ? fractalValue(*pigment.fractal, p.x, p.y) : 0.0; break;
     default: break;
     }
     // POV-Ray's pattern step: fmod(v frequency + phase, 1.00001), then the wave.

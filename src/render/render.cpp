@@ -305,7 +305,8 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
                 if (cameraMoves) moved = cameraPath.at(time);
                 const ResolvedCamera& at = cameraMoves ? moved : camera;
                 covered[j] = at.covers(position.x, position.y); // else no ray (POV-Ray: black)
-                if (covered[j]) rays[traced++] = at.generateRay(position.x, position.y, lens, time);
+                // Made in place: an assignment would copy the 72-byte ray.
+                if (covered[j]) ::new (&rays[traced++]) Ray(at.generateRay(position.x, position.y, lens, time));
             }
             accel.intersectPacket(rays, traced, hits, found);
             integrator.traceCameraShadows(rays, hits, found, traced, packet.shadows);

@@ -3,6 +3,7 @@
 #include "render/pigment.h"
 
 #include <algorithm>
+#include <memory>
 
 namespace drt {
 
@@ -13,7 +14,26 @@ void collectBottomFirst(const Texture& texture, std::vector<const Texture*>& out
     for (const Texture& layer : texture.layersAbove) collectBottomFirst(layer, out);
 }
 
+// The buffers of the TextureLayers alive on this thread, innermost last; on
+// the heap, one each, so that adding one never moves another's list.
+struct LayerBuffers {
+    std::vector<std::unique_ptr<std::vector<const Texture*>>> buffers;
+    size_t inUse = 0;
+};
+thread_local LayerBuffers layerBuffers;
+
 } // namespace
+
+TextureLayers::TextureLayers(const Texture& texture) {
+    LayerBuffers& b = layerBuffers;
+    if (b.inUse == b.buffers.size()) b.buffers.push_back(std::make_unique<std::vector<const Texture*>>());
+    layers_ = b.buffers[b.inUse].get();
+    ++b.inUse;
+    layers_->clear();
+    layersTopFirst(texture, *layers_);
+}
+
+TextureLayers::~TextureLayers() { --layerBuffers.inUse; }
 
 void layersTopFirst(const Texture& texture, std::vector<const Texture*>& out) {
     const size_t start = out.size();
@@ -44,8 +64,7 @@ Color textureFilter(const Texture& texture, const Vec3& worldPoint, const Vec3* 
         return p.rgb * p.filter + Color(p.transmit);
     }
     if (texture.layersAbove.empty()) return patternedFilter(texture, worldPoint, uv);
-    std::vector<const Texture*> layers;
-    layersTopFirst(texture, layers);
+    const TextureLayers layers(texture);
     Color filter(1);
     for (const Texture* layer : layers) {
         if (!layer->map.empty()) {

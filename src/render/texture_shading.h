@@ -20,6 +20,7 @@
 #include "scene/scene.h"
 
 #include <functional>
+#include <vector>
 
 namespace drt {
 
@@ -83,6 +84,25 @@ void forEachSurfaceTexture(const Hit& hit, Visit&& visit) {
 // ends the list: its entries are whole textures, seen through the layers
 // above it, and the layers below it are not shaded.
 void layersTopFirst(const Texture& texture, std::vector<const Texture*>& out);
+
+// layersTopFirst's list for a shading or a shadow ray, in a per-thread buffer
+// reused from hit to hit (no allocation per hit once it has grown). Each live
+// TextureLayers has its own buffer, so a patterned layer whose entries are
+// layered again can list them while its caller still reads its own list.
+class TextureLayers {
+public:
+    explicit TextureLayers(const Texture& texture);
+    ~TextureLayers();
+    TextureLayers(const TextureLayers&) = delete;
+    TextureLayers& operator=(const TextureLayers&) = delete;
+    const Texture* const* data() const { return layers_->data(); }
+    size_t size() const { return layers_->size(); }
+    const Texture* const* begin() const { return data(); }
+    const Texture* const* end() const { return data() + size(); }
+
+private:
+    std::vector<const Texture*>* layers_;
+};
 
 // What a shadow ray keeps after crossing the surface at worldPoint.
 Color textureFilter(const Texture& texture, const Vec3& worldPoint, const Vec3* uv = nullptr);

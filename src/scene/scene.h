@@ -11,6 +11,7 @@
 #include "scene/algebraic.h"
 #include "scene/blob.h"
 #include "scene/extrusion.h"
+#include "scene/fractal_pattern.h"
 #include "scene/function.h"
 #include "scene/indexed_mesh.h"
 #include "scene/isosurface.h"
@@ -46,6 +47,7 @@ enum class PatternKind {
     Cylindrical, // colour map of max(0, 1 - distance from the y axis) (POV-Ray's cylindrical)
     Boxed,     // colour map of max(0, 1 - max(|x|, |y|, |z|)) (POV-Ray's boxed)
     Function,  // colour map of a user-defined function's value (Pigment::function, scene/function.h)
+    Fractal,   // colour map of POV-Ray's mandel, julia or magnet value (Pigment::fractal, scene/fractal_pattern.h)
     // Noise patterns (render/noise.h): drt's own gradient noise, shaped like
     // POV-Ray's documented patterns but not value-for-value equal to them.
     Bozo,     // colour map of plain noise (POV-Ray's bozo and spotted)
@@ -87,6 +89,7 @@ struct Pigment {
     PatternKind pattern = PatternKind::Solid;
     std::shared_ptr<const ImageMap> imageMap; // ImageMap: the decoded image and its mapping
     std::shared_ptr<const Function> function; // Function: its value at the pattern point
+    std::shared_ptr<const FractalPattern> fractal; // Fractal: which fractal, with its parameters
     ColorFT color;                        // Solid (POV-Ray default: black)
     std::vector<Pigment> children;        // Checker, Hexagon, Brick sub-pigments
     std::vector<ColorMapEntry> colorMap;  // Gradient, Radial, Onion
@@ -154,6 +157,7 @@ struct Normal {
     Transform toWorld; // as Pigment::toWorld
     Vec3 gradientAxis{0, 1, 0}; // Gradient
     std::shared_ptr<const Function> function; // Function
+    std::shared_ptr<const FractalPattern> fractal; // Fractal
     double accuracy = 0.02;     // POV-Ray's `accuracy`: the slope's sample spacing
     // uv_mapping: the pattern lives in the surface's uv space (u, v, 0), which
     // the object's transforms do not move; its tilt is carried to the surface by

@@ -3,11 +3,16 @@
 # small by POV-Ray and by drt, compared after 4x4 downsampling (mean absolute
 # sRGB difference, drt_wide_compare), and tabulated in docs/pov-crosscheck.md.
 #
-#   tests/pov_crosscheck/wide.sh [-b BUILD_DIR] [-j JOBS] reference       POV-Ray's renders (cached)
+#   tests/pov_crosscheck/wide.sh [-b BUILD_DIR] [-j JOBS] reference [PATTERN..]
+#                                                                          POV-Ray's renders (cached; all
+#                                                                          scenes, or those matching)
 #   tests/pov_crosscheck/wide.sh [-b BUILD_DIR] [-j JOBS] drt [PATTERN..]  drt's renders and figures
 #                                                                          (all scenes, or those whose
 #                                                                          path contains a PATTERN)
-#   tests/pov_crosscheck/wide.sh table                                    the table in the docs
+#   tests/pov_crosscheck/wide.sh table                                    the table in the docs (a scene
+#                                                                          without a figure in the cache
+#                                                                          keeps its row from the docs,
+#                                                                          counted as carried over)
 #   tests/pov_crosscheck/wide.sh [-b BUILD_DIR] [-j JOBS]                 all three
 #
 # POV-Ray's renders depend only on POV-Ray and the scenes, so they are kept in
@@ -122,22 +127,27 @@ drt_one() {
 }
 export -f reference_one drt_one
 
+# The scenes whose path contains one of the patterns (all scenes without any).
+matching_scenes() {
+    if [ $# -eq 0 ]; then
+        all_scenes
+    else
+        for pattern in "$@"; do all_scenes | grep -F -- "$pattern"; done | LC_ALL=C sort -u
+    fi
+}
+
 reference() {
     command -v povray >/dev/null || { echo "wide.sh: povray is not installed" >&2; exit 1; }
     [ -d "$examples" ] || { echo "wide.sh: $examples is missing (povray-examples)" >&2; exit 1; }
     tree pov
-    all_scenes | xargs -P "$jobs" -I{} bash -c 'reference_one "$1"' _ {}
+    matching_scenes "$@" | xargs -P "$jobs" -I{} bash -c 'reference_one "$1"' _ {}
 }
 
 drt_renders() {
     [ -n "${DRT_WIDE_DRT:-}" ] || cmake --build "$build" --target drt >/dev/null || exit 1
     cmake --build "$build" --target drt_wide_compare >/dev/null || exit 1
     tree drt
-    if [ $# -eq 0 ]; then
-        all_scenes
-    else
-        for pattern in "$@"; do all_scenes | grep -F -- "$pattern"; done | LC_ALL=C sort -u
-    fi | xargs -P "$jobs" -I{} bash -c 'drt_one "$1"' _ {}
+    matching_scenes "$@" | xargs -P "$jobs" -I{} bash -c 'drt_one "$1"' _ {}
 }
 
 # A scene's flags for the summary: needs animation (clock), radiosity, photons.
@@ -157,19 +167,44 @@ warnings_of() {
 }
 
 table() {
-    local rows="" total=0 agree=0 compared=0 drt_failed=0 no_ref=0 both_failed=0 missing=0
+    local rows="" fresh="" total=0 agree=0 compared=0 drt_failed=0 no_ref=0 both_failed=0 missing=0 carried=0
     local clock=0 radiosity=0 photons=0
     while read -r scene; do
         total=$((total + 1))
         result=$cache/$run/${scene%.pov}.result
         cause=$(grep -F -m 1 "$scene	" "$causes" 2>/dev/null | cut -f 2)
         f=$(flags "$scene")
+        old_row=""
         if [ ! -f "$result" ]; then
+            old_row=$(grep -F -m 1 "| $scene | " "$doc")
+        fi
+        if [ ! -f "$result" ] && [ -z "$old_row" ]; then
             missing=$((missing + 1))
             rows+="| $scene | - | not rendered | |"$'\n'
             continue
         fi
-        IFS=$'\t' read -r status mae _ detail <"$result"
+        if [ -n "$old_row" ]; then # not rendered in this cache: the row of the previous table
+            carried=$((carried + 1))
+            mae=$(echo "$old_row" | cut -d '|' -f 3 | tr -d ' ')
+            detail=$(echo "$old_row" | cut -d '|' -f 5- | sed 's/^ //; s/ |$//')
+            detail=${detail//\\|/|}
+            case $(echo "$old_row" | cut -d '|' -f 4 | sed 's/^ //; s/ $//') in
+            agrees | differs) status=compared ;;
+            "drt fails") status=drt-failed ;;
+            "both fail") status=both-failed ;;
+            "no POV-Ray image") status=no-reference ;;
+            *) status=missing ;;
+            esac
+            if [ $status = missing ]; then
+                missing=$((missing + 1)) carried=$((carried - 1))
+                rows+="| $scene | - | not rendered | |"$'\n'
+                continue
+            fi
+            [ -n "$cause" ] || cause=${detail//|/\\|}
+        else
+            IFS=$'\t' read -r status mae _ detail <"$result"
+            fresh+="${fresh:+, }${scene%.pov}"
+        fi
         case $status in
         compared)
             compared=$((compared + 1))
@@ -224,7 +259,9 @@ ${agree} agree (${rendered_percent}%).** Of the others: $((compared - agree)) di
 ${threshold}, ${drt_failed} fail in drt, ${both_failed} fail in both (POV-Ray stops on them too, e.g. the portfolio
 scenes that need their \`.ini\`'s frame numbers), ${no_ref} have no POV-Ray image (POV-Ray failed or exceeded the
 CPU limit of ${cpu_limit} s)$([ $missing -gt 0 ] && echo ", $missing were not rendered"). Among the scenes that do not agree,
-${clock} use \`clock\` (animation), ${radiosity} radiosity and ${photons} photons.
+${clock} use \`clock\` (animation), ${radiosity} radiosity and ${photons} photons.$([ $carried -gt 0 ] && echo "
+$((total - carried)) rows come from this run's renders ($fresh); the other $carried are carried over from the
+previous table (rendered by an earlier drt: run \`wide.sh\` in full to redo them).")
 
 | scene | MAE | result | cause |
 |---|---|---|---|
@@ -235,7 +272,7 @@ TEXT
 }
 
 case ${1:-all} in
-reference) reference ;;
+reference) shift; reference "$@" ;;
 drt) shift; drt_renders "$@" ;;
 table) table ;;
 all) reference && drt_renders && table ;;

@@ -22,23 +22,24 @@ syn keyword drtBlock plane poly prism quadric quartic render scattering sky_sphe
 syn keyword drtBlock smooth_triangle sor sphere superellipsoid text texture texture_list texture_map
 syn keyword drtBlock tiles torus triangle uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections ambient
-syn keyword drtKeyword ambient_light angle aperture area_illumination area_light area_sampling array assumed_gamma
-syn keyword drtKeyword at average bezier_spline blue boxed bozo brick brick_size
-syn keyword drtKeyword brilliance bumps checker circular clock clock_delta clock_on color
-syn keyword drtKeyword color_map colour colour_map confidence conic_sweep conserve_energy crackle crand
-syn keyword drtKeyword cubic_spline cubic_wave cylindrical dents difference diffuse direction distance
-syn keyword drtKeyword eccentricity emission error evaluate extinction f_noise3d f_noise_generator f_ph
-syn keyword drtKeyword f_r f_rounded_box f_sphere f_superellipsoid f_th f_torus fade_color fade_colour
-syn keyword drtKeyword fade_distance fade_power falloff file filter final_clock final_frame fisheye
-syn keyword drtKeyword focal_distance focal_point fog_alt fog_offset fog_type font frame_number frequency
-syn keyword drtKeyword fresnel gamma gradient granite gray green grid height
-syn keyword drtKeyword hexagon hierarchy hollow initial_clock initial_frame internal interpolate intersection
-syn keyword drtKeyword intervals inverse inverse_square ior jitter lambda leopard linear_spline
-syn keyword drtKeyword linear_sweep location look_at map_type marble matrix max_gradient max_samples
-syn keyword drtKeyword max_trace max_trace_level media_attenuation media_interaction merge metallic method min_samples
-syn keyword drtKeyword mortar no_shadow octaves offset omega once onion open
-syn keyword drtKeyword orient orthographic panoramic perspective phase phong phong_size planar
-syn keyword drtKeyword point_at poly_wave pov_grid quadratic_spline radial radius ramp_wave ratio
+syn keyword drtKeyword ambient_light angle aperture append area_illumination area_light area_sampling array
+syn keyword drtKeyword assumed_gamma at average bezier_spline blue boxed bozo brick
+syn keyword drtKeyword brick_size brilliance bumps checker circular clock clock_delta clock_on
+syn keyword drtKeyword color color_map colour colour_map confidence conic_sweep conserve_energy crackle
+syn keyword drtKeyword crand cubic_spline cubic_wave cylindrical dents difference diffuse direction
+syn keyword drtKeyword distance eccentricity emission error evaluate exponent exterior extinction
+syn keyword drtKeyword f_noise3d f_noise_generator f_ph f_r f_rounded_box f_sphere f_superellipsoid f_th
+syn keyword drtKeyword f_torus fade_color fade_colour fade_distance fade_power falloff file filter
+syn keyword drtKeyword final_clock final_frame fisheye focal_distance focal_point fog_alt fog_offset fog_type
+syn keyword drtKeyword font frame_number frequency fresnel gamma gradient granite gray
+syn keyword drtKeyword green grid height hexagon hierarchy hollow initial_clock initial_frame
+syn keyword drtKeyword internal interpolate intersection intervals inverse inverse_square ior jitter
+syn keyword drtKeyword julia lambda leopard linear_spline linear_sweep location look_at magnet
+syn keyword drtKeyword mandel map_type marble matrix max_gradient max_iteration max_samples max_trace
+syn keyword drtKeyword max_trace_level media_attenuation media_interaction merge metallic method min_samples mortar
+syn keyword drtKeyword no_shadow octaves offset omega once onion open orient
+syn keyword drtKeyword orthographic panoramic perspective phase phong phong_size planar point_at
+syn keyword drtKeyword poly_wave pov_grid quadratic_spline radial radius ramp_wave ratio read
 syn keyword drtKeyword red reflection reflection_blur refraction_blur rgb rgbf rgbft rgbt
 syn keyword drtKeyword right ripples rotate roughness sampler samples scale scallop_wave
 syn keyword drtKeyword shadowless shutter_close shutter_open sine_wave sky smooth solid_angle specular
@@ -46,7 +47,8 @@ syn keyword drtKeyword spherical spline spotlight srgb srgbf srgbft srgbt strati
 syn keyword drtKeyword strength string sturm thickness threshold tightness tile2 translate
 syn keyword drtKeyword transmit triangle_wave turb_depth turbulence u ultra_wide_angle union up
 syn keyword drtKeyword uv_mapping v variance water_level waves width wood wrinkles
-syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|switch\|undef\|version\|warning\|while\)\>"
+syn keyword drtKeyword write
+syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|fclose\|fopen\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|read\|switch\|undef\|version\|warning\|while\|write\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
 syn match drtEscape contained +\\["\\nt]+
