@@ -82,6 +82,22 @@ TEST(PovEval, ConditionalsAndSwitch) {
     EXPECT_EQ(r->messages, (std::vector<std::string>{"two", "def", "undef", "r23", "fallback"}));
 }
 
+// An expression goes on after the #else / #elseif / #end of an #if branch
+// (advanced/isocacti.pov: a macro picks an array element with #if, and the
+// call is multiplied); #while's #end still ends it.
+TEST(PovEval, ExpressionsGoOnAfterTheEndOfAnIfBranch) {
+    auto r = run("#macro Pick(A) #if (A > 0) 2 #elseif (A = 0) 7 #else 3 #end #end\n"
+                 "#declare X = Pick(1) * 5;\n#warning str(X, 0, 0)\n"
+                 "#declare X = Pick(0) * 5;\n#warning str(X, 0, 0)\n"
+                 "#declare X = Pick(-1) * 5;\n#warning str(X, 0, 0)\n"
+                 "#declare C = array[2] {rgb <1, 0, 0>, rgb <0, 0, 1>}\n"
+                 "#macro Item(I) #if (I = 0) C[0] #else C[1] #end #end\n"
+                 "#declare D = Item(1) * 0.5;\n#warning str(D.blue, 0, 2)\n"
+                 "#declare Y = #if (1) 4 #else 6 #end + 1;\n#warning str(Y, 0, 0)\n");
+    ASSERT_FALSE(r->diags.hasErrors()) << r->diags.formatAll();
+    EXPECT_EQ(r->messages, (std::vector<std::string>{"10", "35", "15", "0.50", "5"}));
+}
+
 TEST(PovEval, LoopsAndArrays) {
     auto r = run("#declare Sum = 0; #declare I = 1;\n"
                  "#while (I <= 10) #declare Sum = Sum + I; #declare I = I + 1; #end\n"

@@ -336,6 +336,17 @@ Token Evaluator::peekOperator() {
             popFrame();
             continue;
         }
+        // The end of an #if branch (#else, #elseif, #end) does not end the
+        // expression: `#if (C) A #else B #end * 2` (a macro returning A or B
+        // then `* 2`, as POV-Ray's advanced/isocacti.pov does) goes on after it.
+        if (t.kind == TokenKind::Directive && (t.text == "else" || t.text == "elseif" || t.text == "end") &&
+            conds_.size() > f.condDepth && conds_.back().type == Cond::Type::If &&
+            conds_.back().frame == frames_.size() - 1) {
+            const Token branchEnd = t;
+            ++f.pos;
+            directive(branchEnd);
+            continue;
+        }
         if (t.kind == TokenKind::Directive) return t;
         // A macro name cannot continue an expression: return it unexpanded, or
         // `#declare S = "" M(S)` would run M before S is declared.
