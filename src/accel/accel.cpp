@@ -356,11 +356,11 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
 // the camera ray's hit was solved on. Embree's own float transform of the ray
 // lands up to ~1e-5 away from that surface, more than the origin offset
 // (offsetOrigin), and a sphere turning about a far pivot shadowed half of
-// itself. A still scene's shadow rays take Embree's ray as they are.
+// itself. Other scenes' shadow rays take Embree's ray as they are.
 bool Accelerator::occluded(const Ray& ray) const {
     RTCRay r;
     fillRay(ray, *impl_, r, kShadowMask);
-    if (!impl_->instances.empty()) {
+    if (impl_->anyMotion) { // a compact mesh's still instance holds only triangles
         RayQuery query(*impl_, ray.origin, ray.direction);
         rtcOccluded1(impl_->top.scene, &query.context, &r);
     } else {
@@ -386,7 +386,7 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
     RayQuery* lanes[kPacketSize];
     RTCIntersectContext plain;
     RTCIntersectContext* context = &plain;
-    if (!impl_->instances.empty()) {
+    if (impl_->anyMotion) { // a compact mesh's still instance holds only triangles
         for (int i = 0; i < count; ++i) lanes[i] = new (storage[i]) RayQuery(*impl_, rays[i].origin, rays[i].direction);
         lanes[0]->lanes = lanes;
         context = &lanes[0]->context;

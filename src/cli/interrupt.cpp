@@ -22,13 +22,12 @@ void writeMessage(const char* text) {
 
 // Only async-signal-safe calls here: atomics, write, unlink, _exit.
 extern "C" void onSignal(int number) {
-    int none = 0;
     if (quitAtOnce.load()) {
-        firstSignal.compare_exchange_strong(none, number);
         removeRegisteredTemporaryFiles();
         writeMessage("\ndrt: interrupted before the render started: quitting, nothing to save\n");
         ::_exit(128 + number);
     }
+    int none = 0;
     if (firstSignal.compare_exchange_strong(none, number)) {
         stopRequested.store(true);
         writeMessage("\ndrt: interrupted: finishing the tiles in progress, then saving the finished ones and a "
