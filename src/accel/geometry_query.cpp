@@ -4,6 +4,8 @@
 #include "accel/shapes.h"
 
 #include <cmath>
+#include <list>
+#include <memory>
 
 namespace drt {
 
@@ -58,17 +60,51 @@ bool insideObject(const Object& object, const Vec3& p) {
     return inside;
 }
 
+// Keeps what it built for the last few objects asked about (by identity):
+// a scene that traces one terrain from a loop builds its accelerator once.
 class AcceleratorQuery final : public SceneGeometryQuery {
 public:
-    std::optional<SurfaceHit> trace(const Object& object, const Vec3& origin, const Vec3& direction) override {
-        Scene scene;
-        scene.objects.push_back(object);
-        const Accelerator accel(scene);
+    std::optional<SurfaceHit> trace(const QueriedObject& object, const Vec3& origin, const Vec3& direction) override {
+        Entry& entry = find(object);
+        if (!entry.accel) entry.accel = std::make_unique<Accelerator>(*entry.scene);
         Hit hit;
-        if (!accel.intersect(Ray{origin, direction}, hit)) return std::nullopt;
+        if (!entry.accel->intersect(Ray{origin, direction}, hit)) return std::nullopt;
         return SurfaceHit{hit.point, hit.geometricNormal};
     }
-    bool inside(const Object& object, const Vec3& point) override { return insideObject(object, point); }
+    bool inside(const QueriedObject& object, const Vec3& point) override {
+        return insideObject(find(object).scene->objects.front(), point);
+    }
+
+private:
+    struct Entry {
+        std::shared_ptr<const void> identity;
+        std::unique_ptr<Scene> scene; // the object alone; the accelerator refers to it
+        std::unique_ptr<Accelerator> accel; // built at the first trace()
+    };
+    // How many objects' structures are kept (each may be a large mesh's BVH).
+    static constexpr size_t kKept = 8;
+
+    // The entry of `object`, most recently used first; an object without an
+    // identity gets a fresh entry that the next question replaces.
+    Entry& find(const QueriedObject& object) {
+        if (object.identity) {
+            for (auto it = recent_.begin(); it != recent_.end(); ++it)
+                if (it->identity == object.identity) {
+                    recent_.splice(recent_.begin(), recent_, it);
+                    return recent_.front();
+                }
+        }
+        if (!recent_.empty() && !recent_.front().identity) recent_.pop_front();
+        Entry entry;
+        entry.identity = object.identity;
+        entry.scene = std::make_unique<Scene>();
+        entry.scene->objects.push_back(object.make());
+        recent_.push_front(std::move(entry));
+        if (recent_.size() > kKept) recent_.pop_back();
+        return recent_.front();
+    }
+
+    std::list<Entry> recent_;
 };
 
 } // namespace

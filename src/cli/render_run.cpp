@@ -418,7 +418,8 @@ int renderWholeFrames(MpiJob& mpi, const std::vector<AnimationFrame>& frames, bo
     };
     FrameDistributionReport report;
     const int status =
-        renderFramesDistributed(mpi, int(frames.size()), render, finished, interrupt.flag(), &report);
+        renderFramesDistributed(mpi, int(frames.size()), render, finished, interrupt.flag(),
+                                [&interrupt] { return interrupt.exitStatus(); }, &report);
     if (mpi.rank() == 0 && !quiet) err << frameFigures(report);
     return status;
 }

@@ -36,7 +36,8 @@ bool wholeFramesPerRank(int frames, int ranks) {
 
 int renderFramesDistributed(MpiJob&, int, const std::function<FrameOutcome(int)>&,
                             const std::function<void(int, int, const FrameOutcome&)>&,
-                            const std::atomic<bool>*, FrameDistributionReport*) {
+                            const std::atomic<bool>*, const std::function<int()>&,
+                            FrameDistributionReport*) {
     throw RenderError("this drt was built without MPI");
 }
 
@@ -70,6 +71,10 @@ class FramePool {
     void close() {
         std::lock_guard lock(mutex_);
         closed_ = true;
+    }
+    bool allTaken() {
+        std::lock_guard lock(mutex_);
+        return next_ >= count_;
     }
 
   private:
@@ -120,7 +125,8 @@ std::vector<std::byte> intMessage(int value) {
 
 int coordinate(MpiJob& job, int count, const std::function<FrameOutcome(int)>& render,
                const std::function<void(int, int, const FrameOutcome&)>& finished,
-               const std::atomic<bool>* stop, FrameDistributionReport* report) {
+               const std::atomic<bool>* stop, const std::function<int()>& stoppedStatus,
+               FrameDistributionReport* report) {
     const size_t ranks = size_t(job.size());
     FramePool pool(count);
     std::vector<int> framesPerRank(ranks, 0);
@@ -180,6 +186,10 @@ int coordinate(MpiJob& job, int count, const std::function<FrameOutcome(int)>& r
                 pauseBriefly();
         }
     }
+    // Stopped before every frame was started: the job did not do what it was
+    // asked, even when every frame it started was written.
+    if (failure == 0 && stop && stop->load() && !pool.allTaken())
+        failure = stoppedStatus();
     for (size_t rank = 1; rank < ranks; ++rank)
         traffic.send(intMessage(failure), int(rank), kDone);
     traffic.flush();
@@ -244,9 +254,10 @@ int work(const std::function<FrameOutcome(int)>& render) {
 
 int renderFramesDistributed(MpiJob& job, int count, const std::function<FrameOutcome(int)>& render,
                             const std::function<void(int, int, const FrameOutcome&)>& finished,
-                            const std::atomic<bool>* stop, FrameDistributionReport* report) {
+                            const std::atomic<bool>* stop, const std::function<int()>& stoppedStatus,
+                            FrameDistributionReport* report) {
     if (job.rank() == 0)
-        return coordinate(job, count, render, finished, stop, report);
+        return coordinate(job, count, render, finished, stop, stoppedStatus, report);
     return work(render);
 }
 

@@ -48,9 +48,11 @@ bool wholeFramesPerRank(int frames, int ranks);
 // finishes. After a frame fails (non-zero status), or once `stop` (rank 0's,
 // may be null) is set, no frame is started; the frames in progress finish.
 // Returns on every rank the status of the first frame that failed (in the order
-// they finished), else 0. Collective; throws RenderError without MPI.
+// they finished), else `stoppedStatus()` if `stop` left frames unstarted, else 0.
+// Collective; throws RenderError without MPI.
 int renderFramesDistributed(MpiJob& job, int count, const std::function<FrameOutcome(int index)>& render,
                             const std::function<void(int index, int rank, const FrameOutcome&)>& finished,
-                            const std::atomic<bool>* stop, FrameDistributionReport* report = nullptr);
+                            const std::atomic<bool>* stop, const std::function<int()>& stoppedStatus,
+                            FrameDistributionReport* report = nullptr);
 
 } // namespace drt

@@ -446,8 +446,9 @@ Value Evaluator::traceOrInside(const Token& name) {
         if (normalOut) *normalOut = Value::makeVector(Vec3(0));
         return w == "inside" ? Value::makeFloat(0) : Value::makeVector(Vec3(0));
     }
-    ObjectValue copy = *object.object;
-    const Object model = placed(std::move(copy));
+    // The declared value does not change while it lives: the query may keep
+    // what it builds for it (a 500 x 500 height_field traced in a loop).
+    const QueriedObject model{object.object, [this, &object] { return placed(*object.object); }};
     if (w == "inside") return Value::makeFloat(options_.geometry->inside(model, a) ? 1 : 0);
     if (!(length(direction) > 0)) fail(name.loc, "'trace' needs a direction that is not zero");
     const std::optional<SurfaceHit> hit = options_.geometry->trace(model, a, direction);

@@ -8,6 +8,8 @@
 #include "core/vec.h"
 #include "scene/scene.h"
 
+#include <functional>
+#include <memory>
 #include <optional>
 
 namespace drt {
@@ -17,14 +19,25 @@ struct SurfaceHit {
     Vec3 normal; // unit, pointing out of the surface (not turned to face the ray)
 };
 
+// The object a question is about. `identity` is the same pointer for every
+// question about the same object, which does not change while the pointer
+// lives (the front end's declared value): what answering needs (an
+// accelerator) may be built once and kept. A null identity: built anew.
+// `make` gives the object placed in world space, when it is needed.
+struct QueriedObject {
+    std::shared_ptr<const void> identity;
+    std::function<Object()> make;
+};
+
 class SceneGeometryQuery {
 public:
     virtual ~SceneGeometryQuery() = default;
-    // The first point of `object` (placed in world space) along the ray from
-    // `origin` in `direction` (not necessarily unit length), or nothing.
-    virtual std::optional<SurfaceHit> trace(const Object& object, const Vec3& origin, const Vec3& direction) = 0;
-    // Whether `point` lies inside `object` (POV-Ray's inside()).
-    virtual bool inside(const Object& object, const Vec3& point) = 0;
+    // The first point of the object along the ray from `origin` in
+    // `direction` (not necessarily unit length), or nothing.
+    virtual std::optional<SurfaceHit> trace(const QueriedObject& object, const Vec3& origin,
+                                            const Vec3& direction) = 0;
+    // Whether `point` lies inside the object (POV-Ray's inside()).
+    virtual bool inside(const QueriedObject& object, const Vec3& point) = 0;
 };
 
 } // namespace drt
