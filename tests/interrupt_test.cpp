@@ -18,6 +18,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
+#include <tuple>
 #include <unistd.h>
 
 extern char** environ;
@@ -80,19 +81,22 @@ private:
     int status_ = -1;
 };
 
-ino_t inodeOf(const std::string& path) {
+// Which file `path` is now: its inode and its change time (a rename sets
+// it), so that an inode number freed and given again is still a new file.
+std::tuple<ino_t, time_t, long> versionOf(const std::string& path) {
     struct stat s {};
-    return ::stat(path.c_str(), &s) == 0 ? s.st_ino : 0;
+    if (::stat(path.c_str(), &s) != 0) return {0, 0, 0};
+    return {s.st_ino, s.st_ctim.tv_sec, s.st_ctim.tv_nsec};
 }
 
 // Waits until `path` has been (re)written `times` times (each checkpoint is a
 // new file renamed over the old one); false if the child exits first.
 bool waitForWrites(Child& child, const std::string& path, int times) {
-    ino_t last = inodeOf(path);
+    auto last = versionOf(path);
     for (int seen = 0; seen < times;) {
         if (!child.running()) return false;
-        const ino_t now = inodeOf(path);
-        if (now != 0 && now != last) ++seen, last = now;
+        const auto now = versionOf(path);
+        if (std::get<0>(now) != 0 && now != last) ++seen, last = now;
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
     return true;
@@ -108,7 +112,7 @@ std::vector<std::string> renderArgs(const std::string& output, bool adaptive) {
                                      "--threads", "1",
                                      "-q"};
     if (adaptive) {
-        for (const char* a : {"--adaptive", "--min-spp", "16", "--max-spp", "512", "--adaptive-error", "0.01"})
+        for (const char* a : {"--adaptive", "--min-spp", "16", "--max-spp", "512", "--adaptive-error", "0.005"})
             args.push_back(a);
     } else {
         args.insert(args.end(), {"--spp", "160"}); // long enough for several checkpoints

@@ -244,10 +244,11 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
     int status = kSuccess;
     {
         // A lone process quits on the first signal while it reads the scene;
-        // MPI ranks stop together at the first tile instead (a rank that quit
-        // alone would leave the others waiting in a collective).
+        // MPI ranks read on and stop together (a rank that quit alone would
+        // end the job before the others saved their checkpoints). That holds
+        // for a rank rendering whole frames too, which is given no MpiJob.
         std::optional<InterruptHandler::NothingToSave> quit;
-        if (!mpi) quit.emplace();
+        if (!mpi && !MpiJob::launched()) quit.emplace();
         status = prepare(command, rank0, messages, p);
     }
     if (mpi) {
