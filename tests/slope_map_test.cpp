@@ -120,7 +120,7 @@ const SlopeMapError kSlopeMapErrors[] = {
     {"Empty", "sphere { 0, 1 normal { bozo slope_map { } } }",
      "slope_map has no entries", 1, 29},
     {"NotAVector", "sphere { 0, 1 normal { bozo slope_map { [0 \"up\"] } } }",
-     "the entry's <height, slope> must be a vector", 1, 44},
+     "expected the entry's <height, slope>, found a string", 1, 44},
 };
 // clang-format on
 
