@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <limits>
 #include <random>
 
 namespace drt {
@@ -151,6 +152,53 @@ TEST(Packet, EveryShadowRayGetsTheAnswerItGetsAlone) {
     }
     EXPECT_GT(blocked, rays / 10); // some are blocked
     EXPECT_LT(blocked, rays - rays / 10); // and some are not
+}
+
+// A packet converts the interval and time that its rays share with ray 0
+// once (fillPacket): a lane whose own differ, alone or next to lanes that
+// share them, must still be traced with its own, for hits and shadow rays.
+TEST(Packet, LanesWithTheirOwnIntervalAndTimeKeepThem) {
+    const Scene scene = mixedScene();
+    const Accelerator accel(scene);
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double tMins[] = {0, -0.0, 0.5, 3, 7.25};
+    const double tMaxes[] = {1e30, 8, 9.5, 12, std::numeric_limits<double>::infinity()};
+    const double times[] = {0, 0.25, 0.5, 1, 2};
+    int differing = 0, hits = 0;
+    for (int packet = 0; packet < 300; ++packet) {
+        const int count = 2 + packet % (Accelerator::kPacketSize - 1);
+        const Vec3 eye{-1 + 2 * u(rng), 1 + u(rng), -8};
+        const Vec3 aim{-4 + 8 * u(rng), -1 + 4 * u(rng), 0};
+        Ray batch[Accelerator::kPacketSize];
+        for (int i = 0; i < count; ++i) {
+            Ray& r = batch[i];
+            r.origin = eye;
+            r.direction = aim + Vec3{0.3 * u(rng), 0.3 * u(rng), 0} - eye;
+            // Mostly the first ray's values, with some lanes of their own.
+            const bool own = i > 0 && u(rng) < 0.4;
+            r.tMin = own ? tMins[rng() % 5] : tMins[packet % 5];
+            r.tMax = own ? tMaxes[rng() % 5] : tMaxes[packet % 5];
+            r.time = own ? times[rng() % 5] : times[packet % 5];
+            differing += own;
+        }
+        Hit packed[Accelerator::kPacketSize];
+        bool found[Accelerator::kPacketSize];
+        accel.intersectPacket(batch, count, packed, found);
+        bool blocked[Accelerator::kPacketSize];
+        accel.occludedPacket(batch, count, blocked);
+        for (int i = 0; i < count; ++i) {
+            Hit alone;
+            const bool foundAlone = accel.intersect(batch[i], alone);
+            ASSERT_EQ(foundAlone, found[i]) << "packet " << packet << " ray " << i;
+            ASSERT_EQ(accel.occluded(batch[i]), blocked[i]) << "packet " << packet << " ray " << i;
+            if (!foundAlone) continue;
+            ++hits;
+            expectSameHit(alone, packed[i], i);
+        }
+    }
+    EXPECT_GT(differing, 300);
+    EXPECT_GT(hits, 300);
 }
 
 // The renderer traces the shadow rays of a packet's camera hits ahead

@@ -74,6 +74,36 @@ void fillRay(const Ray& ray, const AcceleratorState& state, RTCRay& r, unsigned 
     r.flags = 0;
 }
 
+// A packet's rays in Embree's layout (RTCRay8, or the ray of an RTCRayHit8),
+// each lane what fillRay makes of its ray. The lanes past `count` repeat ray 0
+// (Embree ignores them). A packet's rays mostly share their interval and time
+// (a pixel's camera rays, the shadow rays to one light): those are converted
+// once, and a lane whose values have the bits of ray 0's takes its floats.
+template <class Packet>
+void fillPacket(const Ray* rays, int count, const AcceleratorState& state, unsigned mask, Packet& packet) {
+    const Ray& first = rays[0];
+    const uint64_t tMinBits = std::bit_cast<uint64_t>(first.tMin), tMaxBits = std::bit_cast<uint64_t>(first.tMax),
+                   timeBits = std::bit_cast<uint64_t>(first.time);
+    const float tnear = atLeastZero(floatAtLeast(first.tMin)), tfar = floatAtMost(first.tMax),
+                time = float(clampToUnit(first.time));
+    for (int i = 0; i < Accelerator::kPacketSize; ++i) {
+        const Ray& ray = rays[i < count ? i : 0];
+        const Vec3 origin = state.shifted ? ray.origin - state.frameOrigin : ray.origin;
+        packet.org_x[i] = float(origin.x);
+        packet.org_y[i] = float(origin.y);
+        packet.org_z[i] = float(origin.z);
+        packet.dir_x[i] = float(ray.direction.x);
+        packet.dir_y[i] = float(ray.direction.y);
+        packet.dir_z[i] = float(ray.direction.z);
+        packet.tnear[i] = std::bit_cast<uint64_t>(ray.tMin) == tMinBits ? tnear : atLeastZero(floatAtLeast(ray.tMin));
+        packet.tfar[i] = std::bit_cast<uint64_t>(ray.tMax) == tMaxBits ? tfar : floatAtMost(ray.tMax);
+        packet.time[i] = std::bit_cast<uint64_t>(ray.time) == timeBits ? time : float(clampToUnit(ray.time));
+        packet.mask[i] = mask;
+        packet.id[i] = static_cast<unsigned>(i);
+        packet.flags[i] = 0;
+    }
+}
+
 Vec3 unitOr(const Vec3& v, const Vec3& fallback) {
     const double len = length(v);
     return len > 0 && std::isfinite(len) ? v / len : fallback;
@@ -309,22 +339,9 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
     lanes[0]->context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     alignas(32) RTCRayHit8 packet;
     alignas(32) int valid[kPacketSize];
+    fillPacket(rays, count, *impl_, 0xFFFFFFFFu, packet.ray);
     for (int i = 0; i < kPacketSize; ++i) {
         valid[i] = i < count ? -1 : 0;
-        RTCRay r;
-        fillRay(rays[i < count ? i : 0], *impl_, r, 0xFFFFFFFFu);
-        packet.ray.org_x[i] = r.org_x;
-        packet.ray.org_y[i] = r.org_y;
-        packet.ray.org_z[i] = r.org_z;
-        packet.ray.tnear[i] = r.tnear;
-        packet.ray.dir_x[i] = r.dir_x;
-        packet.ray.dir_y[i] = r.dir_y;
-        packet.ray.dir_z[i] = r.dir_z;
-        packet.ray.time[i] = r.time;
-        packet.ray.tfar[i] = r.tfar;
-        packet.ray.mask[i] = r.mask;
-        packet.ray.id[i] = static_cast<unsigned>(i);
-        packet.ray.flags[i] = 0;
         packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         packet.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
         packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
@@ -395,23 +412,8 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
     }
     alignas(32) RTCRay8 packet;
     alignas(32) int valid[kPacketSize];
-    for (int i = 0; i < kPacketSize; ++i) {
-        valid[i] = i < count ? -1 : 0;
-        RTCRay r;
-        fillRay(rays[i < count ? i : 0], *impl_, r, kShadowMask);
-        packet.org_x[i] = r.org_x;
-        packet.org_y[i] = r.org_y;
-        packet.org_z[i] = r.org_z;
-        packet.tnear[i] = r.tnear;
-        packet.dir_x[i] = r.dir_x;
-        packet.dir_y[i] = r.dir_y;
-        packet.dir_z[i] = r.dir_z;
-        packet.time[i] = r.time;
-        packet.tfar[i] = r.tfar;
-        packet.mask[i] = r.mask;
-        packet.id[i] = static_cast<unsigned>(i);
-        packet.flags[i] = 0;
-    }
+    fillPacket(rays, count, *impl_, kShadowMask, packet);
+    for (int i = 0; i < kPacketSize; ++i) valid[i] = i < count ? -1 : 0;
     rtcOccluded8(valid, impl_->top.scene, context, &packet);
     impl_->device.throwIfFailed("tracing a shadow ray packet");
     for (int i = 0; i < count; ++i) blocked[i] = packet.tfar[i] < 0;

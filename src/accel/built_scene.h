@@ -168,15 +168,19 @@ struct RayQuery {
     // geometry id of the top level), solved for on first need.
     unsigned instance = RTC_INVALID_GEOMETRY_ID;
     std::optional<Transform> instanceToWorld; // built in place, only for rays that reach a moving object
-    Vec3 instanceOrigin, instanceDirection;
+    // Set with instanceToWorld. The members in anonymous unions are left unset
+    // by the constructor (each is written before it is read): a packet makes
+    // 8 queries per pixel, and zeroing them was a tenth of its packing.
+    union { Vec3 instanceOrigin; };
+    union { Vec3 instanceDirection; };
     // The analytic crossing Embree accepted last: for a plain primitive in its
     // object space (objectCrossing: turned to level space once, for the hit
-    // that wins), else in level space (crossing).
+    // that wins), else in level space (crossing); set with hasCrossing.
     bool hasCrossing = false;
     bool objectSpace = false;
     unsigned primID = RTC_INVALID_GEOMETRY_ID, instID = RTC_INVALID_GEOMETRY_ID;
-    Crossing objectCrossing;
-    SurfaceCrossing crossing;
+    union { Crossing objectCrossing; };
+    union { SurfaceCrossing crossing; };
 
     RayQuery(const AcceleratorState& accelerator, const Vec3& rayOrigin, const Vec3& rayDirection); // accel_impl.h
     static RayQuery& of(RTCIntersectContext* context) { return *reinterpret_cast<RayQuery*>(context); }
