@@ -42,6 +42,8 @@ struct FidelityScene {
 //   leopard_normal   0.061 (normals tilted by the world-space gradient: steep at small scales)
 //   normal_gradient  0.077 (gradient normals were ignored)
 //   place_patterns   0.126 (planar, cylindrical and boxed were the average colour of their maps)
+//   slope_map        0.061 (a normal with a slope_map was left out; 0.039 with slopes per unit of
+//                    pattern value instead of per entry interval)
 //   waves            0.065 (invented wave sources and weights)
 const FidelityScene kScenes[] = {
     {"camera_along_sky", 0.01},
@@ -53,6 +55,7 @@ const FidelityScene kScenes[] = {
     {"leopard_normal", 0.015},
     {"normal_gradient", 0.02},
     {"place_patterns", 0.005},
+    {"slope_map", 0.02},
     {"waves", 0.025},
 };
 

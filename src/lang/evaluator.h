@@ -207,6 +207,7 @@ public:
     Material material(const Material& base);
     // After 'normal': the bump pattern, or none (POV-Ray dialect: a warning says why).
     std::optional<Normal> normalBlock(SourceLoc keyword, const std::optional<Normal>& base);
+    std::vector<SlopeMapEntry> slopeMap(SourceLoc keyword); // after 'slope_map'
     bool turbulenceItem(const Token& t, Turbulence& turbulence); // turbulence/octaves/omega/lambda
     bool waveItem(const Token& t, PatternWave& wave); // frequency/phase/wave types
     void warpBlock(const Token& t, Pigment& p);       // at 'warp'

@@ -2,6 +2,7 @@
 // brick and tiles of textures), pigment_map, material and normal. Map entries
 // hold a texture / pigment *body*: `[0.5 T_Stone scale 2]`, `[0.3 checker Red White]`.
 #include "lang/evaluator.h"
+#include "lang/mesh_syntax.h"
 
 namespace drt::lang {
 
@@ -350,6 +351,33 @@ std::optional<PatternKind> normalOnlyPattern(const std::string& word) {
 
 } // namespace
 
+// slope_map { [value, <height, slope>] ... }: values from 0 to 1, not decreasing.
+std::vector<SlopeMapEntry> Evaluator::slopeMap(SourceLoc keyword) {
+    expectSymbol("{", "after 'slope_map'");
+    BlockScope scope(*this, "slope_map", keyword);
+    std::vector<SlopeMapEntry> map;
+    for (;;) {
+        const Token t = next();
+        if (t.is("}")) break;
+        if (!t.is("[")) failInBlock(t, "'[' to start a slope_map entry, or '}'");
+        const SourceLoc loc = peek().loc;
+        SlopeMapEntry e;
+        {
+            FlagFor flag(countBeforeVector_); // [0 <1, 0>]: '<' starts the vector, not a comparison
+            e.value = floatExpr("the entry's value");
+        }
+        if (!map.empty() && e.value < map.back().value) refuse(loc, "slope_map values must not decrease" + got(e.value));
+        acceptSymbol(",");
+        const Vec3 hs = vectorExpr("the entry's <height, slope>");
+        e.height = hs.x;
+        e.slope = hs.y;
+        expectSymbol("]", "to end the slope_map entry");
+        map.push_back(e);
+    }
+    if (map.empty()) fail(keyword, "slope_map has no entries");
+    return map;
+}
+
 std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optional<Normal>& base) {
     DepthGuard guard(*this, keyword);
     expectSymbol("{", "after 'normal'");
@@ -425,6 +453,12 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 continue;
             }
             if (turbulenceItem(t, n.turbulence) || waveItem(t, n.wave)) {
+                first = false;
+                continue;
+            }
+            if (t.text == "slope_map") {
+                next();
+                n.slopeMap = slopeMap(t.loc);
                 first = false;
                 continue;
             }

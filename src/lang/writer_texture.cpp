@@ -111,6 +111,12 @@ std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& e
         pattern = fractalHead(*n.fractal) + ",";
         modifiers = fractalModifiers(*n.fractal);
     }
+    if (!n.slopeMap.empty()) {
+        modifiers += " slope_map {";
+        for (const SlopeMapEntry& e : n.slopeMap)
+            modifiers += " [" + number(e.value) + " <" + number(e.height) + ", " + number(e.slope) + ">]";
+        modifiers += " }";
+    }
     return std::string(n.uvMapping ? " uv_mapping " : " ") + pattern + " " + number(n.amount) + modifiers +
            turbulenceText(n.turbulence) + waveText(n.wave) + formatSteps(own);
 }

@@ -65,6 +65,11 @@ double noisePatternValue(PatternKind kind, const Turbulence& turbulence, const V
 // So scaling a pattern down makes its bumps smaller, not steeper. `normal`
 // must be unit length; the result is unit length and never NaN.
 Vec3 perturbNormal(const Normal& bump, const Vec3& worldPoint, const Vec3& normal);
+// The height a slope_map gives pattern value v: below the first entry its
+// height, above the last entry that one's, between two entries the cubic
+// Hermite curve through their heights with their slopes per unit of the
+// interval (POV-Ray's rule: [0 <0, 1>] [1 <1, 1>] is the straight ramp).
+double slopeMapHeight(const std::vector<SlopeMapEntry>& map, double v);
 // The same for a uv-mapped normal (Normal::uvMapping): the pattern at the
 // surface's (u, v, 0), its tilt carried to the surface by the tangent frame
 // dpdu, dpdv (Hit) with the normal as third axis, stretched by the frame's mean

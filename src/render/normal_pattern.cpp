@@ -12,7 +12,8 @@
 //   (s_i, f_i: the ten wave sources; d_i = |q - s_i|; F the frequency)
 // - any other pattern v: its slope, from the four vertices t_k of a regular
 //   tetrahedron, n_p += sum_k v(q + delta t_k) (-5 a 0.02 / delta) t_k with
-//   delta the accuracy; for small delta that is -(0.4 / 3) a grad v.
+//   delta the accuracy; for small delta that is -(0.4 / 3) a grad v. With a
+//   slope_map, v is replaced by the height the map gives it.
 #include "render/noise.h"
 #include "render/pattern_wave.h"
 #include "render/pigment.h"
@@ -47,9 +48,14 @@ Vec3 waveNormal(const Normal& bump, const Vec3& q, bool waves) {
 // The pattern's value at pattern-space point q (already warped), as the
 // slope method samples it.
 double slopeValue(const Normal& bump, const Pigment& shape, const Vec3& q) {
-    if (isNoisePattern(bump.pattern)) return noisePatternAtWarped(bump.pattern, bump.turbulence, bump.wave, q);
-    const PatternSample s = samplePatternAt(shape, q);
-    return s.block ? applyPatternWave(bump.wave, s.index) : s.value;
+    double v;
+    if (isNoisePattern(bump.pattern)) {
+        v = noisePatternAtWarped(bump.pattern, bump.turbulence, bump.wave, q);
+    } else {
+        const PatternSample s = samplePatternAt(shape, q);
+        v = s.block ? applyPatternWave(bump.wave, s.index) : s.value;
+    }
+    return bump.slopeMap.empty() ? v : slopeMapHeight(bump.slopeMap, v);
 }
 
 Vec3 perturbation(const Normal& bump, const Vec3& q) {
@@ -87,6 +93,20 @@ Vec3 perturbation(const Normal& bump, const Vec3& q) {
 }
 
 } // namespace
+
+double slopeMapHeight(const std::vector<SlopeMapEntry>& map, double v) {
+    if (map.empty()) return v;
+    if (!(v > map.front().value)) return map.front().height; // NaN too
+    for (std::size_t i = 1; i < map.size(); ++i) {
+        const SlopeMapEntry& hi = map[i];
+        if (v > hi.value) continue;
+        const SlopeMapEntry& lo = map[i - 1]; // lo.value < v <= hi.value
+        const double t = (v - lo.value) / (hi.value - lo.value), t2 = t * t, t3 = t2 * t;
+        return lo.height * (2 * t3 - 3 * t2 + 1) + lo.slope * (t3 - 2 * t2 + t) + hi.height * (3 * t2 - 2 * t3) +
+               hi.slope * (t3 - t2);
+    }
+    return map.back().height;
+}
 
 Vec3 perturbNormal(const Normal& bump, const Vec3& worldPoint, const Vec3& normal) {
     if (!(bump.amount != 0) || !std::isfinite(bump.amount)) return normal;

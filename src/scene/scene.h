@@ -145,6 +145,14 @@ struct Finish {
     double crand = 0;
 };
 
+// A slope_map entry: at pattern value `value` the bump height is `height` and
+// its slope `slope` (per unit of the interval to the neighbouring entry).
+struct SlopeMapEntry {
+    double value = 0;
+    double height = 0;
+    double slope = 0;
+};
+
 // A normal pattern (POV-Ray `normal { bumps 0.4 scale 0.2 }`), with
 // POV-Ray's rules (render/normal_pattern.cpp): bumps, dents, wrinkles,
 // ripples and waves have formulas of their own; every other pattern tilts the
@@ -159,6 +167,9 @@ struct Normal {
     std::shared_ptr<const Function> function; // Function
     std::shared_ptr<const FractalPattern> fractal; // Fractal
     double accuracy = 0.02;     // POV-Ray's `accuracy`: the slope's sample spacing
+    // slope_map: the slope method samples the height this map gives the
+    // pattern value (cubic Hermite between entries) instead of the value itself.
+    std::vector<SlopeMapEntry> slopeMap;
     // uv_mapping: the pattern lives in the surface's uv space (u, v, 0), which
     // the object's transforms do not move; its tilt is carried to the surface by
     // the uv tangent frame (render/normal_pattern.h). Surfaces without uv

@@ -19,8 +19,8 @@ syn keyword drtBlock cylinder density disc face_indices finish fog global_settin
 syn keyword drtBlock image_map interior isosurface lathe light_source media mesh mesh2
 syn keyword drtBlock motion normal normal_indices normal_vectors object pattern pigment pigment_map
 syn keyword drtBlock plane poly prism quadric quartic render scattering sky_sphere
-syn keyword drtBlock smooth_triangle sor sphere superellipsoid text texture texture_list texture_map
-syn keyword drtBlock tiles torus triangle uv_indices uv_vectors vertex_vectors
+syn keyword drtBlock slope_map smooth_triangle sor sphere superellipsoid text texture texture_list
+syn keyword drtBlock texture_map tiles torus triangle uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections ambient
 syn keyword drtKeyword ambient_light angle aperture append area_illumination area_light area_sampling array
 syn keyword drtKeyword assumed_gamma at average bezier_spline blue boxed bozo brick
