@@ -338,12 +338,21 @@ inline void topAnalyticHit(const AcceleratorState& state, const RayQuery& query,
     hit.frameUnit = p.frameUnit > 0 ? p.frameUnit : state.sceneUnit;
 }
 
+// The primitive of Embree's hit (instID, primID, geomID) if topAnalyticHit
+// makes its record: an analytic one at the top level whose crossing the
+// callback left in the query. Else null.
+inline const Primitive* shortWayPrimitive(const AcceleratorState& state, const RayQuery& query, unsigned instID,
+                                          unsigned primID, unsigned geomID) {
+    if (instID == RTC_INVALID_GEOMETRY_ID && query.hasCrossing && query.instID == RTC_INVALID_GEOMETRY_ID &&
+        query.primID == primID && state.top.geometries[geomID].kind == GeometryKind::Analytic)
+        return &state.top.primitives[primID];
+    return nullptr;
+}
+
 // accel::hitFromEmbree, inline in the queries.
 inline void hitRecord(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit) {
-    if (rayhit.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && query.hasCrossing && query.instID == RTC_INVALID_GEOMETRY_ID &&
-        query.primID == rayhit.hit.primID &&
-        state.top.geometries[rayhit.hit.geomID].kind == GeometryKind::Analytic) {
-        topAnalyticHit(state, query, state.top.primitives[rayhit.hit.primID], hit);
+    if (const Primitive* p = shortWayPrimitive(state, query, rayhit.hit.instID[0], rayhit.hit.primID, rayhit.hit.geomID)) {
+        topAnalyticHit(state, query, *p, hit);
         return;
     }
     generalHit(state, query, rayhit, hit);
@@ -399,7 +408,13 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
     for (int i = 0; i < count; ++i) {
         found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
         if (!found[i]) continue;
-        // Lane i as the single-ray record hitFromEmbree reads.
+        // hitRecord, reading the lane in place where it takes the short way.
+        if (const Primitive* p = shortWayPrimitive(*impl_, *lanes[i], packet.hit.instID[0][i], packet.hit.primID[i],
+                                                   packet.hit.geomID[i])) {
+            topAnalyticHit(*impl_, *lanes[i], *p, hits[i]);
+            continue;
+        }
+        // Lane i as the single-ray record generalHit reads.
         RTCRayHit rayhit;
         rayhit.ray.time = packet.ray.time[i];
         rayhit.ray.tfar = packet.ray.tfar[i];
@@ -411,7 +426,7 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
         rayhit.hit.primID = packet.hit.primID[i];
         rayhit.hit.geomID = packet.hit.geomID[i];
         rayhit.hit.instID[0] = packet.hit.instID[0][i];
-        hitRecord(*impl_, *lanes[i], rayhit, hits[i]);
+        generalHit(*impl_, *lanes[i], rayhit, hits[i]);
     }
 }
 
