@@ -1,6 +1,7 @@
 // Tests of the Embree wrapper (src/accel): every shape against hand-computed
 // hits, CSG, shadows, motion, errors and self-intersection at several scales.
 #include "accel/accel.h"
+#include "accel/accel_impl.h"
 #include "accel/built_scene.h"
 #include "accel/motion.h"
 #include "accel/polynomial.h"
@@ -9,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -67,6 +69,134 @@ TEST(Polynomial, QuarticWithCloseRoots) {
 }
 
 // ---------------------------------------------------------------- shapes
+
+// Accelerator::offsetOrigin as it was written before it was vectorised (one
+// coordinate at a time): the reference the inline SSE2 version must equal.
+Vec3 scalarOffsetOrigin(const Hit& hit, const Vec3& direction) {
+    const double unit = hit.frameUnit > 0 && hit.frameUnit <= 1 ? hit.frameUnit : 1.0;
+    const float nearZero = float(unit / 32.0);
+    const float absoluteScale = float(unit / 65536.0);
+    const bool shifted = hit.frameOrigin.x != 0 || hit.frameOrigin.y != 0 || hit.frameOrigin.z != 0;
+    const Vec3 point = shifted ? hit.point - hit.frameOrigin : hit.point;
+    const Vec3 n = dot(hit.geometricNormal, direction) < 0 ? -hit.geometricNormal : hit.geometricNormal;
+    Vec3 out;
+    for (int i = 0; i < 3; ++i) {
+        const float p = float(point[i]);
+        const float ni = float(n[i]);
+        if (std::fabs(p) < nearZero) {
+            out[i] = p + absoluteScale * ni;
+            continue;
+        }
+        const int32_t ulps = static_cast<int32_t>(256.0f * ni);
+        const int32_t bits = std::bit_cast<int32_t>(p);
+        out[i] = std::bit_cast<float>(bits + (p < 0 ? -ulps : ulps));
+    }
+    return shifted ? out + hit.frameOrigin : out;
+}
+
+// Points at every scale, on both sides of zero and within the near-zero band
+// (and exactly +-0), shifted frames and object sizes, normals along the axes
+// and not, rays leaving on both sides: the same bits as the scalar loop.
+TEST(Accel, OffsetOriginIsTheScalarOnesToTheBit) {
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const double scales[] = {0, 1e-9, 1e-5, 0.01, 0.03, 1, 7, 1e3, 1e6};
+    const double units[] = {1, 0.5, 1.0 / 64, 1.0 / 4096, 0, 2};
+    int near = 0, far = 0;
+    for (int k = 0; k < 200000; ++k) {
+        Hit hit;
+        for (int i = 0; i < 3; ++i) {
+            const double scale = scales[rng() % std::size(scales)];
+            hit.point[i] = k % 97 == i ? (k % 2 ? -0.0 : 0.0) : scale * u(rng);
+        }
+        Vec3 n = k % 5 == 0 ? Vec3{} : test::randomUnitVector(rng);
+        if (k % 5 == 0) n[int(rng() % 3)] = rng() % 2 ? 1 : -1;
+        if (k % 11 == 0) n[int(rng() % 3)] = 1e-9; // a component that rounds to no ulps
+        hit.geometricNormal = n;
+        hit.frameUnit = units[rng() % std::size(units)];
+        if (k % 3 == 0) hit.frameOrigin = {1e5 * u(rng), 0, -3e4};
+        const Vec3 direction = test::randomUnitVector(rng);
+        const Vec3 fast = Accelerator::offsetOrigin(hit, direction);
+        const Vec3 reference = scalarOffsetOrigin(hit, direction);
+        for (int i = 0; i < 3; ++i) {
+            ASSERT_EQ(std::bit_cast<uint64_t>(reference[i]), std::bit_cast<uint64_t>(fast[i]))
+                << "case " << k << " coordinate " << i << ": " << reference[i] << " vs " << fast[i];
+            (std::fabs(float(hit.point[i] - (k % 3 == 0 ? hit.frameOrigin[i] : 0))) < 1.0 / 32 ? near : far)++;
+        }
+    }
+    EXPECT_GT(near, 50000);
+    EXPECT_GT(far, 50000);
+}
+
+// accel::hitFromEmbree takes a short way for an analytic shape at the top
+// level whose crossing the callback solved: it must give the record
+// generalHit gives, to the bit, for plain and clipped shapes, with and
+// without a transform, inverted, in a scene traced in a shifted frame or not,
+// beside triangles and CSG (which take the general way).
+TEST(Accel, ShortWayHitsAreTheGeneralOnesToTheBit) {
+    for (const Vec3 shift : {Vec3{}, Vec3{1e5, -3e4, 2e5}}) {
+        std::vector<Object> objects;
+        objects.push_back(makeObject(Plane{{0, 1, 0}, -1}));
+        objects.push_back(makeObject(Sphere{{0, 0, 0}, 1}));
+        objects.push_back(makeObject(Sphere{{0, 0, 0}, 1}, Transform::scale({2, 0.5, 1}).then(Transform::translate({3, 0, 1}))));
+        Object inverted = makeObject(Sphere{{-3, 0, 1}, 1.2});
+        inverted.inverse = true;
+        objects.push_back(inverted);
+        Object clipped = makeObject(Sphere{{0, 0, 0}, 1}, Transform::translate({3, 2.5, 0}));
+        clipped.clippedBy.push_back(makeObject(Plane{{1, 0, 0}, 3}));
+        objects.push_back(clipped);
+        objects.push_back(makeObject(Torus{1, 0.3}, Transform::translate({0, 0, 4})));
+        Csg difference{Csg::Op::Difference, {makeObject(Sphere{{0, 0, 0}, 1}), makeObject(Box{{0, -2, -2}, {2, 2, 2}})}};
+        objects.push_back(makeObject(difference, Transform::translate({0, 2.5, 0})));
+        objects.push_back(makeObject(Box{{-1, -1, -1}, {1, 1, 1}}, Transform::translate({-3, 2.5, 0})));
+        for (Object& object : objects) object.transform = object.transform.then(Transform::translate(shift));
+        const Scene scene = test::sceneOf(std::move(objects));
+        accel::AcceleratorState state;
+        accel::buildScene(scene, state);
+        ASSERT_EQ(state.shifted, shift.x != 0);
+        std::mt19937 rng(23);
+        std::uniform_real_distribution<double> u(0, 1);
+        int shortWay = 0, hits = 0;
+        for (int k = 0; k < 20000; ++k) {
+            const Vec3 origin = shift + Vec3{-6 + 12 * u(rng), -0.5 + 5 * u(rng), -9 + 3 * u(rng)};
+            const Vec3 direction = shift + Vec3{-5 + 10 * u(rng), -1 + 4 * u(rng), 2 * u(rng)} - origin;
+            accel::RayQuery query(state, origin, direction);
+            RTCRayHit rayhit;
+            const Vec3 o = origin - state.frameOrigin;
+            rayhit.ray = {float(o.x), float(o.y), float(o.z), 0, float(direction.x), float(direction.y), float(direction.z),
+                          0, INFINITY, 0xFFFFFFFFu, 0, 0};
+            rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(state.top.scene, &query.context, &rayhit);
+            if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+            ++hits;
+            shortWay += state.top.geometries[rayhit.hit.geomID].kind == accel::GeometryKind::Analytic && query.hasCrossing;
+            Hit fast, general;
+            fast.hasUv = general.hasUv = true; // what a reused record may hold
+            fast.instance = general.instance = 3;
+            accel::hitFromEmbree(state, query, rayhit, fast);
+            accel::generalHit(state, query, rayhit, general);
+            const auto same = [&](const Vec3& a, const Vec3& b, const char* what) {
+                for (int i = 0; i < 3; ++i)
+                    ASSERT_EQ(std::bit_cast<uint64_t>(a[i]), std::bit_cast<uint64_t>(b[i])) << what << ", ray " << k;
+            };
+            ASSERT_EQ(std::bit_cast<uint64_t>(fast.t), std::bit_cast<uint64_t>(general.t)) << "ray " << k;
+            same(fast.point, general.point, "point");
+            same(fast.geometricNormal, general.geometricNormal, "geometric normal");
+            same(fast.shadingNormal, general.shadingNormal, "shading normal");
+            same(fast.restPoint, general.restPoint, "rest point");
+            same(fast.frameOrigin, general.frameOrigin, "frame origin");
+            same(fast.uv, general.uv, "uv");
+            ASSERT_EQ(fast.object, general.object) << "ray " << k;
+            ASSERT_EQ(fast.primitive, general.primitive) << "ray " << k;
+            ASSERT_EQ(fast.hasUv, general.hasUv) << "ray " << k;
+            ASSERT_EQ(fast.instance, general.instance) << "ray " << k;
+            ASSERT_EQ(fast.frameUnit, general.frameUnit) << "ray " << k;
+            ASSERT_EQ(fast.cornerTextures, general.cornerTextures) << "ray " << k;
+        }
+        EXPECT_GT(shortWay, 3000);
+        EXPECT_GT(hits - shortWay, 1000); // the box (triangles) takes the general way
+    }
+}
 
 TEST(Accel, SphereHitFromOutsideAndInside) {
     const Scene accelScene = sceneOf({makeObject(Sphere{{0, 0, 0}, 1})});

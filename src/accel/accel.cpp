@@ -183,8 +183,15 @@ void uvTangents(const IndexedMesh& m, uint32_t prim, bool swapped, const Vec3& p
 }
 
 // The hit record of the hit Embree found for the query's ray (rayhit: its
-// ray and hit as Embree left them, geomID valid).
-void hitFromEmbree(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit) {
+// ray and hit as Embree left them, geomID valid): any hit (generalHit), or an
+// analytic shape's at the top level, solved in double by the callback (the
+// most common; topAnalyticHit, the same arithmetic without the cases it
+// cannot be).
+} // namespace
+
+namespace accel {
+
+[[gnu::noinline]] void generalHit(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit) {
     hit.hasUv = false;
     hit.uv = {};
     hit.cornerTextures = {};
@@ -305,7 +312,57 @@ void hitFromEmbree(const AcceleratorState& state, RayQuery& query, const RTCRayH
     hit.frameUnit = frameUnit > 0 ? frameUnit : state.sceneUnit;
 }
 
+} // namespace accel
+
+namespace {
+
+// generalHit's result for a top-level analytic hit whose crossing the
+// callback left in the query.
+inline void topAnalyticHit(const AcceleratorState& state, const RayQuery& query, const Primitive& p, Hit& hit) {
+    const SurfaceCrossing c = query.objectSpace ? levelCrossing(p, query.objectCrossing) : query.crossing;
+    const Vec3& d = query.direction;
+    hit.t = c.t;
+    const Vec3 point = query.origin + c.t * d;
+    const double len = length(c.normal);
+    hit.geometricNormal = len > 0 && std::isfinite(len) ? c.normal / len : unitOr(-d, {0, 1, 0});
+    hit.shadingNormal = hit.geometricNormal;
+    hit.object = c.object;
+    hit.primitive = 0;
+    hit.hasUv = false;
+    hit.uv = {};
+    hit.cornerTextures = {};
+    hit.instance = -1;
+    hit.point = state.shifted ? point + state.frameOrigin : point;
+    hit.restPoint = hit.point;
+    hit.frameOrigin = state.shifted ? state.frameOrigin : Vec3{};
+    hit.frameUnit = p.frameUnit > 0 ? p.frameUnit : state.sceneUnit;
+}
+
+// The primitive of Embree's hit (instID, primID, geomID) if topAnalyticHit
+// makes its record: an analytic one at the top level whose crossing the
+// callback left in the query. Else null.
+inline const Primitive* shortWayPrimitive(const AcceleratorState& state, const RayQuery& query, unsigned instID,
+                                          unsigned primID, unsigned geomID) {
+    if (instID == RTC_INVALID_GEOMETRY_ID && query.hasCrossing && query.instID == RTC_INVALID_GEOMETRY_ID &&
+        query.primID == primID && state.top.geometries[geomID].kind == GeometryKind::Analytic)
+        return &state.top.primitives[primID];
+    return nullptr;
+}
+
+// accel::hitFromEmbree, inline in the queries.
+inline void hitRecord(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit) {
+    if (const Primitive* p = shortWayPrimitive(state, query, rayhit.hit.instID[0], rayhit.hit.primID, rayhit.hit.geomID)) {
+        topAnalyticHit(state, query, *p, hit);
+        return;
+    }
+    generalHit(state, query, rayhit, hit);
+}
+
 } // namespace
+
+void accel::hitFromEmbree(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit) {
+    hitRecord(state, query, rayhit, hit);
+}
 
 bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     RayQuery query(*impl_, ray.origin, ray.direction);
@@ -317,7 +374,7 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     rtcIntersect1(impl_->top.scene, &query.context, &rayhit);
     impl_->device.throwIfFailed("tracing a ray");
     if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    hitFromEmbree(*impl_, query, rayhit, hit);
+    hitRecord(*impl_, query, rayhit, hit);
     return true;
 }
 
@@ -351,7 +408,13 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
     for (int i = 0; i < count; ++i) {
         found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
         if (!found[i]) continue;
-        // Lane i as the single-ray record hitFromEmbree reads.
+        // hitRecord, reading the lane in place where it takes the short way.
+        if (const Primitive* p = shortWayPrimitive(*impl_, *lanes[i], packet.hit.instID[0][i], packet.hit.primID[i],
+                                                   packet.hit.geomID[i])) {
+            topAnalyticHit(*impl_, *lanes[i], *p, hits[i]);
+            continue;
+        }
+        // Lane i as the single-ray record generalHit reads.
         RTCRayHit rayhit;
         rayhit.ray.time = packet.ray.time[i];
         rayhit.ray.tfar = packet.ray.tfar[i];
@@ -363,7 +426,7 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
         rayhit.hit.primID = packet.hit.primID[i];
         rayhit.hit.geomID = packet.hit.geomID[i];
         rayhit.hit.instID[0] = packet.hit.instID[0][i];
-        hitFromEmbree(*impl_, *lanes[i], rayhit, hits[i]);
+        generalHit(*impl_, *lanes[i], rayhit, hits[i]);
     }
 }
 
@@ -417,43 +480,6 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
     rtcOccluded8(valid, impl_->top.scene, context, &packet);
     impl_->device.throwIfFailed("tracing a shadow ray packet");
     for (int i = 0; i < count; ++i) blocked[i] = packet.tfar[i] < 0;
-}
-
-// Waechter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection"
-// (Ray Tracing Gems, ch. 6): move each float coordinate of the point by
-// int(256 n_i) units in the last place, in the direction of n_i, so the offset
-// grows with the coordinate's magnitude; coordinates within u/32 of zero, where
-// ulps become tiny, move by the absolute amount u n_i / 65536 instead. Their
-// u = 1 assumes objects of unit size; u = Hit::frameUnit scales it to the
-// object hit (so a 1e-4 object is not pushed 15% of its size away), and the
-// coordinates are Embree's (world minus Hit::frameOrigin), whose float
-// rounding is what the offset must beat. n is the geometric normal turned to
-// the side the new ray leaves on.
-Vec3 Accelerator::offsetOrigin(const Hit& hit, const Vec3& direction) {
-    const double unit = hit.frameUnit > 0 && hit.frameUnit <= 1 ? hit.frameUnit : 1.0;
-    const float nearZero = float(unit / 32.0);
-    const float absoluteScale = float(unit / 65536.0);
-    constexpr float kUlpScale = 256.0f;
-    const bool shifted = hit.frameOrigin.x != 0 || hit.frameOrigin.y != 0 || hit.frameOrigin.z != 0;
-    const Vec3 point = shifted ? hit.point - hit.frameOrigin : hit.point;
-    const Vec3 n = dot(hit.geometricNormal, direction) < 0 ? -hit.geometricNormal : hit.geometricNormal;
-    Vec3 out;
-    for (int i = 0; i < 3; ++i) {
-        const float p = float(point[i]);
-        const float ni = float(n[i]);
-        if (std::fabs(p) < nearZero) {
-            out[i] = p + absoluteScale * ni;
-            continue;
-        }
-        // For positive floats a larger bit pattern is a larger value; for
-        // negative ones, a larger magnitude. So step toward +n_i accordingly.
-        const int32_t ulps = static_cast<int32_t>(kUlpScale * ni);
-        const int32_t bits = std::bit_cast<int32_t>(p);
-        out[i] = std::bit_cast<float>(bits + (p < 0 ? -ulps : ulps));
-    }
-    // A float plus the frame origin is exact in double unless the float is
-    // below the origin's ulp (then it is rounded to that ulp, ~1e-16 |origin|).
-    return shifted ? out + hit.frameOrigin : out;
 }
 
 bool Accelerator::hasMotion() const { return impl_->anyMotion; }

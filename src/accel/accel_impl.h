@@ -48,6 +48,13 @@ double frameUnitFor(double extent);
 
 // Fills state from the scene and commits every Embree scene. Throws RenderError.
 void buildScene(const Scene& scene, AcceleratorState& state);
+
+// The hit record of the hit Embree found for the query's ray (rayhit: its ray
+// and hit as Embree left them, geomID valid; accel.cpp). generalHit handles
+// every case; hitFromEmbree gives the same record, by a short way for an
+// analytic shape at the top level whose crossing the callback solved.
+void hitFromEmbree(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit);
+void generalHit(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit);
 } // namespace accel
 
 struct Accelerator::Impl : accel::AcceleratorState {};

@@ -134,18 +134,17 @@ void RayQuery::instanceRay(unsigned instID, double time, Vec3& o, Vec3& d) {
     d = instanceDirection;
 }
 
-// One ray (lane i of the callback's N) against the primitive: if it crosses it
-// within the ray's interval, the crossing goes into the ray's query and
-// Embree's hit record.
-static void intersectLane(const RTCIntersectFunctionNArguments* args, const Primitive& p, unsigned i) {
-    const unsigned N = args->N;
+// One ray (lane i of the callback's N) against the primitive, in the level's
+// space (o, d): if it crosses it within the ray's interval, the crossing goes
+// into the ray's query and Embree's hit record. Inline, and N a constant for
+// the packets' N = 8 (intersectCallback): Embree's lanes are then at fixed
+// offsets.
+[[gnu::always_inline]] inline void intersectLane(const RTCIntersectFunctionNArguments* args, unsigned N,
+                                                 const Primitive& p, unsigned i, RayQuery& query, unsigned instID,
+                                                 const Vec3& o, const Vec3& d) {
     RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, N);
-    RayQuery& query = RayQuery::of(args->context).lane(RTCRayN_id(ray, N, i));
-    const unsigned instID = args->context->instID[0];
     const float tnear = RTCRayN_tnear(ray, N, i);
     float& tfar = RTCRayN_tfar(ray, N, i);
-    Vec3 o, d;
-    query.levelRay(instID, RTCRayN_time(ray, N, i), o, d);
     Vec3 normal; // level or object space: only for Embree's record, the hit is rebuilt from the query
     if (p.plain) {
         Crossing& c = query.objectCrossing; // written only if found
@@ -173,21 +172,42 @@ static void intersectLane(const RTCIntersectFunctionNArguments* args, const Prim
     RTCHitN_instID(hit, N, i, 0) = instID;
 }
 
+// The valid lanes of the callback's N (kN, or args->N if kN is 0). At the top
+// level a ray's query holds it as is; in a moving object's level it is moved
+// there (RayQuery::levelRay).
+template <unsigned kN>
+void intersectLanes(const RTCIntersectFunctionNArguments* args, const Primitive& p) {
+    const unsigned N = kN ? kN : args->N;
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, N);
+    RayQuery& first = RayQuery::of(args->context);
+    const unsigned instID = args->context->instID[0];
+    for (unsigned i = 0; i < N; ++i) {
+        if (!args->valid[i]) continue;
+        RayQuery& query = first.lane(RTCRayN_id(ray, N, i));
+        if (instID == RTC_INVALID_GEOMETRY_ID) {
+            intersectLane(args, N, p, i, query, instID, query.origin, query.direction);
+        } else {
+            Vec3 o, d;
+            query.levelRay(instID, RTCRayN_time(ray, N, i), o, d);
+            intersectLane(args, N, p, i, query, instID, o, d);
+        }
+    }
+}
+
 static void intersectCallback(const RTCIntersectFunctionNArguments* args) {
     const auto* level = static_cast<const Level*>(args->geometryUserPtr);
     const Primitive& p = level->primitives[args->primID];
-    for (unsigned i = 0; i < args->N; ++i)
-        if (args->valid[i]) intersectLane(args, p, i);
+    if (args->N == 8) intersectLanes<8>(args, p);
+    else intersectLanes<0>(args, p);
 }
 
-static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
-    const auto* level = static_cast<const Level*>(args->geometryUserPtr);
-    const Primitive& p = level->primitives[args->primID];
-    if (p.noShadow) return;
-    const unsigned N = args->N;
+// Inside a moving object the ray comes from its query, moved into this level
+// in double (Accelerator::occluded); at the top level it is Embree's. N as in
+// intersectLanes.
+template <unsigned kN>
+void occludedLanes(const RTCOccludedFunctionNArguments* args, const Primitive& p) {
+    const unsigned N = kN ? kN : args->N;
     RTCRayN* ray = args->ray;
-    // Inside a moving object the ray comes from its query, moved into this
-    // level in double (Accelerator::occluded); at the top level it is Embree's.
     const unsigned instID = args->context->instID[0];
     for (unsigned i = 0; i < N; ++i) {
         if (!args->valid[i]) continue;
@@ -208,6 +228,14 @@ static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
         SurfaceCrossing c;
         if (nearestCrossing(p, o, d, tnear, tfar, c) && !c.object->noShadow) tfar = -INFINITY;
     }
+}
+
+static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
+    const auto* level = static_cast<const Level*>(args->geometryUserPtr);
+    const Primitive& p = level->primitives[args->primID];
+    if (p.noShadow) return;
+    if (args->N == 8) occludedLanes<8>(args, p);
+    else occludedLanes<0>(args, p);
 }
 
 void attachPrimitives(RTCDevice device, Level& level) {
