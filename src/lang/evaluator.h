@@ -170,6 +170,8 @@ public:
     std::shared_ptr<const Function> patternFunction(const Token& keyword);
     // A call of the declared function `f` (named `name`, consumed): its arguments, then its value.
     Value callFunction(const Token& name, const Function& f);
+    std::shared_ptr<const Spline> splineBlock(SourceLoc keyword); // after 'spline'
+    Value callSpline(const Token& name, const Spline& s);          // at '(' after a spline's name
     std::string declaringName_; // the name a #declare is giving a value, while it is read
     Value primary();
     Value postfix(Value v, SourceLoc loc);

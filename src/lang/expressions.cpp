@@ -33,6 +33,7 @@ std::string kindName(Value::Kind kind) {
     case Kind::SkySphere: return "a sky_sphere";
     case Kind::Media: return "a media";
     case Kind::Function: return "a function";
+    case Kind::Spline: return "a spline";
     }
     return "a value";
 }

@@ -156,10 +156,24 @@ private:
         return c;
     }
 
+    // An optional ".x" (.y .z .t .u .v) after a call of a spline: its component.
+    int componentSuffix(int terms) {
+        if (!e_.peekOperator().is(".")) return 0;
+        e_.next();
+        const Token member = e_.expectWord("a component name after '.'");
+        const std::string& m = member.text;
+        const int c = m == "x" || m == "u" ? 0 : m == "y" || m == "v" ? 1 : m == "z" ? 2 : m == "t" ? 3 : -1;
+        if (c < 0) e_.fail(member.loc, "unknown component '." + m + "' of a spline (use .x .y .z .t .u .v)");
+        if (c >= terms) e_.fail(member.loc, fmt::format("'.{}' of a {}-component spline", m, terms));
+        return c;
+    }
+
     void call(const Token& name, const std::shared_ptr<const Function>& callee) {
         const int n = arguments(name.text);
         if (!callee->anyArity) checkCount(name, n, int(callee->params.size()));
-        const int channel = callee->colour ? channelSuffix() : 0;
+        const int channel = callee->colour   ? channelSuffix()
+                            : callee->vector ? componentSuffix(callee->splines.at(0)->terms)
+                                             : 0;
         size_t index = 0;
         while (index < f_.callees.size() && f_.callees[index] != callee) ++index;
         if (index == f_.callees.size()) f_.callees.push_back(callee);
@@ -176,6 +190,15 @@ private:
         const int channel = colour ? channelSuffix() : 0;
         f_.patterns.push_back(pattern);
         emit({colour ? FnOp::Colour : FnOp::Pattern, 3, uint8_t(channel), uint16_t(f_.patterns.size() - 1)}, -2);
+    }
+
+    // `spline { ... } (t) [.component]`: a spline's component at t.
+    void inlineSpline(const Token& keyword) {
+        auto spline = e_.splineBlock(keyword.loc);
+        checkCount(keyword, arguments(keyword.text), 1);
+        const int component = componentSuffix(spline->terms);
+        f_.splines.push_back(std::move(spline));
+        emit({FnOp::Spline, 1, uint8_t(component), uint16_t(f_.splines.size() - 1)}, 0);
     }
 
     void primary() {
@@ -206,6 +229,7 @@ private:
             e_.fail(t.loc, "'" + w + "' is " + kindName(*c) + "; a function takes numbers and functions only");
         }
         if (w == "pattern" || w == "pigment") return inlinePattern(t);
+        if (w == "spline") return inlineSpline(t);
         if (const auto it = math1Names().find(w); it != math1Names().end()) {
             checkCount(t, arguments(w), 1);
             return emit({FnOp::Math1, 1, 0, uint16_t(it->second)}, 0);
@@ -318,6 +342,21 @@ std::shared_ptr<const Function> Evaluator::functionBody(const Token& keyword) {
         }
         pushBack(first);
     }
+    if (first.isWord("spline")) { // function { spline { ... } }: a vector function of one parameter
+        next();
+        f->vector = true;
+        f->splines.push_back(splineBlock(first.loc));
+        if (peek().is("("))
+            fail(peek().loc, "a body that starts with 'spline { }' is that spline; to call it at a point, write "
+                             "(spline { ... }(t))");
+        if (defaultParams) f->params = {"t"};
+        if (f->params.size() != 1) fail(first.loc, "a spline function has one parameter");
+        compiler.push({FnOp::Param, 0, 0, 0});
+        compiler.emit({FnOp::Spline, 1, 0, 0}, 0);
+        expectSymbol("}", "to close the function's body");
+        f->totalStack = f->stackSize;
+        return f;
+    }
     if (first.isWord("internal")) {
         next();
         expectSymbol("(", "after 'internal'");
@@ -384,6 +423,13 @@ Value Evaluator::callFunction(const Token& name, const Function& f) {
         std::array<double, 5> c{};
         for (int i = 0; i < 5; ++i) c[size_t(i)] = f(args.data(), i);
         return Value::makeColor(c);
+    }
+    if (f.vector) { // a spline function
+        Value v;
+        v.kind = Value::Kind::Vector;
+        v.size = f.splines.at(0)->terms;
+        for (int i = 0; i < 5; ++i) v.v[size_t(i)] = f(args.data(), i);
+        return v;
     }
     return Value::makeFloat(f(args.data()));
 }

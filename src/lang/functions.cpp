@@ -41,7 +41,7 @@ bool Evaluator::startsFloat(const Token& t) const {
     if (t.kind == TokenKind::Number || t.is("(") || t.is("-") || t.is("+") || t.is("!")) return true;
     if (t.kind != TokenKind::Word) return false;
     if (const Cell c = lookup(t.text))
-        return c->kind == Kind::Float || c->kind == Kind::Macro || (c->kind == Kind::Function && !c->function->colour);
+        return c->kind == Kind::Float || c->kind == Kind::Macro || (c->kind == Kind::Function && !c->function->colour && !c->function->vector);
     static const std::set<std::string> words = {
         "pi", "tau", "true", "false", "yes", "no", "on", "off", "clock", "image_width", "image_height", "version",
         "abs", "acos", "asin", "atan", "atan2", "ceil", "cos", "cosh", "degrees", "div", "exp", "floor", "int", "ln",

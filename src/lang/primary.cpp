@@ -112,6 +112,7 @@ Value Evaluator::primary() {
 
     if (const Cell c = useIndexed(t)) {
         if (c->kind == Kind::Function) return postfix(callFunction(t, *c->function), t.loc);
+        if (c->kind == Kind::Spline && peek().is("(")) return postfix(callSpline(t, *c->spline), t.loc);
         return postfix(*c, t.loc);
     }
 
@@ -319,6 +320,12 @@ Value Evaluator::rvalue() {
             next();
             return arrayLiteral(t.loc);
         }
+        if (w == "spline") {
+            next();
+            v.kind = Kind::Spline;
+            v.spline = splineBlock(t.loc);
+            return v;
+        }
         if (w == "function") {
             next();
             v.kind = Kind::Function;
@@ -326,7 +333,7 @@ Value Evaluator::rvalue() {
             return v;
         }
         static const std::set<std::string> opaque = {
-            "spline", "pigment_map", "normal_map", "texture_map", "slope_map", "density_map",
+            "pigment_map", "normal_map", "texture_map", "slope_map", "density_map",
             "material_map", "interior_texture", "rainbow", "fog", "photons", "radiosity"};
         if (opaque.count(w)) {
             next();

@@ -5,6 +5,7 @@
 
 #include "lang/dialect.h"
 #include "scene/scene.h"
+#include "scene/spline.h"
 
 #include <array>
 #include <map>
@@ -74,7 +75,7 @@ struct Origin {
 struct Value {
     enum class Kind {
         Float, Vector, Color, String, Array, Object, Texture, Pigment, Finish, Interior, Material,
-        Normal, Camera, Light, Transform, ColorMap, Macro, Opaque, SkySphere, Media, Function,
+        Normal, Camera, Light, Transform, ColorMap, Macro, Opaque, SkySphere, Media, Function, Spline,
     };
     Kind kind = Kind::Float;
     double number = 0;
@@ -96,6 +97,7 @@ struct Value {
     std::shared_ptr<const std::vector<ColorMapEntry>> colorMap;
     std::shared_ptr<const lang::Macro> macro;
     std::shared_ptr<const drt::Function> function;
+    std::shared_ptr<const drt::Spline> spline;
     std::shared_ptr<const std::vector<PendingWarning>> warnings; // see PendingWarning
     std::shared_ptr<const Origin> origin;                         // numbers read from an identifier
 

@@ -44,6 +44,23 @@ std::string joined(const std::vector<std::string>& items) {
     return s;
 }
 
+// spline { kind t, <v>, ... } with the spline's components.
+std::string splineText(const Spline& s) {
+    std::string text = "spline { ";
+    text += splineKindWord(s.kind);
+    for (const Spline::Entry& e : s.entries) {
+        text += " " + number(e.t) + ", <";
+        for (int k = 0; k < s.terms; ++k) text += (k ? ", " : "") + number(e.v[size_t(k)]);
+        text += ">";
+    }
+    return text + " }";
+}
+
+const char* componentName(int c) {
+    static const char* names[] = {"x", "y", "z", "t"};
+    return c >= 0 && c < 4 ? names[c] : "x";
+}
+
 // The expression of `f` with its parameters replaced by `args`.
 std::string expressionText(const Function& f, const std::vector<std::string>& args, int channel,
                            std::set<std::string>& problems) {
@@ -107,6 +124,13 @@ std::string expressionText(const Function& f, const std::vector<std::string>& ar
             }
             break;
         }
+        case FnOp::Spline: {
+            // A spline function's body takes the call's component; a spline inside an expression its own.
+            const int c = f.vector ? channel : i.channel;
+            if (c > 3) problems.insert("a spline's fifth component");
+            stack.back() = "(" + splineText(*f.splines[i.index]) + "(" + stack.back() + ")." + componentName(c) + ")";
+            break;
+        }
         default: {
             const auto a = pop(2);
             stack.push_back("(" + a[0] + " " + operatorText(i.op) + " " + a[1] + ")");
@@ -123,6 +147,7 @@ std::string functionText(const Function& f, std::set<std::string>& problems) {
         problems.insert("an internal function drt lacks");
         return "0";
     }
+    if (f.vector && f.code.size() == 2 && f.code.back().op == FnOp::Spline) return splineText(*f.splines[0]);
     const bool wholeBody = f.code.size() == 4 && f.params.size() == 3 && f.code[0].op == FnOp::Param &&
                            f.code[0].index == 0 && f.code[1].index == 1 && f.code[2].index == 2;
     if (wholeBody && (f.colour ? f.code.back().op == FnOp::Colour : f.code.back().op == FnOp::Pattern)) {

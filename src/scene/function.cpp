@@ -157,6 +157,11 @@ double run(const Function& f, const double* args, int channel, double* stack) {
             ++top;
             break;
         }
+        case FnOp::Spline: {
+            const int c = f.vector ? channel : i.channel;
+            top[-1] = f.splines[i.index]->at(top[-1])[size_t(c >= 0 && c < 5 ? c : 0)];
+            break;
+        }
         default: {
             --top;
             const double a = top[-1], b = top[0];
@@ -208,8 +213,9 @@ double Function::operator()(const double* args, int channel) const {
 }
 
 bool Function::operator==(const Function& o) const {
-    if (params != o.params || colour != o.colour || code.size() != o.code.size() ||
-        callees.size() != o.callees.size() || patterns.size() != o.patterns.size())
+    if (params != o.params || colour != o.colour || vector != o.vector || code.size() != o.code.size() ||
+        callees.size() != o.callees.size() || patterns.size() != o.patterns.size() ||
+        splines.size() != o.splines.size())
         return false;
     for (size_t i = 0; i < code.size(); ++i) {
         const FnInstr &a = code[i], &b = o.code[i];
@@ -221,6 +227,8 @@ bool Function::operator==(const Function& o) const {
         if (callees[i] != o.callees[i] && !(*callees[i] == *o.callees[i])) return false;
     for (size_t i = 0; i < patterns.size(); ++i)
         if (patterns[i] != o.patterns[i]) return false; // patterns: the same objects
+    for (size_t i = 0; i < splines.size(); ++i)
+        if (splines[i] != o.splines[i] && !(*splines[i] == *o.splines[i])) return false;
     return true;
 }
 

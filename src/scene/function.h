@@ -9,10 +9,12 @@
 // pointer), so no call can recurse. Its body may instead be a pattern or a
 // pigment (`function { pattern { ... } }`, `function { pigment { ... } }`):
 // those are evaluated by the renderer's pattern code through the hooks at the
-// end of this header.
+// end of this header. A spline (`function { spline { ... } }`) is a function
+// too: of one parameter, its value a vector whose component a call picks.
 #pragma once
 
 #include "core/vec.h"
+#include "scene/spline.h"
 
 #include <cstdint>
 #include <memory>
@@ -36,6 +38,7 @@ enum class FnOp : uint8_t {
     Internal,// count arguments -> the internal function `index` (FnInternal)
     Pattern, // x y z -> the value of patterns[index] at <x, y, z> (in [0, 1])
     Colour,  // x y z -> channel `channel` of pigment patterns[index] at <x, y, z>
+    Spline,  // t -> component `channel` of splines[index] at t
 };
 
 enum class FnMath1 : uint16_t {
@@ -68,7 +71,7 @@ struct FnInstr {
     FnOp op = FnOp::Const;
     uint8_t count = 0;   // arguments (Call, Internal, Select)
     uint8_t channel = 0; // Call of a colour function, Colour: 0 red .. 4 transmit, 5 gray
-    uint16_t index = 0;  // Param, Math1, Math2, Call, Internal, Pattern, Colour
+    uint16_t index = 0;  // Param, Math1, Math2, Call, Internal, Pattern, Colour, Spline
     double value = 0;    // Const
 };
 
@@ -77,11 +80,15 @@ struct Function {
     std::vector<FnInstr> code;
     std::vector<std::shared_ptr<const Function>> callees;
     std::vector<std::shared_ptr<const Pigment>> patterns; // Pattern and Colour operands
+    std::vector<std::shared_ptr<const Spline>> splines;   // Spline operands
     int stackSize = 0;  // the deepest the stack gets, callees excluded
     int totalStack = 0; // stackSize plus the largest totalStack of the callees
     // `function { pigment { ... } }`: a colour function, whose value is a
     // colour; a call picks its channel (`F(x, y, z).red`), red by default.
     bool colour = false;
+    // `function { spline { ... } }`: a vector function of one parameter; a
+    // call picks its component (`F(t).y`), x by default.
+    bool vector = false;
     // An internal function drt lacks: it takes any arguments and gives 0.
     bool anyArity = false;
 

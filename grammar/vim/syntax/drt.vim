@@ -19,8 +19,8 @@ syn keyword drtBlock cylinder density disc face_indices finish fog global_settin
 syn keyword drtBlock image_map interior isosurface lathe light_source media mesh mesh2
 syn keyword drtBlock motion normal normal_indices normal_vectors object pattern pigment pigment_map
 syn keyword drtBlock plane poly prism quadric quartic render scattering sky_sphere
-syn keyword drtBlock slope_map smooth_triangle sor sphere superellipsoid text texture texture_list
-syn keyword drtBlock texture_map tiles torus triangle uv_indices uv_vectors vertex_vectors
+syn keyword drtBlock slope_map smooth_triangle sor sphere spline superellipsoid text texture
+syn keyword drtBlock texture_list texture_map tiles torus triangle uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections ambient
 syn keyword drtKeyword ambient_light angle aperture append area_illumination area_light area_sampling array
 syn keyword drtKeyword assumed_gamma at average bezier_spline blue boxed bozo brick
@@ -37,17 +37,17 @@ syn keyword drtKeyword internal interpolate intersection intervals inverse inver
 syn keyword drtKeyword julia lambda leopard linear_spline linear_sweep location look_at magnet
 syn keyword drtKeyword mandel map_type marble matrix max_gradient max_iteration max_samples max_trace
 syn keyword drtKeyword max_trace_level media_attenuation media_interaction merge metallic method min_samples mortar
-syn keyword drtKeyword no_shadow octaves offset omega once onion open orient
-syn keyword drtKeyword orthographic panoramic perspective phase phong phong_size planar point_at
-syn keyword drtKeyword poly_wave pov_grid quadratic_spline radial radius ramp_wave ratio read
-syn keyword drtKeyword red reflection reflection_blur refraction_blur rgb rgbf rgbft rgbt
-syn keyword drtKeyword right ripples rotate roughness sampler samples scale scallop_wave
-syn keyword drtKeyword shadowless shutter_close shutter_open sine_wave sky smooth solid_angle specular
-syn keyword drtKeyword spherical spline spotlight srgb srgbf srgbft srgbt stratified
-syn keyword drtKeyword strength string sturm thickness threshold tightness tile2 translate
-syn keyword drtKeyword transmit triangle_wave turb_depth turbulence u ultra_wide_angle union up
-syn keyword drtKeyword uv_mapping v variance water_level waves width wood wrinkles
-syn keyword drtKeyword write
+syn keyword drtKeyword natural_spline no_shadow octaves offset omega once onion open
+syn keyword drtKeyword orient orthographic panoramic perspective phase phong phong_size planar
+syn keyword drtKeyword point_at poly_wave pov_grid quadratic_spline radial radius ramp_wave ratio
+syn keyword drtKeyword read red reflection reflection_blur refraction_blur rgb rgbf rgbft
+syn keyword drtKeyword rgbt right ripples rotate roughness sampler samples scale
+syn keyword drtKeyword scallop_wave shadowless shutter_close shutter_open sine_wave sky smooth solid_angle
+syn keyword drtKeyword specular spherical spotlight srgb srgbf srgbft srgbt stratified
+syn keyword drtKeyword strength string sturm t thickness threshold tightness tile2
+syn keyword drtKeyword translate transmit triangle_wave turb_depth turbulence u ultra_wide_angle union
+syn keyword drtKeyword up uv_mapping v variance water_level waves width wood
+syn keyword drtKeyword wrinkles write
 syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|fclose\|fopen\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|read\|switch\|undef\|version\|warning\|while\|write\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
