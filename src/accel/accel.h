@@ -124,6 +124,9 @@ public:
     // near-zero absolute offset scaled to the object: Hit::frameUnit).
     // Inline (below): every shadow, reflected and refracted ray starts here.
     static Vec3 offsetOrigin(const Hit& hit, const Vec3& direction);
+    // The same, one coordinate at a time: what offsetOrigin is on CPUs
+    // without SSE2, and the reference its SSE2 form must equal to the bit.
+    static Vec3 offsetOriginOneByOne(const Hit& hit, const Vec3& direction);
 
     // Compact meshes (Mesh::indexed) as built: distinct meshes with a BVH
     // of their own, and the objects placed as instances of them.
@@ -161,51 +164,73 @@ private:
 // register: the same float operations in the same order (no FMA: the build
 // targets baseline x86-64), so the same bits as the scalar loop, which stays
 // for other CPUs (Accel.OffsetOriginIsTheScalarOnesToTheBit).
-inline Vec3 Accelerator::offsetOrigin(const Hit& hit, const Vec3& direction) {
+namespace accel::detail {
+
+// What both forms of offsetOrigin start from: the point in Embree's frame,
+// the normal turned to the side the ray leaves on, and the scales.
+struct OriginOffset {
+    float nearZero, absoluteScale;
+    bool shifted;
+    Vec3 point, n;
+};
+
+inline OriginOffset originOffset(const Hit& hit, const Vec3& direction) {
     const double unit = hit.frameUnit > 0 && hit.frameUnit <= 1 ? hit.frameUnit : 1.0;
-    const float nearZero = float(unit / 32.0);
-    const float absoluteScale = float(unit / 65536.0);
-    constexpr float kUlpScale = 256.0f;
     const bool shifted = hit.frameOrigin.x != 0 || hit.frameOrigin.y != 0 || hit.frameOrigin.z != 0;
-    const Vec3 point = shifted ? hit.point - hit.frameOrigin : hit.point;
-    const Vec3 n = dot(hit.geometricNormal, direction) < 0 ? -hit.geometricNormal : hit.geometricNormal;
+    return {float(unit / 32.0), float(unit / 65536.0), shifted,
+            shifted ? hit.point - hit.frameOrigin : hit.point,
+            dot(hit.geometricNormal, direction) < 0 ? -hit.geometricNormal : hit.geometricNormal};
+}
+
+inline constexpr float kUlpScale = 256.0f;
+
+} // namespace accel::detail
+
+inline Vec3 Accelerator::offsetOriginOneByOne(const Hit& hit, const Vec3& direction) {
+    const accel::detail::OriginOffset o = accel::detail::originOffset(hit, direction);
     Vec3 out;
+    for (int i = 0; i < 3; ++i) {
+        const float p = float(o.point[i]);
+        const float ni = float(o.n[i]);
+        if (std::fabs(p) < o.nearZero) {
+            out[i] = p + o.absoluteScale * ni;
+            continue;
+        }
+        // For positive floats a larger bit pattern is a larger value; for
+        // negative ones, a larger magnitude. So step toward +n_i accordingly.
+        const int32_t ulps = static_cast<int32_t>(accel::detail::kUlpScale * ni);
+        const int32_t bits = std::bit_cast<int32_t>(p);
+        out[i] = std::bit_cast<float>(bits + (p < 0 ? -ulps : ulps));
+    }
+    // A float plus the frame origin is exact in double unless the float is
+    // below the origin's ulp (then it is rounded to that ulp, ~1e-16 |origin|).
+    return o.shifted ? out + hit.frameOrigin : out;
+}
+
+inline Vec3 Accelerator::offsetOrigin(const Hit& hit, const Vec3& direction) {
 #if defined(__SSE2__)
+    const accel::detail::OriginOffset o = accel::detail::originOffset(hit, direction);
+    const Vec3& point = o.point;
+    const Vec3& n = o.n;
     // Lanes x, y, z, z.
     const __m128 p = _mm_movelh_ps(_mm_cvtpd_ps(_mm_set_pd(point.y, point.x)), _mm_cvtpd_ps(_mm_set1_pd(point.z)));
     const __m128 ni = _mm_movelh_ps(_mm_cvtpd_ps(_mm_set_pd(n.y, n.x)), _mm_cvtpd_ps(_mm_set1_pd(n.z)));
     const __m128 magnitude = _mm_and_ps(p, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)));
-    const __m128 near = _mm_cmplt_ps(magnitude, _mm_set1_ps(nearZero)); // fabs(p) < nearZero
-    const __m128 absolute = _mm_add_ps(p, _mm_mul_ps(_mm_set1_ps(absoluteScale), ni));
-    // For positive floats a larger bit pattern is a larger value; for
-    // negative ones, a larger magnitude. So step toward +n_i accordingly:
-    // -ulps (ulps ^ -1) - (-1) where p < 0.
-    const __m128i ulps = _mm_cvttps_epi32(_mm_mul_ps(_mm_set1_ps(kUlpScale), ni));
+    const __m128 near = _mm_cmplt_ps(magnitude, _mm_set1_ps(o.nearZero)); // fabs(p) < nearZero
+    const __m128 absolute = _mm_add_ps(p, _mm_mul_ps(_mm_set1_ps(o.absoluteScale), ni));
+    // As in offsetOriginOneByOne: -ulps (ulps ^ -1) - (-1) where p < 0.
+    const __m128i ulps = _mm_cvttps_epi32(_mm_mul_ps(_mm_set1_ps(accel::detail::kUlpScale), ni));
     const __m128i negative = _mm_castps_si128(_mm_cmplt_ps(p, _mm_setzero_ps()));
     const __m128i step = _mm_sub_epi32(_mm_xor_si128(ulps, negative), negative);
     const __m128 stepped = _mm_castsi128_ps(_mm_add_epi32(_mm_castps_si128(p), step));
     const __m128 moved = _mm_or_ps(_mm_and_ps(near, absolute), _mm_andnot_ps(near, stepped));
     alignas(16) double xy[2];
     _mm_store_pd(xy, _mm_cvtps_pd(moved));
-    out = {xy[0], xy[1], _mm_cvtsd_f64(_mm_cvtps_pd(_mm_movehl_ps(moved, moved)))};
+    const Vec3 out{xy[0], xy[1], _mm_cvtsd_f64(_mm_cvtps_pd(_mm_movehl_ps(moved, moved)))};
+    return o.shifted ? out + hit.frameOrigin : out;
 #else
-    for (int i = 0; i < 3; ++i) {
-        const float p = float(point[i]);
-        const float ni = float(n[i]);
-        if (std::fabs(p) < nearZero) {
-            out[i] = p + absoluteScale * ni;
-            continue;
-        }
-        // For positive floats a larger bit pattern is a larger value; for
-        // negative ones, a larger magnitude. So step toward +n_i accordingly.
-        const int32_t ulps = static_cast<int32_t>(kUlpScale * ni);
-        const int32_t bits = std::bit_cast<int32_t>(p);
-        out[i] = std::bit_cast<float>(bits + (p < 0 ? -ulps : ulps));
-    }
+    return offsetOriginOneByOne(hit, direction);
 #endif
-    // A float plus the frame origin is exact in double unless the float is
-    // below the origin's ulp (then it is rounded to that ulp, ~1e-16 |origin|).
-    return shifted ? out + hit.frameOrigin : out;
 }
 
 } // namespace drt
