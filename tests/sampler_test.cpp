@@ -173,6 +173,43 @@ TEST(SobolSampler, ValuesDoNotDependOnWhichDimensionsWereAskedBefore) {
     }
 }
 
+// A packet's pixel dimensions drawn at once (getPixelDimensions) are the
+// values startPixelSample and get2D(kDimPixel) give one sample at a time, for
+// every sampler, sample count and packet start, and drawing them changes no
+// value drawn after (the pixel's other dimensions, the next pixel's).
+TEST(Sampler, PixelDimensionsOfAPacketAreThoseOfEachSample) {
+    for (const std::string& name : samplerNames())
+        for (const int spp : {1, 3, 8, 16, 100, 300}) {
+            auto batch = makeSampler(name, spp, 11);
+            auto single = makeSampler(name, spp, 11);
+            for (const auto& [x, y] : {std::pair{0, 0}, std::pair{5, 2}, std::pair{5, 3}, std::pair{-4, 9}})
+                for (int first = 0; first < spp; first += 8) {
+                    const int count = std::min(8, spp - first - (first % 3 == 1 ? 1 : 0));
+                    Vec2 got[8];
+                    batch->getPixelDimensions(x, y, first, count, got);
+                    for (int j = 0; j < count; ++j) {
+                        single->startPixelSample(x, y, first + j);
+                        const Vec2 want = single->get2D(kDimPixel);
+                        ASSERT_EQ(std::bit_cast<uint64_t>(got[j].x), std::bit_cast<uint64_t>(want.x))
+                            << name << " spp " << spp << " pixel " << x << "," << y << " sample " << first + j;
+                        ASSERT_EQ(std::bit_cast<uint64_t>(got[j].y), std::bit_cast<uint64_t>(want.y))
+                            << name << " spp " << spp << " sample " << first + j;
+                    }
+                    // The rest of each sample afterwards, as the renderer draws it.
+                    for (int j = 0; j < count; ++j) {
+                        batch->startPixelSample(x, y, first + j);
+                        single->startPixelSample(x, y, first + j);
+                        for (const int d : {kDimPixel, kDimLens, kDimFirstBounce, 8197}) {
+                            const Vec2 a = batch->get2D(d), b = single->get2D(d);
+                            ASSERT_EQ(a.x, b.x) << name << " dimension " << d;
+                            ASSERT_EQ(a.y, b.y) << name << " dimension " << d;
+                        }
+                        ASSERT_EQ(batch->get1D(kDimTime), single->get1D(kDimTime)) << name;
+                    }
+                }
+        }
+}
+
 TEST(Sampler, PixelsAreDecorrelated) {
     // The same sample index in neighbouring pixels must not repeat a value.
     for (const auto& name : samplerNames()) {

@@ -295,10 +295,13 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
         for (int start = first; start < last; start += kPacket) {
             const int n = std::min(kPacket, last - start);
             int traced = 0;
+            Vec2 pixelDimensions[kPacket];
+            sampler.getPixelDimensions(x, y, start, n, pixelDimensions);
             for (int j = 0; j < n; ++j) {
-                sampler.startPixelSample(x, y, start + j);
-                const Vec2 position = pixelSamplePosition(sampler, filter, x, y);
-                // Only the effects in use draw samples (a pinhole takes no lens sample).
+                const Vec2 position = pixelSamplePosition(filter, pixelDimensions[j], x, y);
+                // Only the effects in use draw samples (a pinhole takes no lens
+                // sample, and a still camera without a lens no other value).
+                if (camera.hasShutter() || lensSampled) sampler.startPixelSample(x, y, start + j);
                 const double time =
                     camera.hasShutter() ? camera.timeAt(sampler.get1D(kDimTime)) : camera.shutterOpen;
                 const Vec2 lens = lensSampled ? sampler.get2D(kDimLens) : Vec2{0.5, 0.5};

@@ -23,6 +23,13 @@ Vec2 Sampler::get2DStratified(int dimension, int k, int count) {
     return {(cell % nx + j.x) / nx, (cell / nx + j.y) / ny};
 }
 
+void Sampler::getPixelDimensions(int x, int y, int first, int count, Vec2* out) {
+    for (int j = 0; j < count; ++j) {
+        startPixelSample(x, y, first + j);
+        out[j] = get2D(kDimPixel);
+    }
+}
+
 namespace {
 
 // Independent uniform random values: the N^-1/2 baseline.
