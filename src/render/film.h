@@ -41,7 +41,7 @@ private:
 };
 
 // The image position of a pixel sample of pixel (x, y) from its pixel
-// dimensions (Sampler::getPixelDimensions): the one place the reconstruction
+// dimensions (Sampler::getCameraDimensions): the one place the reconstruction
 // filter enters. Filter importance sampling: the
 // offset from the pixel centre has the filter's density and the sample counts
 // with weight 1 in this pixel only (box: uniform over the pixel).

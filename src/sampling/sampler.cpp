@@ -23,10 +23,12 @@ Vec2 Sampler::get2DStratified(int dimension, int k, int count) {
     return {(cell % nx + j.x) / nx, (cell / nx + j.y) / ny};
 }
 
-void Sampler::getPixelDimensions(int x, int y, int first, int count, Vec2* out) {
+void Sampler::getCameraDimensions(int x, int y, int first, int count, Vec2* pixel, double* time, Vec2* lens) {
     for (int j = 0; j < count; ++j) {
         startPixelSample(x, y, first + j);
-        out[j] = get2D(kDimPixel);
+        pixel[j] = get2D(kDimPixel);
+        if (time) time[j] = get1D(kDimTime);
+        if (lens) lens[j] = get2D(kDimLens);
     }
 }
 

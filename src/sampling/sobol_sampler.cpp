@@ -39,15 +39,17 @@ public:
         jointIndex_ = recentJointIndex(index);
     }
 
-    // A packet's pixel positions in one loop: no call per sample, and the
+    // A packet's camera values in one loop: no call per sample, and the
     // samples' scrambles (chains of multiplies) independent of each other.
-    void getPixelDimensions(int x, int y, int first, int count, Vec2* out) override {
+    void getCameraDimensions(int x, int y, int first, int count, Vec2* pixel, double* time, Vec2* lens) override {
         startPixel(x, y);
-        for (int j = 0; j < count; ++j) {
-            const uint32_t i = recentJointIndex(first + j);
-            out[j] = {fractionToUnit(scrambledSobol0(i, jointSeeds_[0])),
-                      fractionToUnit(owenScrambledSobol(i, 1, jointSeeds_[1]))};
-        }
+        // Time's and the lens's seeds, made once for the pixel when asked.
+        for (int d = kDimTime; d < kSobolDimensions; ++d)
+            if (d == kDimTime ? time != nullptr : lens != nullptr) jointSeed(d);
+        if (time && lens) cameraDimensions<true, true>(first, count, pixel, time, lens);
+        else if (time) cameraDimensions<true, false>(first, count, pixel, time, lens);
+        else if (lens) cameraDimensions<false, true>(first, count, pixel, time, lens);
+        else cameraDimensions<false, false>(first, count, pixel, time, lens);
     }
 
     double get1D(int dimension) override {
@@ -92,6 +94,19 @@ private:
             jointSeedsReady_ = 0b11u;
             ++generation_;
             for (Recent& r : recent_) r.index = -1;
+        }
+    }
+    // One loop per choice of effects: a still pinhole camera's has nothing else.
+    template <bool kTime, bool kLens>
+    void cameraDimensions(int first, int count, Vec2* pixel, double* time, Vec2* lens) {
+        for (int j = 0; j < count; ++j) {
+            const uint32_t i = recentJointIndex(first + j);
+            pixel[j] = {fractionToUnit(scrambledSobol0(i, jointSeeds_[0])),
+                        fractionToUnit(owenScrambledSobol(i, 1, jointSeeds_[1]))};
+            if constexpr (kTime) time[j] = fractionToUnit(owenScrambledSobol(i, kDimTime, jointSeeds_[kDimTime]));
+            if constexpr (kLens)
+                lens[j] = {fractionToUnit(owenScrambledSobol(i, kDimLens, jointSeeds_[kDimLens])),
+                           fractionToUnit(owenScrambledSobol(i, kDimLens + 1, jointSeeds_[kDimLens + 1]))};
         }
     }
     // The joint (shuffled) index of sample `index` of the current pixel, kept
