@@ -143,7 +143,7 @@ TEST(Convert, BadInputIsReportedAndNothingIsWritten) {
 TEST(Convert, ReportSortsScenesAndSurvivesOnesThatNeverFinish) {
     const std::string dir = test::tempDir();
     test::writeFile(dir + "/a_clean.pov", kSimplePov);
-    test::writeFile(dir + "/b_warning.pov", "sphere { 0, 1 pigment { rgb 1 } normal { quilted 0.5 } }\n");
+    test::writeFile(dir + "/b_warning.pov", "sphere { 0, 1 pigment { rgb 1 } normal { facets 0.5 } }\n");
     test::writeFile(dir + "/c_error.pov", "sphere { 0, 1 pigment { rgb 1 }\n");
     test::writeFile(dir + "/sub/d_loop.pov", "#declare I = 0;\n#while (1)\n#declare I = I + 1;\n#end\n");
     test::writeFile(dir + "/notes.txt", "not a scene");

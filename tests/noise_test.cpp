@@ -286,7 +286,7 @@ TEST(NoisePov, WoodWithTurbulenceAndBumpsLoadsWithNotesOnly) {
     EXPECT_EQ(s->objects[1].texture.pigment.turbulence.octaves, 3);
     // A normal pattern drt does not model still warns.
     Diagnostics other;
-    ASSERT_TRUE(loadPovSceneText("sphere { 0, 1 normal { quilted 0.4 } }", "q.pov", other));
+    ASSERT_TRUE(loadPovSceneText("sphere { 0, 1 normal { facets 0.4 } }", "q.pov", other));
     EXPECT_EQ(other.warningCount(), 1) << other.formatAll();
 }
 

@@ -41,7 +41,10 @@ struct FidelityScene {
 //   interior_fade    0.028 (fade_power 1000+ taken as a power law; shadow rays not faded)
 //   leopard_normal   0.061 (normals tilted by the world-space gradient: steep at small scales)
 //   normal_gradient  0.077 (gradient normals were ignored)
+//   parallel_light   0.108 (parallel lights were point lights)
 //   place_patterns   0.126 (planar, cylindrical and boxed were the average colour of their maps)
+//   quilted          0.054 (quilted was the average colour of its map; its normal was left out)
+//   radiosity        0.167 (radiosity was left out)
 //   slope_map        0.061 (a normal with a slope_map was left out; 0.039 with slopes per unit of
 //                    pattern value instead of per entry interval)
 //   waves            0.065 (invented wave sources and weights)
@@ -54,7 +57,10 @@ const FidelityScene kScenes[] = {
     {"isosurface", 0.005},
     {"leopard_normal", 0.015},
     {"normal_gradient", 0.02},
+    {"parallel_light", 0.01},
     {"place_patterns", 0.005},
+    {"quilted", 0.012},
+    {"radiosity", 0.015},
     {"slope_map", 0.02},
     {"waves", 0.025},
 };

@@ -281,7 +281,7 @@ TEST(PovScene, AssumedGammaShadesInTheWorkingSpaceAndDecodesThePixel) {
 
 TEST(PovScene, UnsupportedFeaturesWarnOncePerKindWithLocation) {
     Diagnostics diags;
-    const auto s = load("rainbow { angle 42 }\nsphere { 0, 1 normal { quilted 0.5 } }\nrainbow { width 3 }\n"
+    const auto s = load("rainbow { angle 42 }\nsphere { 0, 1 normal { facets 0.5 } }\nrainbow { width 3 }\n"
                         "sphere { 0, 1 normal { facets 1 } }",
                         diags);
     ASSERT_TRUE(s);
@@ -302,10 +302,10 @@ TEST(PovScene, UnsupportedFeaturesWarnOncePerKindWithLocation) {
 
 TEST(PovScene, UnusedDeclarationsDoNotWarnButUsesDo) {
     Diagnostics quiet;
-    ASSERT_TRUE(load("#declare T = texture { pigment { cells } normal { quilted 1 } }\nsphere { 0, 1 }", quiet));
+    ASSERT_TRUE(load("#declare T = texture { pigment { cells } normal { facets 1 } }\nsphere { 0, 1 }", quiet));
     EXPECT_EQ(quiet.warningCount(), 0) << quiet.formatAll();
     Diagnostics used;
-    ASSERT_TRUE(load("#declare T = texture { pigment { cells } normal { quilted 1 } }\nsphere { 0, 1 texture { T } }",
+    ASSERT_TRUE(load("#declare T = texture { pigment { cells } normal { facets 1 } }\nsphere { 0, 1 texture { T } }",
                      used));
     EXPECT_EQ(used.warningCount(), 2) << used.formatAll();
 }

@@ -173,6 +173,58 @@ TEST(SobolSampler, ValuesDoNotDependOnWhichDimensionsWereAskedBefore) {
     }
 }
 
+// A packet's camera dimensions drawn at once (getCameraDimensions) are the
+// values startPixelSample, get2D(kDimPixel), get1D(kDimTime) and
+// get2D(kDimLens) give one sample at a time, for every sampler, sample count,
+// packet start and choice of time and lens, and drawing them changes no value
+// drawn after (the pixel's other dimensions, the next pixel's).
+TEST(Sampler, CameraDimensionsOfAPacketAreThoseOfEachSample) {
+    const auto same = [](double a, double b) { return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b); };
+    for (const std::string& name : samplerNames())
+        for (const int spp : {1, 3, 8, 16, 100, 300})
+            for (int effects = 0; effects < 4; ++effects) {
+                const bool withTime = effects & 1, withLens = effects & 2;
+                auto batch = makeSampler(name, spp, 11);
+                auto single = makeSampler(name, spp, 11);
+                for (const auto& [x, y] : {std::pair{0, 0}, std::pair{5, 2}, std::pair{5, 3}, std::pair{-4, 9}})
+                    for (int first = 0; first < spp; first += 8) {
+                        const int count = std::min(8, spp - first - (first % 3 == 1 ? 1 : 0));
+                        Vec2 pixel[8], lens[8];
+                        double time[8];
+                        batch->getCameraDimensions(x, y, first, count, pixel, withTime ? time : nullptr,
+                                                   withLens ? lens : nullptr);
+                        for (int j = 0; j < count; ++j) {
+                            single->startPixelSample(x, y, first + j);
+                            const Vec2 p = single->get2D(kDimPixel);
+                            const auto where = [&] {
+                                return name + " spp " + std::to_string(spp) + " effects " + std::to_string(effects) +
+                                       " pixel " + std::to_string(x) + "," + std::to_string(y) + " sample " +
+                                       std::to_string(first + j);
+                            };
+                            ASSERT_TRUE(same(pixel[j].x, p.x) && same(pixel[j].y, p.y)) << where();
+                            if (withTime) {
+                                ASSERT_TRUE(same(time[j], single->get1D(kDimTime))) << where();
+                            }
+                            if (withLens) {
+                                const Vec2 l = single->get2D(kDimLens);
+                                ASSERT_TRUE(same(lens[j].x, l.x) && same(lens[j].y, l.y)) << where();
+                            }
+                        }
+                        // The rest of each sample afterwards, as the renderer draws it.
+                        for (int j = 0; j < count; ++j) {
+                            batch->startPixelSample(x, y, first + j);
+                            single->startPixelSample(x, y, first + j);
+                            for (const int d : {kDimPixel, kDimLens, kDimFirstBounce, 8197}) {
+                                const Vec2 a = batch->get2D(d), b = single->get2D(d);
+                                ASSERT_EQ(a.x, b.x) << name << " dimension " << d;
+                                ASSERT_EQ(a.y, b.y) << name << " dimension " << d;
+                            }
+                            ASSERT_EQ(batch->get1D(kDimTime), single->get1D(kDimTime)) << name;
+                        }
+                    }
+            }
+}
+
 TEST(Sampler, PixelsAreDecorrelated) {
     // The same sample index in neighbouring pixels must not repeat a value.
     for (const auto& name : samplerNames()) {

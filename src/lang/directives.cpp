@@ -84,7 +84,7 @@ void Evaluator::directive(const Token& t) {
     // A directive met while another one reads its tokens (`#declare A = #if (#declare B = ...`) runs
     // inside it: the nesting limit bounds that recursion as it bounds nested blocks.
     DepthGuard guard(*this, t.loc);
-    const std::string& d = t.text;
+    const std::string_view d = t.text; // compared with literals: lengths known at compile time
     if (d == "declare") declareDirective(t, false);
     else if (d == "local") declareDirective(t, true);
     else if (d == "undef") {
@@ -98,13 +98,13 @@ void Evaluator::directive(const Token& t) {
     else if (d == "ifdef") openingDirective(t, [&] { ifDirective(t, 1); });
     else if (d == "ifndef") openingDirective(t, [&] { ifDirective(t, 2); });
     else if (d == "else" || d == "elseif") {
-        if (conds_.empty() || conds_.back().frame != frames_.size() - 1) fail(t.loc, "#" + d + " without #if");
+        if (conds_.empty() || conds_.back().frame != frames_.size() - 1) fail(t.loc, "#" + t.text + " without #if");
         Cond& c = conds_.back();
         if (c.type == Cond::Type::Switch) {
             if (d == "elseif") fail(t.loc, "#elseif inside #switch");
             return; // reached while running a matched case: fall through
         }
-        if (c.type != Cond::Type::If) fail(t.loc, "#" + d + " without #if");
+        if (c.type != Cond::Type::If) fail(t.loc, "#" + t.text + " without #if");
         // The taken branch ends here: skip the rest of the chain.
         skipTo({"end"}, t);
         conds_.pop_back();
@@ -113,7 +113,7 @@ void Evaluator::directive(const Token& t) {
     else if (d == "for") openingDirective(t, [&] { forDirective(t); });
     else if (d == "switch") openingDirective(t, [&] { switchDirective(t); });
     else if (d == "case" || d == "range") {
-        if (conds_.empty() || conds_.back().type != Cond::Type::Switch) fail(t.loc, "#" + d + " outside #switch");
+        if (conds_.empty() || conds_.back().type != Cond::Type::Switch) fail(t.loc, "#" + t.text + " outside #switch");
         // Fall-through from a matched case: read and ignore the value.
         expectSymbol("(", "after #case/#range");
         floatExpr();
@@ -131,7 +131,7 @@ void Evaluator::directive(const Token& t) {
     else if (d == "fopen" || d == "fclose" || d == "read" || d == "write") fileDirective(t);
     else {
         Token shown = t;
-        shown.text = "#" + d;
+        shown.text = "#" + t.text;
         std::vector<std::string> known;
         for (const std::string& w : directiveNames()) known.push_back("#" + w);
         failUnknownIn(shown, known, "directive");

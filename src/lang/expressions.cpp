@@ -263,7 +263,7 @@ Value arithmetic(Evaluator& e, const Token& op, const Value& left, const Value& 
 // Binary operators by level: 1 |, 2 &, 3 comparisons, 4 + -, 5 * /.
 bool isLevelOperator(int level, const Token& t, bool inVector) {
     if (t.kind != TokenKind::Symbol) return false;
-    const std::string& s = t.text;
+    const std::string_view s = t.text; // literal lengths known at compile time: no strlen per compare
     switch (level) {
     case 1: return s == "|";
     case 2: return s == "&";
@@ -299,7 +299,7 @@ Value binaryLevel(Evaluator& e, int level) {
         if (!isLevelOperator(level, op, e.inVector_)) return left;
         // POV-Ray's commas are optional: `<a, b, c> <d, e, f>` is two vectors,
         // and a comparison needs floats, so '<' after a vector starts the next one.
-        if (level == 3 && op.text == "<" &&
+        if (level == 3 && op.is("<") &&
             (left.kind == Kind::Vector || left.kind == Kind::Color || e.countBeforeVector_))
             return left;
         e.next();
@@ -316,7 +316,7 @@ Value binaryLevel(Evaluator& e, int level) {
             }
         }
         const double a = e.toFloat(left, op.loc), b = e.toFloat(right, op.loc);
-        const std::string& s = op.text;
+        const std::string_view s = op.text;
         double r = 0;
         // = and != compare with POV-Ray's tolerance EPSILON = 1e-10.
         if (s == "|") r = (a != 0 || b != 0);

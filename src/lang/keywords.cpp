@@ -204,7 +204,7 @@ const char* placePatternWord(PatternKind kind) { return wordOfKind(placePatternW
 
 bool isApproximatedPattern(const std::string& word) {
     static const std::set<std::string> words = {
-        "spiral1", "spiral2", "cells", "quilted", "cubic",
+        "spiral1", "spiral2", "cells", "cubic",
         "tiling", "pavement", "facets", "density_file", "object", "aoi", "slope", "pigment_pattern",
         "fractal", "wave", "noise"};
     return words.count(word) > 0;

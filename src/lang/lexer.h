@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace drt::lang {
@@ -31,8 +32,10 @@ struct Token {
     double number = 0;
     SourceLoc loc;
 
-    bool is(const char* symbol) const { return kind == TokenKind::Symbol && text == symbol; }
-    bool isWord(const char* word) const { return kind == TokenKind::Word && text == word; }
+    // A string_view, not a const char*: a literal's length is known when this
+    // is inlined, so a mismatch costs a length compare, not a strlen and a strcmp.
+    bool is(std::string_view symbol) const { return kind == TokenKind::Symbol && text == symbol; }
+    bool isWord(std::string_view word) const { return kind == TokenKind::Word && text == word; }
 };
 
 // `'sphere'`, `'{'`, `string "abc"`, `'#declare'`, `end of file`: a token for messages.

@@ -156,7 +156,9 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
             unsupported("light-" + w, t.loc, "light_source '" + w + "' is not supported and is ignored");
             expectSymbol("{", "after '" + w + "'");
             skipBlock();
-        } else if (w == "parallel" || w == "cylinder") {
+        } else if (w == "parallel") {
+            l.parallel = true;
+        } else if (w == "cylinder") {
             unsupported("light-" + w, t.loc, "'" + w + "' lights are not supported; treated as a point light");
         } else {
             failUnknown(t, Block::LightSource);

@@ -4,6 +4,7 @@
 // POV-Ray patterns drt lacks are approximated by their average in the
 // POV-Ray dialect (a warning says so) and refused in .drt.
 #include "lang/evaluator.h"
+#include "lang/quilted.h"
 
 #include <fmt/format.h>
 
@@ -154,11 +155,6 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
         if (t.isWord("uv_mapping")) {
             next();
             uv = true;
-            continue;
-        }
-        if (approximated == "quilted" && (t.isWord("control0") || t.isWord("control1"))) {
-            next(); // the approximated quilted pattern's own modifiers
-            floatExpr();
             continue;
         }
         if (pigmentItem(p, t)) {
@@ -323,6 +319,17 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         p.function = patternFunction(t);
         p.children.clear();
         greyRamp(p);
+    } else if (w == "quilted") {
+        next();
+        p.pattern = PatternKind::Function;
+        p.function = quiltedFunction(1, 1);
+        p.children.clear();
+        greyRamp(p);
+    } else if (double c0, c1; (w == "control0" || w == "control1") && p.pattern == PatternKind::Function &&
+                              p.function && quiltedControls(*p.function, c0, c1)) {
+        next();
+        (w == "control0" ? c0 : c1) = floatExpr();
+        p.function = quiltedFunction(c0, c1);
     } else if (isFractalWord(w)) {
         next();
         p.pattern = PatternKind::Fractal;

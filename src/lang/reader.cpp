@@ -316,6 +316,17 @@ void Evaluator::pushBack(Token t) {
 }
 
 Token Evaluator::peek() {
+    // When the token next() would return is already pushed back and next()
+    // would return it as it is (no directive to run, no macro to expand), copy
+    // it: taking it and pushing it back costs three token copies. The state
+    // left is next() then pushBack()'s.
+    if (!pushed_.empty()) {
+        const Token& t = pushed_.back();
+        if (t.kind != TokenKind::Directive && !(t.kind == TokenKind::Word && !noExpand_ && isMacro(t.text))) {
+            beforeLastToken_ = lastToken_;
+            return t;
+        }
+    }
     Token t = next();
     pushBack(t);
     return t;

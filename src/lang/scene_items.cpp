@@ -166,7 +166,11 @@ void Evaluator::globalSettings() {
     BlockScope scope(*this, "global_settings", keyword.loc);
     for (;;) {
         const Token t = next();
-        if (t.is("}")) return;
+        if (t.is("}")) {
+            // POV-Ray 3.7 drops `ambient` under radiosity (only emission glows); 3.6 and before keep it.
+            if (scene_.global.radiosity && version_ >= 3.7) scene_.global.ambientLight = Color(0);
+            return;
+        }
         if (t.kind != TokenKind::Word) failInBlock(t, "a global_settings keyword or '}'");
         const std::string& w = t.text;
         const SourceLoc at = peek().loc;
@@ -199,7 +203,48 @@ void Evaluator::globalSettings() {
         } else if (w == "adc_bailout") {
             scene_.global.adcBailout = floatExpr();
             if (scene_.global.adcBailout < 0) refuse(at, "'adc_bailout' must not be negative" + got(scene_.global.adcBailout));
-        } else if (w == "radiosity" || w == "photons" || w == "subsurface") {
+        } else if (w == "radiosity") {
+            // scene.h Radiosity: recursion_limit and brightness shape drt's estimate; the
+            // settings of POV-Ray's sample cache have no part in it and are read and dropped.
+            expectSymbol("{", "after 'radiosity'");
+            BlockScope radiosityScope(*this, "radiosity", t.loc);
+            Radiosity r;
+            for (;;) {
+                const Token k = next();
+                if (k.is("}")) break;
+                if (k.kind != TokenKind::Word) failInBlock(k, "a radiosity keyword or '}'");
+                const std::string& item = k.text;
+                const SourceLoc valueAt = peek().loc;
+                if (item == "recursion_limit") {
+                    const double n = floatExpr("'recursion_limit'");
+                    if (!(n >= 1 && n <= 100)) fail(valueAt, "'recursion_limit' must be 1 to 100" + got(n));
+                    r.recursionLimit = int(n);
+                } else if (item == "brightness") {
+                    r.brightness = floatExpr("'brightness'");
+                    if (!(r.brightness >= 0 && std::isfinite(r.brightness)))
+                        fail(valueAt, "'brightness' must be finite and not negative" + got(r.brightness));
+                } else if (item == "count" || item == "nearest_count") {
+                    floatExpr();
+                    if (acceptSymbol(",")) floatExpr();
+                } else if (item == "gray_threshold") {
+                    if (floatExpr() != 0)
+                        noteOnce("radiosity-gray", k.loc,
+                                 "radiosity 'gray_threshold' is ignored: the gathered light keeps its colour");
+                } else if (item == "error_bound" || item == "low_error_factor" || item == "minimum_reuse" ||
+                           item == "maximum_reuse" || item == "pretrace_start" || item == "pretrace_end" ||
+                           item == "adc_bailout" || item == "max_sample") {
+                    floatExpr();
+                } else if (item == "always_sample" || item == "normal" || item == "media" || item == "subsurface") {
+                    optionalBool(true);
+                } else if (item == "save_file" || item == "load_file") {
+                    stringExpr();
+                } else {
+                    failExpected(k, "a radiosity keyword (recursion_limit, brightness, count, error_bound, "
+                                    "gray_threshold, nearest_count, pretrace_start, pretrace_end, ...) or '}'");
+                }
+            }
+            scene_.global.radiosity = r;
+        } else if (w == "photons" || w == "subsurface") {
             unsupported("global-" + w, t.loc, "global_settings '" + w + "' is not supported and is ignored");
             expectSymbol("{", "after '" + w + "'");
             skipBlock();

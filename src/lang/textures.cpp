@@ -2,6 +2,7 @@
 // brick and tiles of textures), pigment_map, material and normal. Map entries
 // hold a texture / pigment *body*: `[0.5 T_Stone scale 2]`, `[0.3 checker Red White]`.
 #include "lang/evaluator.h"
+#include "lang/quilted.h"
 #include "lang/mesh_syntax.h"
 
 namespace drt::lang {
@@ -73,8 +74,8 @@ bool Evaluator::isTexturePatternWord(const Token& t) const {
     if (t.kind != TokenKind::Word || lookup(t.text)) return false;
     const std::string& w = t.text;
     return w == "texture_map" || w == "material_map" || w == "tiles" || w == "checker" || w == "hexagon" ||
-           w == "brick" || w == "gradient" || w == "average" || w == "function" || placePatternNamed(w).has_value() ||
-           noisePatternNamed(w).has_value() || isFractalWord(w) || isApproximatedPattern(w);
+           w == "brick" || w == "gradient" || w == "average" || w == "function" || w == "quilted" ||
+           placePatternNamed(w).has_value() || noisePatternNamed(w).has_value() || isFractalWord(w) || isApproximatedPattern(w);
 }
 
 // `[value, body]` of a map; in an `average` map the value (the weight) may be left out: 1.
@@ -198,6 +199,9 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
     } else if (w == "function") {
         pattern.pattern = PatternKind::Function;
         pattern.function = patternFunction(word);
+    } else if (w == "quilted") {
+        pattern.pattern = PatternKind::Function;
+        pattern.function = quiltedFunction(1, 1);
     } else if (isFractalWord(w)) {
         pattern.pattern = PatternKind::Fractal;
         pattern.fractal = fractalPattern(word);
@@ -258,9 +262,12 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
         if (turbulenceItem(t, pattern.turbulence)) continue;
         if (!block && waveItem(t, pattern.wave)) continue;
         if (fractalModifier(t, pattern.fractal)) continue;
-        if (approximated == "quilted" && (t.isWord("control0") || t.isWord("control1"))) {
-            next(); // the approximated quilted pattern's own modifiers
-            floatExpr();
+        if (double c0, c1; (t.isWord("control0") || t.isWord("control1")) &&
+                           pattern.pattern == PatternKind::Function && pattern.function &&
+                           quiltedControls(*pattern.function, c0, c1)) { // after quilted
+            next();
+            (t.text == "control0" ? c0 : c1) = floatExpr();
+            pattern.function = quiltedFunction(c0, c1);
             continue;
         }
         next();
@@ -414,10 +421,18 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 first = false;
                 continue;
             }
-            if (t.text == "function") { // normal { function { ... } [amount] }
+            if (double c0, c1; (t.text == "control0" || t.text == "control1") &&
+                               n.pattern == PatternKind::Function && n.function &&
+                               quiltedControls(*n.function, c0, c1)) { // after quilted
+                next();
+                (t.text == "control0" ? c0 : c1) = floatExpr();
+                n.function = quiltedFunction(c0, c1);
+                continue;
+            }
+            if (t.text == "function" || t.text == "quilted") { // normal { function { ... } [amount] }
                 next();
                 n.pattern = PatternKind::Function;
-                n.function = patternFunction(t);
+                n.function = t.text == "quilted" ? quiltedFunction(1, 1) : patternFunction(t);
                 known = true;
                 const Token a = peek();
                 if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();

@@ -125,6 +125,9 @@ void SceneWriter::settings(const Scene& scene) {
         items += " assumed_gamma " + number(g.assumedGamma);
     if (g.adcBailout != d.adcBailout)
         items += " adc_bailout " + number(g.adcBailout);
+    if (g.radiosity)
+        items += " radiosity { recursion_limit " + std::to_string(g.radiosity->recursionLimit) + " brightness " +
+                 number(g.radiosity->brightness) + " }";
     if (!items.empty())
         line(0, "global_settings {" + items + " }");
     if (!isBlack(scene.background))
@@ -193,6 +196,8 @@ void SceneWriter::light(const Light& l) {
     line(1, vector(l.position) + ", color " + colorText(l.color));
     if (l.spotlight)
         line(1, "spotlight");
+    if (l.parallel)
+        line(1, "parallel");
     if (!(l.pointAt == d.pointAt))
         line(1, "point_at " + vector(l.pointAt));
     std::string items;

@@ -40,12 +40,13 @@ private:
     Color m2_{0}; // sum of squared deviations from the mean
 };
 
-// The image position of the current pixel sample of pixel (x, y): the one
-// place the reconstruction filter enters. Filter importance sampling: the
+// The image position of a pixel sample of pixel (x, y) from its pixel
+// dimensions (Sampler::getCameraDimensions): the one place the reconstruction
+// filter enters. Filter importance sampling: the
 // offset from the pixel centre has the filter's density and the sample counts
 // with weight 1 in this pixel only (box: uniform over the pixel).
-inline Vec2 pixelSamplePosition(Sampler& sampler, const Filter& filter, int x, int y) {
-    const Vec2 offset = sampleFilter(filter, sampler.get2D(kDimPixel));
+inline Vec2 pixelSamplePosition(const Filter& filter, Vec2 pixelDimensions, int x, int y) {
+    const Vec2 offset = sampleFilter(filter, pixelDimensions);
     return {x + 0.5 + offset.x, y + 0.5 + offset.y};
 }
 

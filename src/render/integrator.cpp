@@ -93,6 +93,19 @@ Vec3 lobeDirection(const Vec3& ideal, double blur, Sampler& sampler, int dimensi
     return sampleLobeAround(ideal, lobeExponent(blur), sampler.get2D(dimension));
 }
 
+// A cosine-distributed direction about the unit normal n.
+Vec3 cosineDirectionAbout(const Vec3& n, Vec2 u) {
+    const Vec3 local = squareToCosineHemisphere(u);
+    Vec3 t, b;
+    orthonormalBasis(n, t, b);
+    return normalize(t * local.x + b * local.y + n * local.z);
+}
+
+// Radiosity's 2D sampler dimension at trace depth d: past the media's.
+int radiosityDimension(int depth) {
+    return kFirstMediaDimension + 2 * kMaxLightDepth + 2 * std::clamp(depth, 0, kMaxLightDepth - 1);
+}
+
 Ray spawn(const Hit& hit, const Vec3& direction, double time) {
     Ray ray;
     ray.origin = Accelerator::offsetOrigin(hit, direction);
@@ -219,6 +232,17 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         const Color local = ambientTerm(finish, sp.pigment, scene_.global.ambientLight) +
                             lighting_.shade(sp, *surface.lights, sampler, counts);
         result += weight * filter * local;
+        // Radiosity (scene.h): one cosine-distributed ray about the unbumped normal carries the layer's diffuse share.
+        if (const std::optional<Radiosity>& radiosity = scene_.global.radiosity;
+            radiosity && pending.diffuseDepth < radiosity->recursionLimit && childDepth < kTraceLevelLimit &&
+            finish.diffuse > 0) {
+            const Color gathered = weight * filter * sp.pigment.rgb *
+                                   (finish.diffuse * radiosity->brightness * sp.pigment.opacity());
+            if (worthTracing(gathered))
+                stack.push_back({spawn(hit, cosineDirectionAbout(surface.normal, sampler.get2D(radiosityDimension(pending.depth))),
+                                       pending.ray.time),
+                                 gathered, childDepth, pending.medium, pending.diffuseDepth + 1});
+        }
 
         const double cosIncident = std::clamp(-dot(incoming, normal), 0.0, 1.0);
         // A reflection that does not vary (min == max, no metallic tint) is its
@@ -235,7 +259,8 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
             const Vec3 direction = lobeDirection(reflect(incoming, normal), finish.reflectionBlur, sampler,
                                                  bounceDimension(pending.depth, kOffsetLobe));
             if (dot(direction, normal) > 0) // below the surface: weight 0
-                stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth, pending.medium});
+                stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth, pending.medium,
+                                 pending.diffuseDepth});
         }
 
         filter *= sp.pigment.rgb * sp.pigment.filter + Color(sp.pigment.transmit);
@@ -264,7 +289,8 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         if (internalReflection ? side > 0 : side < 0)
             stack.push_back({spawn(hit, direction, pending.ray.time), transmittedWeight, childDepth,
                              internalReflection ? pending.medium
-                                                : mediumAfterCrossing(pending.medium, *hit.object, surface.entering)});
+                                                : mediumAfterCrossing(pending.medium, *hit.object, surface.entering),
+                             pending.diffuseDepth});
     }
 }
 

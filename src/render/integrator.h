@@ -61,6 +61,7 @@ private:
         Color weight;
         int depth = 0;
         const Object* medium = nullptr; // the media-holding object the ray is inside (render/media.h)
+        int diffuseDepth = 0;           // radiosity bounces on the way (scene.h Radiosity)
     };
     // The surface point a ray hit, before any texture layer's bump normal.
     struct SurfaceHit {

@@ -295,7 +295,7 @@ DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel)
         for (size_t i = 0; i < scene.lights.size(); ++i) {
             const Light& light = scene.lights[i];
             const bool media = hasMedia_ && light.mediaAttenuation && light.mediaInteraction;
-            if (!light.area && !light.spotlight && !light.shadowless && !lightMoves(light) && !media &&
+            if (!light.area && !light.spotlight && !light.parallel && !light.shadowless && !lightMoves(light) && !media &&
                 !isBlack(light.color))
                 packetLights_.push_back(static_cast<int>(i));
         }
@@ -369,6 +369,11 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         const Light* light = &scene_.lights[i];
         const bool moved = anyLightMoves_ && lightMoves(*light);
         if (moved) light = &(cache.moved_ = lightAt(*light, sp.time));
+        if (light->parallel) { // it stands where this point's parallel ray from it starts (scene.h)
+            if (!moved) cache.moved_ = *light;
+            cache.moved_.position = parallelLightPosition(cache.moved_, sp.hit->point);
+            light = &cache.moved_;
+        }
         if (isBlack(light->color)) continue;
         SpotCones movedCones;
         if (light->spotlight && moved) movedCones = spotCones(*light);

@@ -295,13 +295,15 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
         for (int start = first; start < last; start += kPacket) {
             const int n = std::min(kPacket, last - start);
             int traced = 0;
+            // Only the effects in use draw samples (a pinhole takes no lens sample).
+            Vec2 pixelDimensions[kPacket], lensDimensions[kPacket];
+            double timeDimensions[kPacket];
+            sampler.getCameraDimensions(x, y, start, n, pixelDimensions, camera.hasShutter() ? timeDimensions : nullptr,
+                                        lensSampled ? lensDimensions : nullptr);
             for (int j = 0; j < n; ++j) {
-                sampler.startPixelSample(x, y, start + j);
-                const Vec2 position = pixelSamplePosition(sampler, filter, x, y);
-                // Only the effects in use draw samples (a pinhole takes no lens sample).
-                const double time =
-                    camera.hasShutter() ? camera.timeAt(sampler.get1D(kDimTime)) : camera.shutterOpen;
-                const Vec2 lens = lensSampled ? sampler.get2D(kDimLens) : Vec2{0.5, 0.5};
+                const Vec2 position = pixelSamplePosition(filter, pixelDimensions[j], x, y);
+                const double time = camera.hasShutter() ? camera.timeAt(timeDimensions[j]) : camera.shutterOpen;
+                const Vec2 lens = lensSampled ? lensDimensions[j] : Vec2{0.5, 0.5};
                 if (cameraMoves) moved = cameraPath.at(time);
                 const ResolvedCamera& at = cameraMoves ? moved : camera;
                 covered[j] = at.covers(position.x, position.y); // else no ray (POV-Ray: black)

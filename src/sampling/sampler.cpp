@@ -23,6 +23,15 @@ Vec2 Sampler::get2DStratified(int dimension, int k, int count) {
     return {(cell % nx + j.x) / nx, (cell / nx + j.y) / ny};
 }
 
+void Sampler::getCameraDimensions(int x, int y, int first, int count, Vec2* pixel, double* time, Vec2* lens) {
+    for (int j = 0; j < count; ++j) {
+        startPixelSample(x, y, first + j);
+        pixel[j] = get2D(kDimPixel);
+        if (time) time[j] = get1D(kDimTime);
+        if (lens) lens[j] = get2D(kDimLens);
+    }
+}
+
 namespace {
 
 // Independent uniform random values: the N^-1/2 baseline.

@@ -44,6 +44,14 @@ public:
     // Sample values in [0, 1) for the given dimension(s) of the current sample.
     virtual double get1D(int dimension) = 0;
     virtual Vec2 get2D(int dimension) = 0; // uses dimension and dimension + 1
+    // The camera dimensions of samples first .. first+count-1 of pixel (x, y),
+    // bit for bit what startPixelSample then get2D(kDimPixel), get1D(kDimTime)
+    // and get2D(kDimLens) give one sample at a time: pixel[j] always, time[j]
+    // and lens[j] unless the array is null (a camera without shutter or lens
+    // draws no such value). Afterwards the current sample is unspecified: call
+    // startPixelSample before drawing any other value. The renderer takes a
+    // packet's camera values this way; the default asks sample by sample.
+    virtual void getCameraDimensions(int x, int y, int first, int count, Vec2* pixel, double* time, Vec2* lens);
     // For samplers that can draw more than one point per dimension for one
     // pixel sample (e.g. n1 x n2 area-light cells): the k-th of `count`
     // stratified 2D points in the given dimension.

@@ -32,30 +32,24 @@ public:
     std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(samplesPerPixel_, seed_); }
 
     void startPixelSample(int x, int y, int index) override {
-        if (!havePixel_ || x != x_ || y != y_) {
-            // Everything below that depends on the pixel alone is computed
-            // once per pixel, not once per sample.
-            x_ = x;
-            y_ = y;
-            havePixel_ = true;
-            pixelKey_ = hashValues({seed_, uint64_t(int64_t(x)), uint64_t(int64_t(y)), 0x50b01ULL});
-            jointShuffle_ = OwenSeed(static_cast<uint32_t>(key(kTagJoint, 0) >> 32));
-            // The pixel position's seeds now; time's and the lens's when asked
-            // (a scene without motion blur or focal blur never asks).
-            for (int d = 0; d < 2; ++d) jointSeeds_[d] = OwenSeed(seed32(kTagJoint, d, 0));
-            jointSeedsReady_ = 0b11u;
-            ++generation_;
-            for (Recent& r : recent_) r.index = -1;
-        }
+        startPixel(x, y);
         index_ = index;
         // The renderer starts each sample twice (its camera ray in a packet
         // with the pixel's next samples, then the rest): the shuffle is kept.
-        Recent& r = recent_[static_cast<unsigned>(index) % kRecent];
-        if (r.index != index) {
-            r.index = index;
-            r.jointIndex = shuffledIndex(jointShuffle_);
-        }
-        jointIndex_ = r.jointIndex;
+        jointIndex_ = recentJointIndex(index);
+    }
+
+    // A packet's camera values in one loop: no call per sample, and the
+    // samples' scrambles (chains of multiplies) independent of each other.
+    void getCameraDimensions(int x, int y, int first, int count, Vec2* pixel, double* time, Vec2* lens) override {
+        startPixel(x, y);
+        // Time's and the lens's seeds, made once for the pixel when asked.
+        for (int d = kDimTime; d < kSobolDimensions; ++d)
+            if (d == kDimTime ? time != nullptr : lens != nullptr) jointSeed(d);
+        if (time && lens) cameraDimensions<true, true>(first, count, pixel, time, lens);
+        else if (time) cameraDimensions<true, false>(first, count, pixel, time, lens);
+        else if (lens) cameraDimensions<false, true>(first, count, pixel, time, lens);
+        else cameraDimensions<false, false>(first, count, pixel, time, lens);
     }
 
     double get1D(int dimension) override {
@@ -85,6 +79,47 @@ public:
     std::string name() const override { return "sobol"; }
 
 private:
+    void startPixel(int x, int y) {
+        if (!havePixel_ || x != x_ || y != y_) {
+            // Everything below that depends on the pixel alone is computed
+            // once per pixel, not once per sample.
+            x_ = x;
+            y_ = y;
+            havePixel_ = true;
+            pixelKey_ = hashValues({seed_, uint64_t(int64_t(x)), uint64_t(int64_t(y)), 0x50b01ULL});
+            jointShuffle_ = OwenSeed(static_cast<uint32_t>(key(kTagJoint, 0) >> 32));
+            // The pixel position's seeds now; time's and the lens's when asked
+            // (a scene without motion blur or focal blur never asks).
+            for (int d = 0; d < 2; ++d) jointSeeds_[d] = OwenSeed(seed32(kTagJoint, d, 0));
+            jointSeedsReady_ = 0b11u;
+            ++generation_;
+            for (Recent& r : recent_) r.index = -1;
+        }
+    }
+    // One loop per choice of effects: a still pinhole camera's has nothing else.
+    template <bool kTime, bool kLens>
+    void cameraDimensions(int first, int count, Vec2* pixel, double* time, Vec2* lens) {
+        for (int j = 0; j < count; ++j) {
+            const uint32_t i = recentJointIndex(first + j);
+            pixel[j] = {fractionToUnit(scrambledSobol0(i, jointSeeds_[0])),
+                        fractionToUnit(owenScrambledSobol(i, 1, jointSeeds_[1]))};
+            if constexpr (kTime) time[j] = fractionToUnit(owenScrambledSobol(i, kDimTime, jointSeeds_[kDimTime]));
+            if constexpr (kLens)
+                lens[j] = {fractionToUnit(owenScrambledSobol(i, kDimLens, jointSeeds_[kDimLens])),
+                           fractionToUnit(owenScrambledSobol(i, kDimLens + 1, jointSeeds_[kDimLens + 1]))};
+        }
+    }
+    // The joint (shuffled) index of sample `index` of the current pixel, kept
+    // for the pixel's last kRecent sample indices.
+    uint32_t recentJointIndex(int index) {
+        Recent& r = recent_[static_cast<unsigned>(index) % kRecent];
+        if (r.index != index) {
+            r.index = index;
+            r.jointIndex = shuffledIndex(static_cast<uint32_t>(index), jointShuffle_);
+        }
+        return r.jointIndex;
+    }
+
     static constexpr uint64_t kTagJoint = 1, kTagPadded1D = 2, kTagPadded2D = 3, kTagStratified = 4;
     static constexpr int kTags = 5;
 
@@ -122,7 +157,9 @@ private:
         return static_cast<uint32_t>(hashValues({pixelKey_, tag, uint64_t(dimension), uint64_t(component) + 17}) >> 32);
     }
     uint32_t shuffledIndex(const OwenSeed& shuffleSeed) const {
-        const auto i = static_cast<uint32_t>(index_);
+        return shuffledIndex(static_cast<uint32_t>(index_), shuffleSeed);
+    }
+    uint32_t shuffledIndex(uint32_t i, const OwenSeed& shuffleSeed) const {
         if ((i | mask_) <= 0xffu) { // up to 256 samples: both reversals are one byte's, from a table
             using sobol_detail::kReversedByte;
             const uint32_t scrambled = sobol_detail::scrambleReversed(uint32_t(kReversedByte[i]) << 24, shuffleSeed);

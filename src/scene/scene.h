@@ -471,6 +471,10 @@ struct Light {
     // Spotlight (POV-Ray defaults).
     bool spotlight = false;
     Vec3 pointAt{0, 0, 1};
+    // POV-Ray's `parallel`: the light's rays all run along point_at - position.
+    // A point lit by it sees the light as from its own projection onto the
+    // plane through the position square to that direction (parallelLightPosition).
+    bool parallel = false;
     double radius = 30;  // degrees
     double falloff = 45; // degrees
     double tightness = 0;
@@ -495,6 +499,20 @@ struct Light {
     std::shared_ptr<const LightMotion> motion;
     SourceLoc loc;
 };
+
+// Where a parallel light stands as seen from `point`: back along the light's
+// unit direction u (point_at - position) by the point's distance h to the
+// plane through the position square to u, point - u h. For a point before the
+// plane that is its projection onto the plane; a point behind it sees the light
+// from the same direction -u (as POV-Ray lights it), as far away.
+inline Vec3 parallelLightPosition(const Light& light, const Vec3& point) {
+    const Vec3 d = light.pointAt - light.position;
+    const double len = length(d);
+    if (!(len > 0)) return light.position;
+    const Vec3 u = d / len;
+    const double h = std::fabs(dot(u, point - light.position));
+    return point - u * (h > 0 ? h : 1e-9);
+}
 
 // A light's pose at one time (an animated scene evaluated at that clock value).
 struct LightKey {
@@ -558,11 +576,22 @@ struct CameraKey {
 
 // ---------------------------------------------------------------- settings
 
+// POV-Ray's radiosity { }: diffuse interreflection. A surface's diffuse share
+// of the light arriving over its hemisphere, diffuse * pigment * brightness
+// times the mean radiance the hemisphere sends (cosine-weighted), added up to
+// recursionLimit diffuse bounces deep; render/integrator.h estimates it with
+// one cosine-distributed ray per shaded layer and camera sample.
+struct Radiosity {
+    int recursionLimit = 2;
+    double brightness = 1;
+};
+
 struct GlobalSettings {
     int maxTraceLevel = 5;
     Color ambientLight{1};
     double assumedGamma = 1.0;
     double adcBailout = 1.0 / 255.0;
+    std::optional<Radiosity> radiosity;
 };
 
 // Image size and sampling set from the scene; the command line overrides them

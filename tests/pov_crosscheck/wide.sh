@@ -28,8 +28,11 @@
 # the figures of an older drt beside the current ones.
 #
 # Settings: 160x120; POV-Ray `+A0.3` (its adaptive anti-aliasing); drt 16
-# samples per pixel, seed 1. Animated scenes render their first frame
-# (clock = 0) in both. Needs Debian's povray, povray-examples, povray-includes.
+# samples per pixel, seed 1. Animated scenes render their first frame in both:
+# clock = 0, or, when a same-named .ini beside the scene sets an animation
+# (Final_Frame above Initial_Frame), that .ini's first frame and clock range
+# (the portfolio scenes index their arrays by frame_number). Needs Debian's
+# povray, povray-examples, povray-includes.
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=$root/build
@@ -63,6 +66,18 @@ tree() {
     fi
 }
 
+# The animation a same-named .ini beside the scene sets, as "FIRST LAST CLOCK0 CLOCK1"
+# (nothing when there is no such .ini or it sets no more than one frame).
+ini_frames() {
+    local ini=$examples/${1%.pov}.ini first last clock0 clock1
+    [ -f "$ini" ] || return 0
+    value() { grep -i -m 1 "^[[:space:]]*$1[[:space:]]*=" "$ini" | cut -d = -f 2 | tr -dc '0-9.-'; }
+    first=$(value Initial_Frame) last=$(value Final_Frame) clock0=$(value Initial_Clock) clock1=$(value Final_Clock)
+    first=${first:-1} last=${last:-$first}
+    [ "$last" -gt "$first" ] 2>/dev/null || return 0
+    echo "$first $last ${clock0:-0} ${clock1:-1}"
+}
+
 # POV-Ray's render of one scene: $cache/pov/SCENE.png, or SCENE.failed with the reason.
 reference_one() {
     scene=$1
@@ -72,11 +87,16 @@ reference_one() {
     dir=$cache/tree-pov/$(dirname "$scene")
     file=$(basename "$scene")
     image=wide-${file%.pov}.png
+    local animation=()
+    read -r first last clock0 clock1 < <(ini_frames "$scene")
+    [ -n "${first:-}" ] && animation=("+KFI$first" "+KFF$last" "+KI$clock0" "+KF$clock1" "+SF$first" "+EF$first")
     start=$(date +%s)
     (cd "$dir" && ulimit -t "$cpu_limit" &&
-        exec povray "+I$file" "+O$image" "+W$width" "+H$height" -D +A0.3 +FN +WT1 >"$out.log" 2>&1)
+        exec povray "+I$file" "+O$image" "+W$width" "+H$height" -D +A0.3 +FN +WT1 "${animation[@]}" >"$out.log" 2>&1)
     status=$?
     seconds=$(($(date +%s) - start))
+    # an animation's frame carries its number before the extension
+    [ -n "${first:-}" ] && for framed in "$dir/${image%.png}"[0-9]*.png; do [ -f "$framed" ] && mv "$framed" "$dir/$image"; done
     if [ $status -eq 0 ] && [ -f "$dir/$image" ]; then
         mv "$dir/$image" "$out.png"
     elif [ $status -eq 152 ] || [ $status -eq 137 ]; then
@@ -100,11 +120,15 @@ drt_one() {
     dir=$cache/tree-drt/$(dirname "$scene")
     file=$(basename "$scene")
     rm -f "$out.png" "$out.result"
+    local animation=()
+    read -r first last clock0 clock1 < <(ini_frames "$scene")
+    [ -n "${first:-}" ] && animation=(--frames "$first..$last" --clock "$clock0..$clock1" --subset "$first..$first")
     start=$(date +%s)
     (cd "$dir" && ulimit -t "$cpu_limit" &&
         exec "$drtbin" render "$file" -o "$out.png" --width "$width" --height "$height" --spp "$spp" \
-            --threads 1 --seed 1 --quiet >"$out.log" 2>&1)
+            --threads 1 --seed 1 --quiet "${animation[@]}" >"$out.log" 2>&1)
     status=$?
+    [ -n "${first:-}" ] && [ ! -f "$out.png" ] && for framed in "$out"[0-9]*.png; do [ -f "$framed" ] && mv "$framed" "$out.png"; done
     seconds=$(($(date +%s) - start))
     if [ $status -ne 0 ] || [ ! -f "$out.png" ]; then
         if [ $status -eq 152 ] || [ $status -eq 137 ]; then
@@ -125,7 +149,7 @@ drt_one() {
     fi
     echo "drt  $scene ${seconds}s $(cut -f 1,2,4 "$out.result" | tr '\t' ' ')"
 }
-export -f reference_one drt_one
+export -f ini_frames reference_one drt_one
 
 # The scenes whose path contains one of the patterns (all scenes without any).
 matching_scenes() {
@@ -247,7 +271,8 @@ Every scene of Debian's \`povray-examples\` package ($(povray --version 2>&1 | g
 at ${width}x${height} by POV-Ray (\`+A0.3\`) and by drt (\`drt render\`, ${spp} samples per pixel), each image is
 box-filtered 4x4 in linear values and encoded to sRGB, and the figure is the mean absolute difference over the
 pixels and the three channels (\`drt_wide_compare\`). A scene **agrees** when that figure is at most ${threshold}.
-Animated scenes render their first frame (\`clock\` 0) in both. Produced by
+Animated scenes render their first frame in both: \`clock\` 0, or the first frame and clock of the animation that a
+same-named \`.ini\` beside the scene sets (the portfolio scenes index their arrays by \`frame_number\`). Produced by
 
     tests/pov_crosscheck/wide.sh [-j JOBS]
 
@@ -256,8 +281,7 @@ scenes whose path contains PATTERN, and \`wide.sh table\` rewrites this section.
 
 **${agree} of ${total} scenes agree (${percent}%); of the ${rendered} scenes POV-Ray renders from the command line,
 ${agree} agree (${rendered_percent}%).** Of the others: $((compared - agree)) differ by more than
-${threshold}, ${drt_failed} fail in drt, ${both_failed} fail in both (POV-Ray stops on them too, e.g. the portfolio
-scenes that need their \`.ini\`'s frame numbers), ${no_ref} have no POV-Ray image (POV-Ray failed or exceeded the
+${threshold}, ${drt_failed} fail in drt, ${both_failed} fail in both (POV-Ray stops on them too), ${no_ref} have no POV-Ray image (POV-Ray failed or exceeded the
 CPU limit of ${cpu_limit} s)$([ $missing -gt 0 ] && echo ", $missing were not rendered"). Among the scenes that do not agree,
 ${clock} use \`clock\` (animation), ${radiosity} radiosity and ${photons} photons.$([ $carried -gt 0 ] && echo "
 $((total - carried)) rows come from this run's renders ($fresh); the other $carried are carried over from the
