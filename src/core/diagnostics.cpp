@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <string_view>
+#include <vector>
 
 namespace drt {
 
@@ -97,41 +99,56 @@ std::string Diagnostics::formatAll() const {
     return out;
 }
 
-static size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        cur[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
-            cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+// The Levenshtein distance of a and b when it is below `limit`, else `limit`.
+// Words whose lengths alone differ by `limit` are never compared, and a row of
+// the table whose every entry has reached `limit` ends the comparison: a
+// misspelt word is compared with hundreds of keywords, and a fuzzer's or a
+// binary file's "words" can be thousands of characters long.
+static size_t editDistanceBelow(std::string_view a, std::string_view b, size_t limit, std::vector<size_t>& row) {
+    if (a.size() > b.size()) std::swap(a, b);
+    if (b.size() - a.size() >= limit) return limit;
+    row.resize(a.size() + 1);
+    for (size_t j = 0; j <= a.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= b.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        size_t smallest = row[0];
+        for (size_t j = 1; j <= a.size(); ++j) {
+            const size_t above = row[j];
+            row[j] = std::min({above + 1, row[j - 1] + 1, diagonal + (b[i - 1] == a[j - 1] ? 0 : 1)});
+            diagonal = above;
+            smallest = std::min(smallest, row[j]);
         }
-        std::swap(prev, cur);
+        if (smallest >= limit) return limit;
     }
-    return prev[b.size()];
+    return std::min(row[a.size()], limit);
+}
+
+// Whether k is word with two neighbouring characters swapped.
+static bool isNeighbourSwap(std::string_view word, std::string_view k) {
+    if (word.size() != k.size()) return false;
+    size_t i = 0;
+    while (i < word.size() && word[i] == k[i]) ++i;
+    if (i + 1 >= word.size()) return false;
+    return word[i] == k[i + 1] && word[i + 1] == k[i] && word.substr(i + 2) == k.substr(i + 2);
 }
 
 std::string nearestWord(const std::string& word, const std::vector<std::string>& known) {
-    std::string best;
+    std::vector<size_t> row;
+    const std::string* best = nullptr;
     size_t bestDistance = std::max<size_t>(1, word.size() / 3) + 1;
     for (const auto& k : known) {
-        const size_t d = editDistance(word, k);
+        const size_t d = editDistanceBelow(word, k, bestDistance, row);
         if (d < bestDistance) {
             bestDistance = d;
-            best = k;
+            best = &k;
         }
     }
-    if (!best.empty()) return best;
+    if (best && !best->empty()) return *best;
     // Two swapped neighbours ("widht") cost 2 edits: too many for a short word
     // by distance alone, but a typical typo.
-    for (const std::string& k : known) {
-        if (k.size() != word.size()) continue;
-        for (size_t i = 0; i + 1 < word.size(); ++i) {
-            std::string swapped = word;
-            std::swap(swapped[i], swapped[i + 1]);
-            if (swapped == k) return k;
-        }
-    }
+    for (const std::string& k : known)
+        if (isNeighbourSwap(word, k)) return k;
     // A cut-short keyword ("max_trace" for "max_trace_level").
     if (word.size() >= 4)
         for (const std::string& k : known)
