@@ -256,6 +256,12 @@ const ErrorCase kCases[] = {
     {"ConstantPolynomial", "poly { 2, <0, 0, 0, 0, 0, 0, 0, 0, 0, 5> }", "poly has no term in x, y or z: it defines no surface", 1, 1},
     {"SuperellipsoidCount", "superellipsoid { <1, 1, 1> }", "superellipsoid exponents <e, n> needs 2 numbers, found 3", 1, 18},
     {"SuperellipsoidPositive", "superellipsoid { <0, 1> }", "superellipsoid exponents must be positive", 1, 18},
+    // julia_fractal
+    {"JuliaQuaternionFunction", "julia_fractal { <0, 0, 0, 0> sin }", "a quaternion julia_fractal iterates 'sqr' or 'cube', not 'sin' (add 'hypercomplex' for the other functions)", 1, 30},
+    {"JuliaPrecision", "julia_fractal { 0 precision 0.5 }", "the julia precision must be at least 1 (POV-Ray takes 1), got 0.5", 1, 29},
+    {"JuliaMaxIteration", "julia_fractal {\n  0 max_iteration 0 }", "the julia max_iteration must be at least 1 (POV-Ray takes 1), got 0", 2, 19},
+    {"JuliaSliceComma", "julia_fractal { 0 slice <0, 0, 0, 1> 0 }", "expected ',' after the slice normal, found '0'", 1, 38},
+    {"JuliaPwrParen", "julia_fractal { 0 hypercomplex pwr 2, 1 }", "expected '(' after 'pwr', found '2'", 1, 36},
     // blob
     {"BlobThreshold", "blob { threshold 0 sphere { 0, 1, 1 } }", "the blob threshold must be positive, got 0", 1, 18},
     {"BlobNoComponent", "blob { threshold 0.5 }", "a blob needs at least one sphere or cylinder component", 1, 1},

@@ -38,6 +38,7 @@ struct FidelityScene {
 //                    average colour of their maps; 0.004 with them)
 //   function_pattern (function patterns were the average colour of their maps; 0.0006 with them)
 //   isosurface       (isosurfaces were left out; 0.0008 with them)
+//   julia_fractal    (julia fractals were left out; 0.0015 with them)
 //   interior_fade    0.028 (fade_power 1000+ taken as a power law; shadow rays not faded)
 //   leopard_normal   0.061 (normals tilted by the world-space gradient: steep at small scales)
 //   normal_gradient  0.077 (gradient normals were ignored)
@@ -55,6 +56,7 @@ const FidelityScene kScenes[] = {
     {"function_pattern", 0.005},
     {"interior_fade", 0.012},
     {"isosurface", 0.005},
+    {"julia_fractal", 0.006},
     {"leopard_normal", 0.015},
     {"normal_gradient", 0.02},
     {"parallel_light", 0.01},

@@ -6,6 +6,7 @@
 #include "accel/revolution_shape.h"
 #include "accel/blob_shape.h"
 #include "accel/isosurface_shape.h"
+#include "accel/julia_fractal_shape.h"
 
 #include <algorithm>
 #include <cmath>
@@ -246,6 +247,9 @@ std::optional<AnalyticShape> prepareShape(const Shape& shape) {
     } else if (const auto* iso = std::get_if<Isosurface>(&shape)) {
         s.kind = ShapeKind::Isosurface;
         s.isosurface = std::make_shared<const IsosurfaceGeometry>(*iso);
+    } else if (const auto* julia = std::get_if<JuliaFractal>(&shape)) {
+        s.kind = ShapeKind::JuliaFractal;
+        s.julia = std::make_shared<const JuliaFractalGeometry>(*julia);
     } else {
         return std::nullopt;
     }
@@ -287,6 +291,12 @@ int intersectShape(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossin
         for (const Crossing& c : many) list.add(c.t, c.normal);
         return list.count;
     }
+    case ShapeKind::JuliaFractal: {
+        thread_local std::vector<Crossing> many;
+        s.julia->intersect(o, d, -INFINITY, INFINITY, kMaxCrossings, many);
+        for (const Crossing& c : many) list.add(c.t, c.normal);
+        return list.count;
+    }
     }
     return 0;
 }
@@ -313,6 +323,11 @@ int allCrossings(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossing 
         first = many.data();
         return static_cast<int>(many.size());
     }
+    if (s.kind == ShapeKind::JuliaFractal) {
+        s.julia->intersect(o, d, -INFINITY, INFINITY, SIZE_MAX, many);
+        first = many.data();
+        return static_cast<int>(many.size());
+    }
     first = fixed;
     return intersectShape(s, o, d, fixed);
 }
@@ -324,6 +339,12 @@ bool firstCrossingListed(const AnalyticShape& s, const Vec3& o, const Vec3& d, d
     thread_local std::vector<Crossing> many;
     if (s.kind == ShapeKind::Isosurface) { // marches only as far as the first crossing
         s.isosurface->intersect(o, d, tMin, tMax, 1, many);
+        if (many.empty()) return false;
+        out = many.front();
+        return true;
+    }
+    if (s.kind == ShapeKind::JuliaFractal) { // the same: marches only as far as the first crossing
+        s.julia->intersect(o, d, tMin, tMax, 1, many);
         if (many.empty()) return false;
         out = many.front();
         return true;
@@ -376,6 +397,7 @@ bool insideShape(const AnalyticShape& s, const Vec3& p) {
     case ShapeKind::Revolution: return s.revolution->inside(p);
     case ShapeKind::Blob: return s.blob->inside(p);
     case ShapeKind::Isosurface: return s.isosurface->inside(p);
+    case ShapeKind::JuliaFractal: return s.julia->inside(p);
     }
     return false;
 }
@@ -426,6 +448,7 @@ bool shapeBounds(const AnalyticShape& s, Vec3& lower, Vec3& upper) {
     case ShapeKind::Revolution: s.revolution->bounds(lower, upper); return true;
     case ShapeKind::Blob: s.blob->bounds(lower, upper); return true;
     case ShapeKind::Isosurface: s.isosurface->bounds(lower, upper); return true;
+    case ShapeKind::JuliaFractal: s.julia->bounds(lower, upper); return true;
     }
     return false;
 }

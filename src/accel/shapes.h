@@ -29,12 +29,13 @@ inline constexpr int kMaxCrossings = 36;
 struct PolynomialSurface; // algebraic_shapes.h
 
 enum class ShapeKind { Sphere, Plane, Cone, Disc, Torus, Box, Polynomial, Superellipsoid, Extrusion,
-                       Revolution, Blob, Isosurface };
+                       Revolution, Blob, Isosurface, JuliaFractal };
 
 class ExtrusionGeometry; // accel/extrusion_shape.h
 class RevolutionGeometry; // accel/revolution_shape.h
 class BlobGeometry; // accel/blob_shape.h
 class IsosurfaceGeometry; // accel/isosurface_shape.h
+class JuliaFractalGeometry; // accel/julia_fractal_shape.h
 
 // A shape in the form its intersection routine wants. Cylinders are cones
 // with equal radii; cones and cylinders are stored in a local frame whose z
@@ -57,6 +58,7 @@ struct AnalyticShape {
     std::shared_ptr<const RevolutionGeometry> revolution; // Revolution (lathe, sor)
     std::shared_ptr<const BlobGeometry> blob; // Blob
     std::shared_ptr<const IsosurfaceGeometry> isosurface; // Isosurface
+    std::shared_ptr<const JuliaFractalGeometry> julia; // JuliaFractal
 };
 
 // Builds the analytic form of an analytic scene shape. Returns nothing for

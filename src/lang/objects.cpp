@@ -71,7 +71,7 @@ ShapeReader shapeReader(const std::string& keyword) {
 }
 
 bool isUnsupportedShape(const std::string& keyword) {
-    static const std::set<std::string> words = {"julia_fractal", "parametric",
+    static const std::set<std::string> words = {"parametric",
                                                 "sphere_sweep", "bicubic_patch", "ovus"};
     return words.count(keyword) > 0;
 }

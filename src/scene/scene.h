@@ -15,6 +15,7 @@
 #include "scene/function.h"
 #include "scene/indexed_mesh.h"
 #include "scene/isosurface.h"
+#include "scene/julia_fractal.h"
 #include "scene/motion.h"
 
 #include <algorithm>
@@ -403,9 +404,10 @@ struct Csg {
 };
 
 // Algebraic and Superellipsoid: scene/algebraic.h; Extrusion: scene/extrusion.h;
-// Revolution: scene/revolution.h; Blob: scene/blob.h; Isosurface: scene/isosurface.h.
+// Revolution: scene/revolution.h; Blob: scene/blob.h; Isosurface: scene/isosurface.h;
+// JuliaFractal: scene/julia_fractal.h.
 using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid,
-                           Extrusion, Revolution, Blob, Isosurface>;
+                           Extrusion, Revolution, Blob, Isosurface, JuliaFractal>;
 
 struct Object {
     Shape shape;
