@@ -183,6 +183,8 @@ public:
         // clamped rather than overflow.
         if (sampling_ == AreaSampling::PovGrid)
             count_ = static_cast<int>(std::min<int64_t>(int64_t(n1_) * n2_, std::numeric_limits<int>::max()));
+        // The area and the emitter's normal weigh solid-angle and inverse-square samples only.
+        if (sampling_ != AreaSampling::SolidAngle && !light.inverseSquare) return;
         const Vec3 normal = cross(frame_.axis1, frame_.axis2);
         areaMeasure_ = length(normal);
         if (area_.circular) areaMeasure_ *= kPi / 4;
@@ -375,9 +377,9 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             light = &cache.moved_;
         }
         if (isBlack(light->color)) continue;
-        SpotCones movedCones;
-        if (light->spotlight && moved) movedCones = spotCones(*light);
-        const SpotCones& cones = !light->spotlight ? kNoCones : moved ? movedCones : cones_[i];
+        const SpotCones& cones = !light->spotlight ? kNoCones
+                                 : moved          ? (cache.movedCones_ = spotCones(*light))
+                                                  : cones_[i];
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
         PointLightSamples::Range& range = cache.lights_[i];
         if (range.generation != cache.generation_) { // the first layer at this point: no samples drawn yet

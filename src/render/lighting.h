@@ -159,6 +159,7 @@ private:
     std::vector<Range> lights_; // by light
     std::vector<Sample> samples_;
     Light moved_; // a moving light as it is at the shaded point's time (render/light_path.h)
+    SpotCones movedCones_; // its cones, if a spotlight
 };
 
 // The scene's lights as one render sees them: what is known before tracing
