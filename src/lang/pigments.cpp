@@ -166,13 +166,7 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
             if (syntax().unsupportedIsError) fail(t.loc, "pattern '" + t.text + "' is not supported");
             approximated = t.text;
             approximatedLoc = t.loc;
-            if (t.text == "pigment_pattern" || t.text == "object") {
-                if (peek().is("{")) next(), skipBlock();
-            } else if (t.text == "density_file") { // density_file df3 "file" [interpolate n]
-                if (peek().isWord("df3")) next();
-                stringExpr();
-                if (peek().isWord("interpolate")) next(), floatExpr();
-            }
+            if (t.text == "object" && peek().is("{")) next(), skipBlock();
             continue;
         }
         if (t.kind == TokenKind::Word) {
@@ -317,6 +311,21 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         next();
         p.pattern = PatternKind::Function;
         p.function = patternFunction(t);
+        p.children.clear();
+        greyRamp(p);
+    } else if (w == "density_file") {
+        next();
+        p.pattern = PatternKind::DensityFile;
+        p.densityFile = densityFile(t);
+        p.children.clear();
+        greyRamp(p);
+    } else if (w == "interpolate" && p.pattern == PatternKind::DensityFile && p.densityFile) {
+        next();
+        p.densityFile = densityInterpolate(p.densityFile);
+    } else if (w == "pigment_pattern") {
+        next();
+        p.pattern = PatternKind::Function;
+        p.function = pigmentPatternFunction(t);
         p.children.clear();
         greyRamp(p);
     } else if (w == "quilted") {
