@@ -76,6 +76,20 @@ TEST(Radiosity, AFloorUnderTheSkySeesItTimesDiffuseAndBrightness) {
     }
 }
 
+TEST(Radiosity, TheSummaryNamesItWhereADiffuseFinishGathers) {
+    const auto effectsOf = [](const std::string& text) {
+        const auto run = test::readSceneText(text, true);
+        EXPECT_TRUE(run->scene) << run->diags.formatAll();
+        return run->scene ? sceneEffects(*run->scene, RenderOptions{}) : SceneEffects{};
+    };
+    const SceneEffects gathers = effectsOf(furnace("3.7", 1, "emission 0.2 diffuse 0.5"));
+    EXPECT_TRUE(gathers.radiosity);
+    EXPECT_EQ(describeEffects(gathers), "radiosity");
+    // No diffuse surface to gather for, or no radiosity { }: not used.
+    EXPECT_FALSE(effectsOf(furnace("3.7", 1, "emission 0.2 diffuse 0")).radiosity);
+    EXPECT_FALSE(effectsOf("camera { location 0 look_at z }\nsphere { 0, 10 pigment { rgb 1 } }\n").radiosity);
+}
+
 TEST(Radiosity, BadSettingsAreLocatedErrors) {
     const auto zero = test::readSceneText("global_settings { radiosity { recursion_limit 0 } }\n", true);
     test::expectErrorAt(zero->diags, "t.pov", 1, 47, "'recursion_limit' must be 1 to 100, got 0");

@@ -405,6 +405,9 @@ TEST(Warp, MapsIntoTheirDomains) {
         const Vec3 g = sampleLobeAround(axis, 20.0, u);
         EXPECT_NEAR(length(g), 1.0, 1e-12);
         EXPECT_GT(dot(g, axis), 0.0);
+        const Vec3 w = sampleCosineAround(axis, u);
+        EXPECT_NEAR(length(w), 1.0, 1e-12);
+        EXPECT_NEAR(dot(w, axis), c.z, 1e-12); // the hemisphere's z becomes the axis
     }
     EXPECT_EQ(squareToConcentricDisc({0.5, 0.5}).x, 0.0);
     EXPECT_EQ(phongLobePdf(-0.1, 5), 0.0);

@@ -93,14 +93,6 @@ Vec3 lobeDirection(const Vec3& ideal, double blur, Sampler& sampler, int dimensi
     return sampleLobeAround(ideal, lobeExponent(blur), sampler.get2D(dimension));
 }
 
-// A cosine-distributed direction about the unit normal n.
-Vec3 cosineDirectionAbout(const Vec3& n, Vec2 u) {
-    const Vec3 local = squareToCosineHemisphere(u);
-    Vec3 t, b;
-    orthonormalBasis(n, t, b);
-    return normalize(t * local.x + b * local.y + n * local.z);
-}
-
 // Radiosity's 2D sampler dimension at trace depth d: past the media's.
 int radiosityDimension(int depth) {
     return kFirstMediaDimension + 2 * kMaxLightDepth + 2 * std::clamp(depth, 0, kMaxLightDepth - 1);
@@ -239,7 +231,7 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
             const Color gathered = weight * filter * sp.pigment.rgb *
                                    (finish.diffuse * radiosity->brightness * sp.pigment.opacity());
             if (worthTracing(gathered))
-                stack.push_back({spawn(hit, cosineDirectionAbout(surface.normal, sampler.get2D(radiosityDimension(pending.depth))),
+                stack.push_back({spawn(hit, sampleCosineAround(surface.normal, sampler.get2D(radiosityDimension(pending.depth))),
                                        pending.ray.time),
                                  gathered, childDepth, pending.medium, pending.diffuseDepth + 1});
         }

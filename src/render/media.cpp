@@ -124,8 +124,9 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
     for (const Light& light : lighting.scene->lights) {
         // A moving light as it is at the ray's time (render/light_path.h); a still one as written, with no copy.
         // A parallel light stands where p's ray from it starts (scene.h).
-        if (lightMoves(light) || light.parallel) {
-            Light placed = lightMoves(light) ? lightAt(light, lighting.time) : light;
+        const bool moves = lightMoves(light);
+        if (moves || light.parallel) {
+            Light placed = moves ? lightAt(light, lighting.time) : light;
             if (placed.parallel) placed.position = parallelLightPosition(placed, p);
             scatterFrom(placed);
         } else {

@@ -182,6 +182,8 @@ SceneEffects sceneEffects(const Scene& scene, const RenderOptions& options) {
         return f.reflectionBlur > 0 && (!isBlack(f.reflectionMax) || !isBlack(f.reflectionMin));
     });
     e.translucency = anyFinish(scene.objects, [](const Finish& f) { return f.refractionBlur > 0; });
+    e.radiosity = scene.global.radiosity && scene.global.radiosity->brightness > 0 &&
+                  anyFinish(scene.objects, [](const Finish& f) { return f.diffuse > 0; });
     return e;
 }
 
@@ -199,6 +201,7 @@ std::string describeEffects(const SceneEffects& e) {
     add(e.gloss, "gloss");
     add(e.translucency, "translucency");
     add(e.adaptive, "adaptive");
+    add(e.radiosity, "radiosity");
     return text.empty() ? "none" : text;
 }
 

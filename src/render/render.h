@@ -70,11 +70,12 @@ struct SceneEffects {
     bool gloss = false;        // reflection_blur on a reflective finish
     bool translucency = false; // refraction_blur on a transmitting finish
     bool adaptive = false;     // adaptive sampling
+    bool radiosity = false;    // radiosity { } gathering from a diffuse finish
 };
 
 // What `scene` rendered with `options` uses.
 SceneEffects sceneEffects(const Scene& scene, const RenderOptions& options);
-// "AA, DOF, motion, area lights, gloss, translucency, adaptive" (the ones used), or "none".
+// "AA, DOF, motion, area lights, gloss, translucency, adaptive, radiosity" (the ones used), or "none".
 std::string describeEffects(const SceneEffects& effects);
 
 struct RenderStats {

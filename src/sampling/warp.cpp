@@ -39,6 +39,13 @@ Vec3 fromCosTheta(double cosTheta, double v) {
     const double phi = 2.0 * kPi * v;
     return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
 }
+
+// A direction given in the frame whose z is the unit `axis`, in world space.
+Vec3 aboutAxis(const Vec3& axis, const Vec3& local) {
+    Vec3 t, b;
+    orthonormalBasis(axis, t, b);
+    return normalize(t * local.x + b * local.y + axis * local.z);
+}
 } // namespace
 
 Vec3 squareToUniformSphere(Vec2 u) { return fromCosTheta(1.0 - 2.0 * u.x, u.y); }
@@ -51,6 +58,8 @@ Vec3 squareToCosineHemisphere(Vec2 u) {
     const Vec2 d = squareToConcentricDisc(u);
     return {d.x, d.y, std::sqrt(std::max(0.0, 1.0 - d.x * d.x - d.y * d.y))};
 }
+
+Vec3 sampleCosineAround(const Vec3& axis, Vec2 u) { return aboutAxis(axis, squareToCosineHemisphere(u)); }
 
 // ---------------------------------------------------------------- Phong lobe
 
@@ -67,10 +76,7 @@ double phongLobePdf(double cosTheta, double exponent) {
 }
 
 Vec3 sampleLobeAround(const Vec3& axis, double exponent, Vec2 u) {
-    Vec3 t, b;
-    orthonormalBasis(axis, t, b);
-    const Vec3 local = squareToPhongLobe(u, exponent);
-    return normalize(t * local.x + b * local.y + axis * local.z);
+    return aboutAxis(axis, squareToPhongLobe(u, exponent));
 }
 
 double lobeAroundPdf(const Vec3& axis, double exponent, const Vec3& direction) {

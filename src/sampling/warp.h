@@ -28,6 +28,9 @@ inline constexpr double uniformHemispherePdf() { return 1.0 / (2.0 * kPi); }
 // lifted to the hemisphere); density cos(theta) / pi.
 Vec3 squareToCosineHemisphere(Vec2 u);
 inline double cosineHemispherePdf(double cosTheta) { return cosTheta > 0 ? cosTheta / kPi : 0.0; }
+// The same about an arbitrary unit axis (world space), e.g. a surface normal for
+// diffuse interreflection; density cos(theta) / pi with theta from the axis.
+Vec3 sampleCosineAround(const Vec3& axis, Vec2 u);
 
 // ---------------------------------------------------------------- Phong lobe
 // Density proportional to cos^n(theta) about z on the hemisphere around the

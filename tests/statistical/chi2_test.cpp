@@ -130,6 +130,12 @@ std::vector<ChiSquareCase> allCases() {
                                   [](const Vec3& w) { return w.z >= 0 ? uniformHemispherePdf() : 0.0; }));
     cases.push_back(directionCase("cosine hemisphere", {0, 0, 1}, -1.0, squareToCosineHemisphere,
                                   [](const Vec3& w) { return cosineHemispherePdf(w.z); }));
+    {
+        const Vec3 axis = normalize(Vec3{-1, 2, 0.5});
+        cases.push_back(directionCase(
+            "cosine about an axis", axis, -1.0, [axis](Vec2 u) { return sampleCosineAround(axis, u); },
+            [axis](const Vec3& w) { return cosineHemispherePdf(dot(axis, w)); }));
+    }
     cases.push_back(phongCase(1, {0, 0, 1}));
     cases.push_back(phongCase(10, {1, 2, -3}));
     cases.push_back(phongCase(10, {1e-3, 0, -1})); // near the frame's singular axis
