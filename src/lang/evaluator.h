@@ -197,7 +197,7 @@ public:
     bool isTexturePatternWord(const Token& t) const;
     Texture patternedTexture(const Token& patternWord, const char* closer, const std::string& where);
     std::vector<Texture::MapEntry> textureMap(bool average); // after 'texture_map'
-    std::vector<Pigment::MapEntry> pigmentMap(bool average); // after 'pigment_map'
+    std::vector<Pigment::MapEntry> pigmentMap(bool average); // after 'pigment_map' or a density's 'density_map'
     double mapEntryValue(bool average, const char* map, const double* previous);
     // Adds `top` on top of `below`, with POV-Ray's errors for layers over or of patterned textures.
     void layerOnTop(Texture& below, Texture top, SourceLoc loc);

@@ -353,7 +353,9 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
     } else if (w == "color_map" || w == "colour_map") {
         next();
         p.colorMap = colorMap();
-    } else if (w == "pigment_map") {
+    } else if (w == "pigment_map" ||
+               (w == "density_map" && !openBlocks_.empty() && openBlocks_.back().keyword == "density")) {
+        // A density is evaluated as a pigment: its density_map is a pigment_map of densities.
         next();
         p.pigmentMap = pigmentMap(p.pattern == PatternKind::Average);
     } else if (turbulenceItem(t, p.turbulence) || waveItem(t, p.wave)) {
@@ -376,7 +378,9 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         const Transform keep = p.toWorld;
         p = solid(rgb(0.5, 0.5, 0.5));
         p.toWorld = keep;
-    } else if (w == "density_map" || w == "normal_map") {
+    } else if (w == "density_map") {
+        fail(t.loc, "'density_map' goes in a 'density' block; a pigment's map of pigments is 'pigment_map'");
+    } else if (w == "normal_map") {
         next();
         unsupported(w, t.loc, "'" + w + "' is not supported; the pattern uses a grey ramp");
         expectSymbol("{", "after '" + w + "'");

@@ -122,20 +122,21 @@ std::vector<Texture::MapEntry> Evaluator::textureMap(bool average) {
 
 std::vector<Pigment::MapEntry> Evaluator::pigmentMap(bool average) {
     const Token keyword = lastToken();
+    const std::string name = keyword.text; // pigment_map, or density_map (its entries densities)
     DepthGuard guard(*this, keyword.loc);
-    expectSymbol("{", "after 'pigment_map'");
-    BlockScope scope(*this, "pigment_map", keyword.loc);
+    expectSymbol("{", "after '" + name + "'");
+    BlockScope scope(*this, name, keyword.loc);
     std::vector<Pigment::MapEntry> map;
     for (;;) {
         const Token t = next();
         if (t.is("}")) break;
-        if (!t.is("[")) failInBlock(t, "'[' to start a pigment_map entry, or '}'");
+        if (!t.is("[")) failInBlock(t, "'[' to start a " + name + " entry, or '}'");
         Pigment::MapEntry entry;
-        entry.value = mapEntryValue(average, "pigment_map", map.empty() ? nullptr : &map.back().value);
-        entry.pigment = pigmentBody(Pigment{}, "]", "']' to end the pigment_map entry");
+        entry.value = mapEntryValue(average, name.c_str(), map.empty() ? nullptr : &map.back().value);
+        entry.pigment = pigmentBody(Pigment{}, "]", "']' to end the " + name + " entry");
         map.push_back(std::move(entry));
     }
-    if (map.empty()) refuse(keyword.loc, "pigment_map has no entries");
+    if (map.empty()) refuse(keyword.loc, name + " has no entries");
     return map;
 }
 

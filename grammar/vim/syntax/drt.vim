@@ -15,13 +15,13 @@ syn keyword drtFunction vdot vlength vnormalize vrotate vstr
 syn keyword drtBoolean false no off on true yes
 syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background blob box camera clipped_by cone contained_by cubic
-syn keyword drtBlock cylinder density disc face_indices finish fog global_settings height_field
-syn keyword drtBlock image_map interior isosurface lathe light_source media mesh mesh2
-syn keyword drtBlock motion normal normal_indices normal_vectors object pattern pigment pigment_map
-syn keyword drtBlock pigment_pattern plane poly prism quadric quartic radiosity render
-syn keyword drtBlock scattering sky_sphere slope_map smooth_triangle sor sphere spline superellipsoid
-syn keyword drtBlock text texture texture_list texture_map tiles torus triangle uv_indices
-syn keyword drtBlock uv_vectors vertex_vectors
+syn keyword drtBlock cylinder density density_map disc face_indices finish fog global_settings
+syn keyword drtBlock height_field image_map interior isosurface lathe light_source media mesh
+syn keyword drtBlock mesh2 motion normal normal_indices normal_vectors object pattern pigment
+syn keyword drtBlock pigment_map pigment_pattern plane poly prism quadric quartic radiosity
+syn keyword drtBlock render scattering sky_sphere slope_map smooth_triangle sor sphere spline
+syn keyword drtBlock superellipsoid text texture texture_list texture_map tiles torus triangle
+syn keyword drtBlock uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections always_sample
 syn keyword drtKeyword ambient ambient_light angle aperture append area_illumination area_light area_sampling
 syn keyword drtKeyword array assumed_gamma at average bezier_spline blue boxed bozo
