@@ -15,42 +15,42 @@ syn keyword drtFunction vdot vlength vnormalize vrotate vstr
 syn keyword drtBoolean false no off on true yes
 syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background blob box camera clipped_by cone contained_by cubic
-syn keyword drtBlock cylinder density disc face_indices finish fog global_settings height_field
-syn keyword drtBlock image_map interior isosurface lathe light_source media mesh mesh2
-syn keyword drtBlock motion normal normal_indices normal_vectors object pattern pigment pigment_map
-syn keyword drtBlock plane poly prism quadric quartic radiosity render scattering
-syn keyword drtBlock sky_sphere slope_map smooth_triangle sor sphere spline superellipsoid text
-syn keyword drtBlock texture texture_list texture_map tiles torus triangle uv_indices uv_vectors
-syn keyword drtBlock vertex_vectors
+syn keyword drtBlock cylinder density density_map disc face_indices finish fog global_settings
+syn keyword drtBlock height_field image_map interior isosurface lathe light_source media mesh
+syn keyword drtBlock mesh2 motion normal normal_indices normal_vectors object pattern pigment
+syn keyword drtBlock pigment_map pigment_pattern plane poly prism quadric quartic radiosity
+syn keyword drtBlock render scattering sky_sphere slope_map smooth_triangle sor sphere spline
+syn keyword drtBlock superellipsoid text texture texture_list texture_map tiles torus triangle
+syn keyword drtBlock uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections always_sample
 syn keyword drtKeyword ambient ambient_light angle aperture append area_illumination area_light area_sampling
 syn keyword drtKeyword array assumed_gamma at average bezier_spline blue boxed bozo
 syn keyword drtKeyword brick brick_size brightness brilliance bumps checker circular clock
 syn keyword drtKeyword clock_delta clock_on color color_map colour colour_map confidence conic_sweep
 syn keyword drtKeyword conserve_energy control0 control1 count crackle crand cubic_spline cubic_wave
-syn keyword drtKeyword cylindrical dents difference diffuse direction distance eccentricity emission
-syn keyword drtKeyword error error_bound evaluate exponent exterior extinction f_noise3d f_noise_generator
-syn keyword drtKeyword f_ph f_r f_rounded_box f_sphere f_superellipsoid f_th f_torus fade_color
-syn keyword drtKeyword fade_colour fade_distance fade_power falloff file filter final_clock final_frame
-syn keyword drtKeyword fisheye focal_distance focal_point fog_alt fog_offset fog_type font frame_number
-syn keyword drtKeyword frequency fresnel gamma gradient granite gray gray_threshold green
-syn keyword drtKeyword grid height hexagon hierarchy hollow initial_clock initial_frame internal
-syn keyword drtKeyword interpolate intersection intervals inverse inverse_square ior jitter julia
-syn keyword drtKeyword lambda leopard linear_spline linear_sweep load_file location look_at low_error_factor
-syn keyword drtKeyword magnet mandel map_type marble matrix max_gradient max_iteration max_sample
-syn keyword drtKeyword max_samples max_trace max_trace_level maximum_reuse media_attenuation media_interaction merge metallic
-syn keyword drtKeyword method min_samples minimum_reuse mortar natural_spline nearest_count no_shadow octaves
-syn keyword drtKeyword offset omega once onion open orient orthographic panoramic
-syn keyword drtKeyword parallel perspective phase phong phong_size planar point_at poly_wave
-syn keyword drtKeyword pov_grid pretrace_end pretrace_start quadratic_spline quilted radial radius ramp_wave
-syn keyword drtKeyword ratio read recursion_limit red reflection reflection_blur refraction_blur rgb
-syn keyword drtKeyword rgbf rgbft rgbt right ripples rotate roughness sampler
-syn keyword drtKeyword samples save_file scale scallop_wave shadowless shutter_close shutter_open sine_wave
-syn keyword drtKeyword sky smooth solid_angle specular spherical spotlight srgb srgbf
-syn keyword drtKeyword srgbft srgbt stratified strength string sturm subsurface t
-syn keyword drtKeyword thickness threshold tightness tile2 translate transmit triangle_wave turb_depth
-syn keyword drtKeyword turbulence u ultra_wide_angle union up uv_mapping v variance
-syn keyword drtKeyword water_level waves width wood wrinkles write
+syn keyword drtKeyword cylindrical density_file dents df3 difference diffuse direction distance
+syn keyword drtKeyword eccentricity emission error error_bound evaluate exponent exterior extinction
+syn keyword drtKeyword f_noise3d f_noise_generator f_ph f_r f_rounded_box f_sphere f_superellipsoid f_th
+syn keyword drtKeyword f_torus fade_color fade_colour fade_distance fade_power falloff file filter
+syn keyword drtKeyword final_clock final_frame fisheye focal_distance focal_point fog_alt fog_offset fog_type
+syn keyword drtKeyword font frame_number frequency fresnel gamma gradient granite gray
+syn keyword drtKeyword gray_threshold green grid height hexagon hierarchy hollow initial_clock
+syn keyword drtKeyword initial_frame internal interpolate intersection intervals inverse inverse_square ior
+syn keyword drtKeyword jitter julia lambda leopard linear_spline linear_sweep load_file location
+syn keyword drtKeyword look_at low_error_factor magnet mandel map_type marble matrix max_gradient
+syn keyword drtKeyword max_iteration max_sample max_samples max_trace max_trace_level maximum_reuse media_attenuation media_interaction
+syn keyword drtKeyword merge metallic method min_samples minimum_reuse mortar natural_spline nearest_count
+syn keyword drtKeyword no_shadow octaves offset omega once onion open orient
+syn keyword drtKeyword orthographic panoramic parallel perspective phase phong phong_size planar
+syn keyword drtKeyword point_at poly_wave pov_grid pretrace_end pretrace_start quadratic_spline quilted radial
+syn keyword drtKeyword radius ramp_wave ratio read recursion_limit red reflection reflection_blur
+syn keyword drtKeyword refraction_blur rgb rgbf rgbft rgbt right ripples rotate
+syn keyword drtKeyword roughness sampler samples save_file scale scallop_wave shadowless shutter_close
+syn keyword drtKeyword shutter_open sine_wave sky smooth solid_angle specular spherical spotlight
+syn keyword drtKeyword srgb srgbf srgbft srgbt stratified strength string sturm
+syn keyword drtKeyword subsurface t thickness threshold tightness tile2 translate transmit
+syn keyword drtKeyword triangle_wave turb_depth turbulence u ultra_wide_angle union up uv_mapping
+syn keyword drtKeyword v variance water_level waves width wood wrinkles write
 syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|fclose\|fopen\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|read\|switch\|undef\|version\|warning\|while\|write\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
