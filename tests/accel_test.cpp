@@ -105,10 +105,13 @@ TEST(Accel, OffsetOriginIsTheScalarOnesToTheBit) {
 }
 
 // accel::hitFromEmbree takes a short way for an analytic shape at the top
-// level whose crossing the callback solved: it must give the record
-// generalHit gives, to the bit, for plain and clipped shapes, with and
-// without a transform, inverted, in a scene traced in a shifted frame or not,
-// beside triangles and CSG (which take the general way).
+// level whose crossing the callback solved, and another for a triangle of a
+// plain mesh at the top level (a box, a mesh without normals): each must give
+// the record generalHit gives, to the bit, for plain and clipped shapes, with
+// and without a transform (a mirroring one too), inverted, in a scene traced in
+// a shifted frame or not, beside a mesh with normals and CSG (which take the
+// general way). The packet's own unpacking is checked against single rays in
+// packet_test.cpp.
 TEST(Accel, ShortWayHitsAreTheGeneralOnesToTheBit) {
     for (const Vec3 shift : {Vec3{}, Vec3{1e5, -3e4, 2e5}}) {
         std::vector<Object> objects;
@@ -125,6 +128,18 @@ TEST(Accel, ShortWayHitsAreTheGeneralOnesToTheBit) {
         Csg difference{Csg::Op::Difference, {makeObject(Sphere{{0, 0, 0}, 1}), makeObject(Box{{0, -2, -2}, {2, 2, 2}})}};
         objects.push_back(makeObject(difference, Transform::translate({0, 2.5, 0})));
         objects.push_back(makeObject(Box{{-1, -1, -1}, {1, 1, 1}}, Transform::translate({-3, 2.5, 0})));
+        Object invertedBox = makeObject(Box{{-0.5, 0, -0.5}, {0.5, 1, 0.5}},
+                                        Transform::scale({-1, 1, 1}).then(Transform::translate({1.5, 3.2, -1})));
+        invertedBox.inverse = true;
+        objects.push_back(invertedBox);
+        Mesh plain; // no normals: the short way
+        plain.vertices = {{-5, -0.5, 3}, {-3, -0.5, 3}, {-5, 1.5, 3.5}, {-3, 1.5, 3.5}, {-4, 0.5, 3.25}};
+        plain.triangles = {{0, 1, 2}, {1, 3, 2}, {4, 4, 4}};
+        objects.push_back(makeObject(plain));
+        Mesh smooth = plain; // with normals: the general way
+        smooth.normals = {{0, 0, -1}, normalize(Vec3{1, 0, -1})};
+        smooth.normalIndices = {{0, 1, 0}, {1, 0, 1}, {0, 0, 0}};
+        objects.push_back(makeObject(smooth, Transform::translate({9, 0, 0})));
         for (Object& object : objects) object.transform = object.transform.then(Transform::translate(shift));
         const Scene scene = test::sceneOf(std::move(objects));
         accel::AcceleratorState state;
@@ -132,7 +147,7 @@ TEST(Accel, ShortWayHitsAreTheGeneralOnesToTheBit) {
         ASSERT_EQ(state.shifted, shift.x != 0);
         std::mt19937 rng(23);
         std::uniform_real_distribution<double> u(0, 1);
-        int shortWay = 0, hits = 0;
+        int shortWay = 0, shortTriangles = 0, hits = 0;
         for (int k = 0; k < 20000; ++k) {
             const Vec3 origin = shift + Vec3{-6 + 12 * u(rng), -0.5 + 5 * u(rng), -9 + 3 * u(rng)};
             const Vec3 direction = shift + Vec3{-5 + 10 * u(rng), -1 + 4 * u(rng), 2 * u(rng)} - origin;
@@ -146,6 +161,8 @@ TEST(Accel, ShortWayHitsAreTheGeneralOnesToTheBit) {
             if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
             ++hits;
             shortWay += state.top.geometries[rayhit.hit.geomID].kind == accel::GeometryKind::Analytic && query.hasCrossing;
+            if (const auto& ref = state.top.geometries[rayhit.hit.geomID]; ref.kind == accel::GeometryKind::Mesh)
+                shortTriangles += state.top.meshes[ref.index].normals.empty();
             Hit fast, general;
             fast.hasUv = general.hasUv = true; // what a reused record may hold
             fast.instance = general.instance = 3;
@@ -170,7 +187,8 @@ TEST(Accel, ShortWayHitsAreTheGeneralOnesToTheBit) {
             ASSERT_EQ(fast.cornerTextures, general.cornerTextures) << "ray " << k;
         }
         EXPECT_GT(shortWay, 3000);
-        EXPECT_GT(hits - shortWay, 1000); // the box (triangles) takes the general way
+        EXPECT_GT(shortTriangles, 1000); // the boxes and the plain mesh
+        EXPECT_GT(hits - shortWay - shortTriangles, 300); // CSG and the mesh with normals
     }
 }
 

@@ -2,6 +2,7 @@
 // transmittance formulas, the ground-fog depth integral against a numerical
 // one, and rendered pixels against the closed forms.
 #include "render/atmosphere.h"
+#include "lang/load.h"
 #include "render/render.h"
 
 #include <cmath>
@@ -107,6 +108,36 @@ TEST(Fog, RenderedWallIsFoggedByItsDistance) {
     const double t = std::exp(-10.0 / 8.0);
     EXPECT_NEAR(image.at(2, 2, 0), t * 0.9 + (1 - t) * 0.1, 1e-4);
     EXPECT_NEAR(image.at(2, 2, 2), t * 0.1 + (1 - t) * 0.9, 1e-4);
+}
+
+// A light's way to the surface goes through the fog too when the light has
+// media_attenuation (POV-Ray's hollow1.pov: with it on, a light of 40000 at
+// 800 units in fog of distance 80 lights the floor as one of about 2). The
+// floor below the camera, the light straight above it: the pixel is
+// exp(-camera distance / D) * exp(-light distance / D) with black fog; without
+// media_attenuation (POV-Ray's default, not drt's) only the camera's part.
+TEST(Fog, ALightWithMediaAttenuationIsDimmedByTheFogOnItsWay) {
+    const std::string scene = "global_settings { assumed_gamma 1 }\n"
+                              "camera { orthographic location <0, 10, 0> sky z look_at <0, 0, 0> right x * 0.01 up z * 0.01 }\n"
+                              "fog { distance 10 color rgb 0 }\n"
+                              "plane { y, 0 pigment { rgb 1 } finish { ambient 0 diffuse 1 } }\n";
+    struct Case {
+        const char* name;
+        const char* light;
+        double expected;
+    };
+    const double camera = std::exp(-10.0 / 10.0), light = std::exp(-20.0 / 10.0);
+    for (const Case& c : {Case{"f.pov", "light_source { <0, 20, 0>, rgb 1 media_attenuation on }", camera * light},
+                          Case{"f.pov", "light_source { <0, 20, 0>, rgb 1 }", camera},
+                          Case{"f.drt", "light_source { <0, 20, 0>, rgb 1 }", camera * light},
+                          Case{"f.drt", "light_source { <0, 20, 0>, rgb 1 media_attenuation off }", camera}}) {
+        Diagnostics diags;
+        const auto s = loadSceneText(scene + c.light, c.name, diags);
+        ASSERT_TRUE(s) << diags.formatAll();
+        const Image image = render(*s, tinyOptions()).color;
+        for (int channel = 0; channel < 3; ++channel)
+            EXPECT_NEAR(image.at(2, 2, channel), c.expected, 1e-4) << c.name << " " << c.light;
+    }
 }
 
 TEST(Fog, BackgroundTakesTheFullFogColour) {

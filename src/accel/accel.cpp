@@ -316,18 +316,14 @@ namespace accel {
 
 namespace {
 
-// generalHit's result for a top-level analytic hit whose crossing the
-// callback left in the query.
-inline void topAnalyticHit(const AcceleratorState& state, const RayQuery& query, const Primitive& p, Hit& hit) {
-    const SurfaceCrossing c = query.objectSpace ? levelCrossing(p, query.objectCrossing) : query.crossing;
-    const Vec3& d = query.direction;
-    hit.t = c.t;
-    const Vec3 point = query.origin + c.t * d;
-    const double len = length(c.normal);
-    hit.geometricNormal = len > 0 && std::isfinite(len) ? c.normal / len : unitOr(-d, {0, 1, 0});
-    hit.shadingNormal = hit.geometricNormal;
-    hit.object = c.object;
-    hit.primitive = 0;
+// The rest of a short way's record of a hit at the top level (no instance,
+// no uvs): `point` in the level's (perhaps shifted) frame, `normal` unit.
+[[gnu::always_inline]] inline void topLevelRecord(const AcceleratorState& state, const Vec3& point,
+                                                  const Vec3& normal, const Object* object, uint32_t primitive,
+                                                  double frameUnit, Hit& hit) {
+    hit.geometricNormal = hit.shadingNormal = normal;
+    hit.object = object;
+    hit.primitive = primitive;
     hit.hasUv = false;
     hit.uv = {};
     hit.cornerTextures = {};
@@ -335,7 +331,19 @@ inline void topAnalyticHit(const AcceleratorState& state, const RayQuery& query,
     hit.point = state.shifted ? point + state.frameOrigin : point;
     hit.restPoint = hit.point;
     hit.frameOrigin = state.shifted ? state.frameOrigin : Vec3{};
-    hit.frameUnit = p.frameUnit > 0 ? p.frameUnit : state.sceneUnit;
+    hit.frameUnit = frameUnit > 0 ? frameUnit : state.sceneUnit;
+}
+
+// generalHit's result for a top-level analytic hit whose crossing the
+// callback left in the query.
+inline void topAnalyticHit(const AcceleratorState& state, const RayQuery& query, const Primitive& p, Hit& hit) {
+    const SurfaceCrossing c = query.objectSpace ? levelCrossing(p, query.objectCrossing) : query.crossing;
+    const Vec3& d = query.direction;
+    hit.t = c.t;
+    const double len = length(c.normal);
+    topLevelRecord(state, query.origin + c.t * d,
+                   len > 0 && std::isfinite(len) ? c.normal / len : unitOr(-d, {0, 1, 0}), c.object, 0, p.frameUnit,
+                   hit);
 }
 
 // The primitive of Embree's hit (instID, primID, geomID) if topAnalyticHit
@@ -349,10 +357,44 @@ inline const Primitive* shortWayPrimitive(const AcceleratorState& state, const R
     return nullptr;
 }
 
+// generalHit's result for triangle `prim` of a plain mesh at the top level
+// (topTriangleMesh), Embree's hit at distance tfar and barycentrics (u, v).
+inline void topTriangleHit(const AcceleratorState& state, const RayQuery& query, const MeshRecord& mesh,
+                           uint32_t prim, double tfar, double u, double v, Hit& hit) {
+    const auto& tri = mesh.triangles[prim];
+    const Vec3 &p0 = mesh.vertices[tri[0]], &p1 = mesh.vertices[tri[1]], &p2 = mesh.vertices[tri[2]];
+    const Vec3& d = query.direction;
+    hit.t = tfar;
+    resolveTriangleHit(query.origin, d, p0, p1, p2, hit.t, u, v);
+    const double w = 1 - u - v;
+    const Vec3 point = w * p0 + u * p1 + v * p2;
+    const Vec3 winding = cross(p1 - p0, p2 - p0);
+    const double len = length(winding);
+    // A degenerate triangle has no winding normal: face the ray instead of NaN.
+    const Vec3 geometric = len > 0 && std::isfinite(len) ? winding / len : unitOr(-d, {0, 1, 0});
+    topLevelRecord(state, point, mesh.inverse ? -geometric : geometric, mesh.object, prim,
+                   mesh.extent > 0 ? frameUnitFor(mesh.extent) : 0, hit);
+}
+
+// The mesh of Embree's hit if topTriangleHit makes its record: a triangle mesh
+// at the top level with its own level-space copy and neither normals, uvs nor
+// corner textures (a box, a plain mesh). Else null.
+inline const MeshRecord* topTriangleMesh(const AcceleratorState& state, unsigned instID, unsigned geomID) {
+    if (instID != RTC_INVALID_GEOMETRY_ID) return nullptr;
+    const GeometryRef& ref = state.top.geometries[geomID];
+    if (ref.kind != GeometryKind::Mesh) return nullptr;
+    const MeshRecord& mesh = state.top.meshes[ref.index];
+    return !mesh.vertices.empty() && mesh.normals.empty() && !mesh.indexed && mesh.object ? &mesh : nullptr;
+}
+
 // accel::hitFromEmbree, inline in the queries.
 inline void hitRecord(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit) {
     if (const Primitive* p = shortWayPrimitive(state, query, rayhit.hit.instID[0], rayhit.hit.primID, rayhit.hit.geomID)) {
         topAnalyticHit(state, query, *p, hit);
+        return;
+    }
+    if (const MeshRecord* mesh = topTriangleMesh(state, rayhit.hit.instID[0], rayhit.hit.geomID)) {
+        topTriangleHit(state, query, *mesh, rayhit.hit.primID, rayhit.ray.tfar, rayhit.hit.u, rayhit.hit.v, hit);
         return;
     }
     generalHit(state, query, rayhit, hit);
@@ -412,6 +454,11 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
         if (const Primitive* p = shortWayPrimitive(*impl_, *lanes[i], packet.hit.instID[0][i], packet.hit.primID[i],
                                                    packet.hit.geomID[i])) {
             topAnalyticHit(*impl_, *lanes[i], *p, hits[i]);
+            continue;
+        }
+        if (const MeshRecord* mesh = topTriangleMesh(*impl_, packet.hit.instID[0][i], packet.hit.geomID[i])) {
+            topTriangleHit(*impl_, *lanes[i], *mesh, packet.hit.primID[i], packet.ray.tfar[i], packet.hit.u[i],
+                           packet.hit.v[i], hits[i]);
             continue;
         }
         // Lane i as the single-ray record generalHit reads.

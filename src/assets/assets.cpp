@@ -46,6 +46,20 @@ bool resolveAssets(Scene& scene, Diagnostics& diags) {
         }
         pigment.imageMap = it->second;
     });
+    // df3 files, read once however many pigments and normals share one.
+    std::map<const DensityFile*, std::shared_ptr<const DensityFile>> read;
+    const auto resolveDensity = [&](std::shared_ptr<const DensityFile>& density) {
+        if (!density || !density->values.empty()) return;
+        auto [it, fresh] = read.try_emplace(density.get());
+        if (fresh) {
+            auto d = std::make_shared<DensityFile>(*density);
+            if (const std::string error = loadDensityFile(*d, diags.limits()); !error.empty()) diags.error(d->loc, error);
+            it->second = std::move(d);
+        }
+        density = it->second;
+    };
+    forEachPigment(scene, [&](Pigment& pigment) { resolveDensity(pigment.densityFile); });
+    forEachNormal(scene, [&](Normal& normal) { resolveDensity(normal.densityFile); });
     return diags.errorCount() == errorsBefore;
 }
 
@@ -53,6 +67,10 @@ bool assetsResolved(const Scene& scene) {
     bool resolved = true;
     forEachPigment(scene, [&](const Pigment& pigment) {
         if (pigment.imageMap && pigment.imageMap->rgbt.empty()) resolved = false;
+        if (pigment.densityFile && pigment.densityFile->values.empty()) resolved = false;
+    });
+    forEachNormal(scene, [&](const Normal& normal) {
+        if (normal.densityFile && normal.densityFile->values.empty()) resolved = false;
     });
     forEachObject(scene, [&](const Object& object) {
         if (const Mesh* mesh = std::get_if<Mesh>(&object.shape); mesh && mesh->source && !mesh->indexed)

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "core/diagnostics.h"
+#include "scene/density_file.h"
 #include "scene/image_map.h"
 #include "scene/scene.h"
 
@@ -15,6 +16,11 @@ namespace drt {
 // are linear. Alpha becomes transmit = 1 - alpha. Returns "" on success,
 // else the reason.
 std::string loadImageMap(ImageMap& map);
+
+// Reads `d.path`, a df3 file, into the voxels (density_file_load.cpp);
+// refuses a file whose voxels would take more than `limits.memoryMB`.
+// Returns "" on success, else the reason, naming the file.
+std::string loadDensityFile(DensityFile& d, const Limits& limits);
 
 // Fills `mesh` from `source` (a height field); warnings go to `diags`.
 // Returns "" on success, else the reason.

@@ -168,6 +168,8 @@ public:
     Pigment functionPattern(const Token& keyword);
     // After 'function' in a pigment, texture or normal: a function of x, y, z.
     std::shared_ptr<const Function> patternFunction(const Token& keyword);
+    // `pigment_pattern { PIGMENT }`, read after its keyword: the grey value of the pigment.
+    std::shared_ptr<const Function> pigmentPatternFunction(const Token& keyword);
     // A call of the declared function `f` (named `name`, consumed): its arguments, then its value.
     Value callFunction(const Token& name, const Function& f);
     std::shared_ptr<const Spline> splineBlock(SourceLoc keyword); // after 'spline'
@@ -195,7 +197,7 @@ public:
     bool isTexturePatternWord(const Token& t) const;
     Texture patternedTexture(const Token& patternWord, const char* closer, const std::string& where);
     std::vector<Texture::MapEntry> textureMap(bool average); // after 'texture_map'
-    std::vector<Pigment::MapEntry> pigmentMap(bool average); // after 'pigment_map'
+    std::vector<Pigment::MapEntry> pigmentMap(bool average); // after 'pigment_map' or a density's 'density_map'
     double mapEntryValue(bool average, const char* map, const double* previous);
     // Adds `top` on top of `below`, with POV-Ray's errors for layers over or of patterned textures.
     void layerOnTop(Texture& below, Texture top, SourceLoc loc);
@@ -222,6 +224,10 @@ public:
     std::shared_ptr<const FractalPattern> fractalPattern(const Token& keyword);
     bool fractalModifier(const Token& t, std::shared_ptr<const FractalPattern>& fractal);
     std::optional<Pigment> imageMapPigment(SourceLoc keyword); // after 'image_map'
+    // `density_file df3 "file" [interpolate n]`, read after 'density_file'.
+    std::shared_ptr<const DensityFile> densityFile(const Token& keyword);
+    // `interpolate n` of a density_file, read after 'interpolate': `d` with it.
+    std::shared_ptr<const DensityFile> densityInterpolate(const std::shared_ptr<const DensityFile>& d);
     // A transform keyword (translate rotate scale matrix transform) at the current token, or nothing.
     std::optional<Transform> transformItem();
     Transform transformBlock(); // after 'transform'

@@ -298,6 +298,24 @@ Pigment Evaluator::functionPattern(const Token& keyword) {
     return p;
 }
 
+// POV-Ray's pigment_pattern: the pattern's value at a point is the grey of
+// the pigment there, 0.297 red + 0.589 green + 0.114 blue, its filter and
+// transmit left out (both measured against POV-Ray 3.7). It is the function
+// `function { (pigment { ... }(x, y, z).gray) }`, which is how it is written
+// back in .drt.
+std::shared_ptr<const Function> Evaluator::pigmentPatternFunction(const Token& keyword) {
+    DepthGuard guard(*this, keyword.loc);
+    expectSymbol("{", "after 'pigment_pattern'");
+    BlockScope scope(*this, "pigment_pattern", keyword.loc);
+    auto f = std::make_shared<Function>();
+    f->params = {"x", "y", "z"};
+    f->patterns.push_back(std::make_shared<const Pigment>(pigmentBody(Pigment{}, "}", "'}' in pigment_pattern")));
+    for (uint16_t i = 0; i < 3; ++i) f->code.push_back({FnOp::Param, 0, 0, i});
+    f->code.push_back({FnOp::Colour, 3, uint8_t(channelNamed("gray")), 0});
+    f->stackSize = f->totalStack = 3;
+    return f;
+}
+
 std::shared_ptr<const Function> Evaluator::functionBody(const Token& keyword) {
     DepthGuard guard(*this, keyword.loc);
     auto f = std::make_shared<Function>();

@@ -4,6 +4,7 @@
 // pigment. Files are found like include files (image extensions tried for a
 // name without one).
 #include "lang/evaluator.h"
+#include "scene/density_file.h"
 #include "scene/image_map.h"
 
 #include <filesystem>
@@ -34,6 +35,31 @@ std::string Evaluator::findDataFile(const std::string& name, bool imageExtension
     if (path.empty()) return path;
     std::error_code ec;
     return fs::absolute(path, ec).lexically_normal().string();
+}
+
+std::shared_ptr<const DensityFile> Evaluator::densityFile(const Token& keyword) {
+    if (!acceptWord("df3")) failExpected(peek(), "'df3' (the file's format) after '" + keyword.text + "'");
+    auto d = std::make_shared<DensityFile>();
+    const Token file = peek();
+    if (syntax().kind == DialectKind::Drt && file.kind != TokenKind::String)
+        failExpected(next(), "the df3 file name in quotes");
+    d->file = stringExpr();
+    d->loc = file.loc;
+    d->path = findDataFile(d->file, false);
+    if (d->path.empty()) fail(file.loc, "cannot find density file '" + d->file + "'");
+    if (acceptWord("interpolate")) return densityInterpolate(d);
+    return d;
+}
+
+std::shared_ptr<const DensityFile> Evaluator::densityInterpolate(const std::shared_ptr<const DensityFile>& d) {
+    const SourceLoc at = peek().loc;
+    const int type = intExpr("the interpolation");
+    auto changed = std::make_shared<DensityFile>(*d);
+    if (type >= 0 && type <= 2) changed->interpolation = DensityFile::Interpolation(type);
+    else if (syntax().strictValues)
+        error(at, "density_file interpolate must be 0 (none), 1 (trilinear) or 2 (tricubic)" + got(type));
+    else warnOnce("density-interpolate", at, "interpolate " + std::to_string(type) + " is not known; no interpolation");
+    return changed;
 }
 
 std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword) {

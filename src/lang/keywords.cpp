@@ -205,7 +205,7 @@ const char* placePatternWord(PatternKind kind) { return wordOfKind(placePatternW
 bool isApproximatedPattern(const std::string& word) {
     static const std::set<std::string> words = {
         "spiral1", "spiral2", "cells", "cubic",
-        "tiling", "pavement", "facets", "density_file", "object", "aoi", "slope", "pigment_pattern",
+        "tiling", "pavement", "facets", "object", "aoi", "slope",
         "fractal", "wave", "noise"};
     return words.count(word) > 0;
 }

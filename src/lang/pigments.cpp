@@ -166,13 +166,7 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
             if (syntax().unsupportedIsError) fail(t.loc, "pattern '" + t.text + "' is not supported");
             approximated = t.text;
             approximatedLoc = t.loc;
-            if (t.text == "pigment_pattern" || t.text == "object") {
-                if (peek().is("{")) next(), skipBlock();
-            } else if (t.text == "density_file") { // density_file df3 "file" [interpolate n]
-                if (peek().isWord("df3")) next();
-                stringExpr();
-                if (peek().isWord("interpolate")) next(), floatExpr();
-            }
+            if (t.text == "object" && peek().is("{")) next(), skipBlock();
             continue;
         }
         if (t.kind == TokenKind::Word) {
@@ -319,6 +313,21 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         p.function = patternFunction(t);
         p.children.clear();
         greyRamp(p);
+    } else if (w == "density_file") {
+        next();
+        p.pattern = PatternKind::DensityFile;
+        p.densityFile = densityFile(t);
+        p.children.clear();
+        greyRamp(p);
+    } else if (w == "interpolate" && p.pattern == PatternKind::DensityFile && p.densityFile) {
+        next();
+        p.densityFile = densityInterpolate(p.densityFile);
+    } else if (w == "pigment_pattern") {
+        next();
+        p.pattern = PatternKind::Function;
+        p.function = pigmentPatternFunction(t);
+        p.children.clear();
+        greyRamp(p);
     } else if (w == "quilted") {
         next();
         p.pattern = PatternKind::Function;
@@ -344,7 +353,9 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
     } else if (w == "color_map" || w == "colour_map") {
         next();
         p.colorMap = colorMap();
-    } else if (w == "pigment_map") {
+    } else if (w == "pigment_map" ||
+               (w == "density_map" && !openBlocks_.empty() && openBlocks_.back().keyword == "density")) {
+        // A density is evaluated as a pigment: its density_map is a pigment_map of densities.
         next();
         p.pigmentMap = pigmentMap(p.pattern == PatternKind::Average);
     } else if (turbulenceItem(t, p.turbulence) || waveItem(t, p.wave)) {
@@ -367,7 +378,9 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         const Transform keep = p.toWorld;
         p = solid(rgb(0.5, 0.5, 0.5));
         p.toWorld = keep;
-    } else if (w == "density_map" || w == "normal_map") {
+    } else if (w == "density_map") {
+        fail(t.loc, "'density_map' goes in a 'density' block; a pigment's map of pigments is 'pigment_map'");
+    } else if (w == "normal_map") {
         next();
         unsupported(w, t.loc, "'" + w + "' is not supported; the pattern uses a grey ramp");
         expectSymbol("{", "after '" + w + "'");

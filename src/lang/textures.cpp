@@ -75,7 +75,7 @@ bool Evaluator::isTexturePatternWord(const Token& t) const {
     const std::string& w = t.text;
     return w == "texture_map" || w == "material_map" || w == "tiles" || w == "checker" || w == "hexagon" ||
            w == "brick" || w == "gradient" || w == "average" || w == "function" || w == "quilted" ||
-           placePatternNamed(w).has_value() || noisePatternNamed(w).has_value() || isFractalWord(w) || isApproximatedPattern(w);
+           w == "pigment_pattern" || w == "density_file" || placePatternNamed(w).has_value() || noisePatternNamed(w).has_value() || isFractalWord(w) || isApproximatedPattern(w);
 }
 
 // `[value, body]` of a map; in an `average` map the value (the weight) may be left out: 1.
@@ -122,20 +122,21 @@ std::vector<Texture::MapEntry> Evaluator::textureMap(bool average) {
 
 std::vector<Pigment::MapEntry> Evaluator::pigmentMap(bool average) {
     const Token keyword = lastToken();
+    const std::string name = keyword.text; // pigment_map, or density_map (its entries densities)
     DepthGuard guard(*this, keyword.loc);
-    expectSymbol("{", "after 'pigment_map'");
-    BlockScope scope(*this, "pigment_map", keyword.loc);
+    expectSymbol("{", "after '" + name + "'");
+    BlockScope scope(*this, name, keyword.loc);
     std::vector<Pigment::MapEntry> map;
     for (;;) {
         const Token t = next();
         if (t.is("}")) break;
-        if (!t.is("[")) failInBlock(t, "'[' to start a pigment_map entry, or '}'");
+        if (!t.is("[")) failInBlock(t, "'[' to start a " + name + " entry, or '}'");
         Pigment::MapEntry entry;
-        entry.value = mapEntryValue(average, "pigment_map", map.empty() ? nullptr : &map.back().value);
-        entry.pigment = pigmentBody(Pigment{}, "]", "']' to end the pigment_map entry");
+        entry.value = mapEntryValue(average, name.c_str(), map.empty() ? nullptr : &map.back().value);
+        entry.pigment = pigmentBody(Pigment{}, "]", "']' to end the " + name + " entry");
         map.push_back(std::move(entry));
     }
-    if (map.empty()) refuse(keyword.loc, "pigment_map has no entries");
+    if (map.empty()) refuse(keyword.loc, name + " has no entries");
     return map;
 }
 
@@ -199,6 +200,12 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
     } else if (w == "function") {
         pattern.pattern = PatternKind::Function;
         pattern.function = patternFunction(word);
+    } else if (w == "density_file") {
+        pattern.pattern = PatternKind::DensityFile;
+        pattern.densityFile = densityFile(word);
+    } else if (w == "pigment_pattern") {
+        pattern.pattern = PatternKind::Function;
+        pattern.function = pigmentPatternFunction(word);
     } else if (w == "quilted") {
         pattern.pattern = PatternKind::Function;
         pattern.function = quiltedFunction(1, 1);
@@ -240,7 +247,7 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
     } else {
         if (syntax().unsupportedIsError) fail(word.loc, "texture pattern '" + w + "' is not supported");
         approximated = w;
-        if (w == "pigment_pattern" || w == "object") {
+        if (w == "object") {
             if (peek().is("{")) next(), skipBlock();
         } else if (w == "spiral1" || w == "spiral2") {
             floatExpr();
@@ -262,6 +269,11 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
         if (turbulenceItem(t, pattern.turbulence)) continue;
         if (!block && waveItem(t, pattern.wave)) continue;
         if (fractalModifier(t, pattern.fractal)) continue;
+        if (t.isWord("interpolate") && pattern.pattern == PatternKind::DensityFile && pattern.densityFile) {
+            next();
+            pattern.densityFile = densityInterpolate(pattern.densityFile);
+            continue;
+        }
         if (double c0, c1; (t.isWord("control0") || t.isWord("control1")) &&
                            pattern.pattern == PatternKind::Function && pattern.function &&
                            quiltedControls(*pattern.function, c0, c1)) { // after quilted
@@ -429,25 +441,42 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 n.function = quiltedFunction(c0, c1);
                 continue;
             }
-            if (t.text == "function" || t.text == "quilted") { // normal { function { ... } [amount] }
+            if (t.text == "function" || t.text == "quilted" || t.text == "pigment_pattern") { // normal { function { ... } [amount] }
                 next();
                 n.pattern = PatternKind::Function;
-                n.function = t.text == "quilted" ? quiltedFunction(1, 1) : patternFunction(t);
+                n.function = t.text == "quilted"           ? quiltedFunction(1, 1)
+                             : t.text == "pigment_pattern" ? pigmentPatternFunction(t)
+                                                           : patternFunction(t);
                 known = true;
                 const Token a = peek();
                 if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
                 first = false;
                 continue;
             }
-            if (isFractalWord(t.text)) { // normal { mandel ITERATIONS [,] [amount] }
-                next();
-                n.pattern = PatternKind::Fractal;
-                n.fractal = fractalPattern(t);
+            // After a pattern with arguments of its own: [,] [amount].
+            const auto patternWithAmount = [&](PatternKind kind) {
+                n.pattern = kind;
                 known = true;
                 acceptSymbol(",");
                 const Token a = peek();
                 if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
                 first = false;
+            };
+            if (t.text == "density_file") { // normal { density_file df3 "file" [interpolate n] [,] [amount] }
+                next();
+                n.densityFile = densityFile(t);
+                patternWithAmount(PatternKind::DensityFile);
+                continue;
+            }
+            if (t.text == "interpolate" && n.pattern == PatternKind::DensityFile && n.densityFile) {
+                next();
+                n.densityFile = densityInterpolate(n.densityFile);
+                continue;
+            }
+            if (isFractalWord(t.text)) { // normal { mandel ITERATIONS [,] [amount] }
+                next();
+                n.fractal = fractalPattern(t);
+                patternWithAmount(PatternKind::Fractal);
                 continue;
             }
             if (n.pattern == PatternKind::Fractal && fractalModifier(t, n.fractal)) continue;

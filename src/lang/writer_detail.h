@@ -5,6 +5,7 @@
 
 #include "core/transform.h"
 #include "core/vec.h"
+#include "scene/density_file.h"
 #include "scene/image_map.h"
 #include "scene/scene.h"
 
@@ -50,6 +51,7 @@ Vec3 unnormalised(const Vec3& n);
 // ------------------------------------------------------------ writer_image_map.cpp
 
 std::string imageMapText(const ImageMap& m); // " image_map { \"/abs/file.png\" ... }"
+std::string densityFileText(const DensityFile& d); // " density_file df3 \"/abs/file.df3\" [interpolate n]"
 
 // ------------------------------------------------------------ writer_texture.cpp
 

@@ -1,6 +1,7 @@
-// The .drt text of an image_map pigment: the file by its absolute path, then
-// the settings that differ from the defaults.
+// The .drt text of an image_map pigment and of a density_file pattern: the file
+// by its absolute path, then the settings that differ from the defaults.
 #include "lang/writer_detail.h"
+#include "scene/density_file.h"
 #include "scene/image_map.h"
 
 #include <filesystem>
@@ -31,6 +32,16 @@ std::string imageMapText(const ImageMap& m) {
     if (m.transmitAll != 0) text += " transmit all " + number(m.transmitAll);
     if (m.gamma > 0) text += " gamma " + number(m.gamma);
     return text + " }";
+}
+
+std::string densityFileText(const DensityFile& d) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const std::string path = fs::absolute(d.path.empty() ? d.file : d.path, ec).lexically_normal().string();
+    std::string text = " density_file df3 " + quoted(path);
+    if (d.interpolation != DensityFile::Interpolation::None)
+        text += " interpolate " + std::to_string(int(d.interpolation));
+    return text;
 }
 
 } // namespace drt::writer

@@ -106,6 +106,7 @@ std::string normalBody(const Normal& n, const std::vector<Step>& suffix, bool& e
         std::set<std::string> problems; // none for a function of x, y, z without patterns
         pattern = functionHead(*n.function) + "{ " + functionText(*n.function, problems) + " }";
     }
+    if (n.pattern == PatternKind::DensityFile && n.densityFile) pattern = densityFileText(*n.densityFile).substr(1) + ",";
     std::string modifiers;
     if (n.pattern == PatternKind::Fractal && n.fractal) {
         pattern = fractalHead(*n.fractal) + ",";
@@ -239,6 +240,11 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         if (p.fractal) text += " " + fractalHead(*p.fractal) + fractalModifiers(*p.fractal);
         colorMap();
         break;
+    case PatternKind::DensityFile:
+        if (p.densityFile) text += densityFileText(*p.densityFile);
+        else problems.insert("a density_file without its file");
+        colorMap();
+        break;
     case PatternKind::ImageMap:
         if (p.imageMap) text += imageMapText(*p.imageMap);
         else problems.insert("an image_map without its image");
@@ -267,6 +273,7 @@ static std::string texturePatternWord(const Pigment& p) {
     case PatternKind::Gradient: return "gradient " + vector(p.gradientAxis);
     case PatternKind::Average: return "average";
     case PatternKind::Fractal: return p.fractal ? fractalHead(*p.fractal) + fractalModifiers(*p.fractal) : "average";
+    case PatternKind::DensityFile: return p.densityFile ? densityFileText(*p.densityFile).substr(1) : "average";
     case PatternKind::Function: {
         std::set<std::string> problems; // the pigment's own are reported where it is written
         return functionHead(*p.function) + "{ " + functionText(*p.function, problems) + " }";

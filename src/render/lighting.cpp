@@ -1,4 +1,5 @@
 #include "render/lighting.h"
+#include "render/atmosphere.h"
 #include "render/light_path.h"
 
 #include "sampling/warp.h"
@@ -25,8 +26,11 @@ Ray shadowRay(const Hit& from, const Vec3& target, double time) {
     return ray;
 }
 
-Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
-                          RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {
+namespace {
+
+// shadowTransmittance without the fog.
+Color surfaceAndMediaTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
+                                   RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {
     Ray ray = shadowRay(from, target, time);
     ++counts.shadow;
     // Media between ray.origin and the end of the segment (hit == nullptr: the light).
@@ -65,6 +69,22 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
         if (!(dot(ray.direction, target - from.point) > 0)) return transmittance; // passed the light
     }
     return Color(0);
+}
+
+} // namespace
+
+Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
+                          RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {
+    Color transmittance = surfaceAndMediaTransmittance(accel, from, target, time, counts, mediaScene, opaqueCasters);
+    // Fog dims the light on its way as it dims what the camera sees (POV-Ray,
+    // with media_attenuation on): the fog's scale over the segment; its own
+    // colour is not added to the light.
+    if (mediaScene && !mediaScene->fogs.empty() && !isBlack(transmittance)) {
+        const Vec3 toLight = target - from.point;
+        const double distance = length(toLight);
+        if (distance > 0) transmittance *= fogEffect(mediaScene->fogs, from.point, toLight / distance, distance).scale;
+    }
+    return transmittance;
 }
 
 namespace {
@@ -183,6 +203,8 @@ public:
         // clamped rather than overflow.
         if (sampling_ == AreaSampling::PovGrid)
             count_ = static_cast<int>(std::min<int64_t>(int64_t(n1_) * n2_, std::numeric_limits<int>::max()));
+        // The area and the emitter's normal weigh solid-angle and inverse-square samples only.
+        if (sampling_ != AreaSampling::SolidAngle && !light.inverseSquare) return;
         const Vec3 normal = cross(frame_.axis1, frame_.axis2);
         areaMeasure_ = length(normal);
         if (area_.circular) areaMeasure_ *= kPi / 4;
@@ -285,7 +307,8 @@ private:
 } // namespace
 
 DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel)
-    : scene_(scene), accel_(accel), opaqueCasters_(shadowsAreOpaque(scene)), hasMedia_(sceneHasMedia(scene)),
+    : scene_(scene), accel_(accel), opaqueCasters_(shadowsAreOpaque(scene)),
+      hasMedia_(sceneHasMedia(scene) || !scene.fogs.empty()),
       anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)) {
     cones_.reserve(scene.lights.size());
     for (const Light& light : scene.lights) cones_.push_back(spotCones(light));
@@ -375,9 +398,9 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             light = &cache.moved_;
         }
         if (isBlack(light->color)) continue;
-        SpotCones movedCones;
-        if (light->spotlight && moved) movedCones = spotCones(*light);
-        const SpotCones& cones = !light->spotlight ? kNoCones : moved ? movedCones : cones_[i];
+        const SpotCones& cones = !light->spotlight ? kNoCones
+                                 : moved          ? (cache.movedCones_ = spotCones(*light))
+                                                  : cones_[i];
         const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
         PointLightSamples::Range& range = cache.lights_[i];
         if (range.generation != cache.generation_) { // the first layer at this point: no samples drawn yet

@@ -159,6 +159,7 @@ private:
     std::vector<Range> lights_; // by light
     std::vector<Sample> samples_;
     Light moved_; // a moving light as it is at the shaded point's time (render/light_path.h)
+    SpotCones movedCones_; // its cones, if a spotlight
 };
 
 // The scene's lights as one render sees them: what is known before tracing
@@ -185,7 +186,7 @@ private:
     const Scene& scene_;
     const Accelerator& accel_;
     bool opaqueCasters_;
-    bool hasMedia_; // media anywhere: shadow rays of lights that interact with them look for them
+    bool hasMedia_; // media or fog anywhere: shadow rays of lights that interact with them look for them
     bool anyLightMoves_; // some light moves over the shutter (render/light_path.h)
     std::vector<SpotCones> cones_; // by light, as written (a moving light's are taken at each point)
     std::vector<int> packetLights_; // the lights whose camera shadow rays go in packets (CameraShadows)

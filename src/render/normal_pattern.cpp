@@ -83,6 +83,7 @@ Vec3 perturbation(const Normal& bump, const Vec3& q) {
         shape.wave = bump.wave;
         if (bump.pattern == PatternKind::Function) shape.function = bump.function;
         if (bump.pattern == PatternKind::Fractal) shape.fractal = bump.fractal;
+        if (bump.pattern == PatternKind::DensityFile) shape.densityFile = bump.densityFile;
         const double delta = bump.accuracy > 0 && std::isfinite(bump.accuracy) ? bump.accuracy : 0.02;
         const double weight = -5 * bump.amount * 0.02 / delta;
         Vec3 sum(0.0);

@@ -2,6 +2,7 @@
 
 #include "core/limits.h"
 
+#include "render/density_file_pattern.h"
 #include "render/function_hooks.h"
 #include "render/image_pattern.h"
 #include "render/noise.h"
@@ -153,6 +154,7 @@ PatternSample samplePatternAt(const Pigment& pigment, const Vec3& p) {
     case PatternKind::Boxed: value = boxedValue(p); break;
     case PatternKind::Function: value = pigment.function ? pigment.function->at(p) : 0.0; break; // see installFunctionHooks
     case PatternKind::Fractal: value = pigment.fractal ? fractalValue(*pigment.fractal, p.x, p.y) : 0.0; break;
+    case PatternKind::DensityFile: value = pigment.densityFile ? densityFileValue(*pigment.densityFile, p) : 0.0; break;
     default: break;
     }
     // POV-Ray's pattern step: fmod(v frequency + phase, 1.00001), then the wave.

@@ -67,6 +67,7 @@ enum class PatternKind {
     // map value being its weight (POV-Ray's `average`).
     Average,
     ImageMap, // an image file (scene/image_map.h)
+    DensityFile, // a df3 voxel file over the unit cube (Pigment::densityFile, scene/density_file.h)
 };
 
 // POV-Ray turbulence: the pattern is evaluated at p + amount * T(p), with T a
@@ -85,12 +86,14 @@ struct ColorMapEntry {
 };
 
 struct ImageMap;
+struct DensityFile;
 
 struct Pigment {
     PatternKind pattern = PatternKind::Solid;
     std::shared_ptr<const ImageMap> imageMap; // ImageMap: the decoded image and its mapping
     std::shared_ptr<const Function> function; // Function: its value at the pattern point
     std::shared_ptr<const FractalPattern> fractal; // Fractal: which fractal, with its parameters
+    std::shared_ptr<const DensityFile> densityFile; // DensityFile: the file and, once resolved, its voxels
     ColorFT color;                        // Solid (POV-Ray default: black)
     std::vector<Pigment> children;        // Checker, Hexagon, Brick sub-pigments
     std::vector<ColorMapEntry> colorMap;  // Gradient, Radial, Onion
@@ -167,6 +170,7 @@ struct Normal {
     Vec3 gradientAxis{0, 1, 0}; // Gradient
     std::shared_ptr<const Function> function; // Function
     std::shared_ptr<const FractalPattern> fractal; // Fractal
+    std::shared_ptr<const DensityFile> densityFile; // DensityFile
     double accuracy = 0.02;     // POV-Ray's `accuracy`: the slope's sample spacing
     // slope_map: the slope method samples the height this map gives the
     // pattern value (cubic Hermite between entries) instead of the value itself.

@@ -22,6 +22,25 @@ void forEachObject(SceneT& scene, Fn&& fn) {
     for (ObjectT& object : scene.objects) visit(visit, object);
 }
 
+namespace detail {
+// Calls fn(texture) for every texture of one object: its own and its mesh
+// triangles', each before its map entries and its layers.
+template <class ObjectT, class Fn>
+void forEachTextureOf(ObjectT& object, Fn&& fn) {
+    constexpr bool isConst = std::is_const_v<ObjectT>;
+    using TextureT = std::conditional_t<isConst, const Texture, Texture>;
+    using MeshT = std::conditional_t<isConst, const Mesh, Mesh>;
+    auto texture = [&](auto& self, TextureT& t) -> void {
+        fn(t);
+        for (auto& entry : t.map) self(self, entry.texture);
+        for (TextureT& layer : t.layersAbove) self(self, layer);
+    };
+    texture(texture, object.texture);
+    if (MeshT* mesh = std::get_if<Mesh>(&object.shape))
+        for (TextureT& own : mesh->textures) texture(texture, own);
+}
+} // namespace detail
+
 // Calls fn(pigment) for every pigment, sub-pigments and pigment-map entries included.
 template <class SceneT, class Fn>
 void forEachPigment(SceneT& scene, Fn&& fn) {
@@ -35,23 +54,27 @@ void forEachPigment(SceneT& scene, Fn&& fn) {
         for (PigmentT& child : p.children) self(self, child);
         for (auto& entry : p.pigmentMap) self(self, entry.pigment);
     };
-    auto texture = [&](auto& self, TextureT& t) -> void {
-        pigment(pigment, t.pigment);
-        for (auto& entry : t.map) self(self, entry.texture);
-        for (TextureT& layer : t.layersAbove) self(self, layer);
-    };
     auto media = [&](MediaT& m) {
         for (PigmentT& density : m.densities) pigment(pigment, density);
     };
-    using MeshT = std::conditional_t<isConst, const Mesh, Mesh>;
     forEachObject(scene, [&](ObjectT& object) {
-        texture(texture, object.texture);
-        if (MeshT* mesh = std::get_if<Mesh>(&object.shape))
-            for (TextureT& own : mesh->textures) texture(texture, own);
+        detail::forEachTextureOf(object, [&](TextureT& t) { pigment(pigment, t.pigment); });
         for (MediaT& m : object.interior.media) media(m);
     });
     for (PigmentT& sky : scene.sky) pigment(pigment, sky);
     for (MediaT& m : scene.media) media(m);
+}
+
+// Calls fn(normal) for every texture's normal, wherever the texture sits (as
+// forEachPigment's textures).
+template <class SceneT, class Fn>
+void forEachNormal(SceneT& scene, Fn&& fn) {
+    using ObjectT = std::conditional_t<std::is_const_v<SceneT>, const Object, Object>;
+    forEachObject(scene, [&](ObjectT& object) {
+        detail::forEachTextureOf(object, [&](auto& texture) {
+            if (texture.normal) fn(*texture.normal);
+        });
+    });
 }
 
 } // namespace drt

@@ -15,43 +15,43 @@ syn keyword drtFunction vdot vlength vnormalize vrotate vstr
 syn keyword drtBoolean false no off on true yes
 syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background blob box camera clipped_by cone contained_by cubic
-syn keyword drtBlock cylinder density disc face_indices finish fog global_settings height_field
-syn keyword drtBlock image_map interior isosurface julia_fractal lathe light_source media mesh
-syn keyword drtBlock mesh2 motion normal normal_indices normal_vectors object pattern pigment
-syn keyword drtBlock pigment_map plane poly prism quadric quartic radiosity render
-syn keyword drtBlock scattering sky_sphere slope_map smooth_triangle sor sphere spline superellipsoid
-syn keyword drtBlock text texture texture_list texture_map tiles torus triangle uv_indices
-syn keyword drtBlock uv_vectors vertex_vectors
+syn keyword drtBlock cylinder density density_map disc face_indices finish fog global_settings
+syn keyword drtBlock height_field image_map interior isosurface julia_fractal lathe light_source media
+syn keyword drtBlock mesh mesh2 motion normal normal_indices normal_vectors object pattern
+syn keyword drtBlock pigment pigment_map pigment_pattern plane poly prism quadric quartic
+syn keyword drtBlock radiosity render scattering sky_sphere slope_map smooth_triangle sor sphere
+syn keyword drtBlock spline superellipsoid text texture texture_list texture_map tiles torus
+syn keyword drtBlock triangle uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections always_sample
 syn keyword drtKeyword ambient ambient_light angle aperture append area_illumination area_light area_sampling
 syn keyword drtKeyword array assumed_gamma at average bezier_spline blue boxed bozo
 syn keyword drtKeyword brick brick_size brightness brilliance bumps checker circular clock
 syn keyword drtKeyword clock_delta clock_on color color_map colour colour_map confidence conic_sweep
 syn keyword drtKeyword conserve_energy control0 control1 count crackle crand cube cubic_spline
-syn keyword drtKeyword cubic_wave cylindrical dents difference diffuse direction distance eccentricity
-syn keyword drtKeyword emission error error_bound evaluate exponent exterior extinction f_noise3d
-syn keyword drtKeyword f_noise_generator f_ph f_r f_rounded_box f_sphere f_superellipsoid f_th f_torus
-syn keyword drtKeyword fade_color fade_colour fade_distance fade_power falloff file filter final_clock
-syn keyword drtKeyword final_frame fisheye focal_distance focal_point fog_alt fog_offset fog_type font
-syn keyword drtKeyword frame_number frequency fresnel gamma gradient granite gray gray_threshold
-syn keyword drtKeyword green grid height hexagon hierarchy hollow hypercomplex initial_clock
-syn keyword drtKeyword initial_frame internal interpolate intersection intervals inverse inverse_square ior
-syn keyword drtKeyword jitter julia lambda leopard linear_spline linear_sweep load_file location
-syn keyword drtKeyword look_at low_error_factor magnet mandel map_type marble matrix max_gradient
-syn keyword drtKeyword max_iteration max_sample max_samples max_trace max_trace_level maximum_reuse media_attenuation media_interaction
-syn keyword drtKeyword merge metallic method min_samples minimum_reuse mortar natural_spline nearest_count
-syn keyword drtKeyword no_shadow octaves offset omega once onion open orient
-syn keyword drtKeyword orthographic panoramic parallel perspective phase phong phong_size planar
-syn keyword drtKeyword point_at poly_wave pov_grid precision pretrace_end pretrace_start pwr quadratic_spline
-syn keyword drtKeyword quaternion quilted radial radius ramp_wave ratio read reciprocal
-syn keyword drtKeyword recursion_limit red reflection reflection_blur refraction_blur rgb rgbf rgbft
-syn keyword drtKeyword rgbt right ripples rotate roughness sampler samples save_file
-syn keyword drtKeyword scale scallop_wave shadowless shutter_close shutter_open sine_wave sky slice
-syn keyword drtKeyword smooth solid_angle specular spherical spotlight srgb srgbf srgbft
-syn keyword drtKeyword srgbt stratified strength string sturm subsurface t thickness
-syn keyword drtKeyword threshold tightness tile2 translate transmit triangle_wave turb_depth turbulence
-syn keyword drtKeyword u ultra_wide_angle union up uv_mapping v variance water_level
-syn keyword drtKeyword waves width wood wrinkles write
+syn keyword drtKeyword cubic_wave cylindrical density_file dents df3 difference diffuse direction
+syn keyword drtKeyword distance eccentricity emission error error_bound evaluate exponent exterior
+syn keyword drtKeyword extinction f_noise3d f_noise_generator f_ph f_r f_rounded_box f_sphere f_superellipsoid
+syn keyword drtKeyword f_th f_torus fade_color fade_colour fade_distance fade_power falloff file
+syn keyword drtKeyword filter final_clock final_frame fisheye focal_distance focal_point fog_alt fog_offset
+syn keyword drtKeyword fog_type font frame_number frequency fresnel gamma gradient granite
+syn keyword drtKeyword gray gray_threshold green grid height hexagon hierarchy hollow
+syn keyword drtKeyword hypercomplex initial_clock initial_frame internal interpolate intersection intervals inverse
+syn keyword drtKeyword inverse_square ior jitter julia lambda leopard linear_spline linear_sweep
+syn keyword drtKeyword load_file location look_at low_error_factor magnet mandel map_type marble
+syn keyword drtKeyword matrix max_gradient max_iteration max_sample max_samples max_trace max_trace_level maximum_reuse
+syn keyword drtKeyword media_attenuation media_interaction merge metallic method min_samples minimum_reuse mortar
+syn keyword drtKeyword natural_spline nearest_count no_shadow octaves offset omega once onion
+syn keyword drtKeyword open orient orthographic panoramic parallel perspective phase phong
+syn keyword drtKeyword phong_size planar point_at poly_wave pov_grid precision pretrace_end pretrace_start
+syn keyword drtKeyword pwr quadratic_spline quaternion quilted radial radius ramp_wave ratio
+syn keyword drtKeyword read reciprocal recursion_limit red reflection reflection_blur refraction_blur rgb
+syn keyword drtKeyword rgbf rgbft rgbt right ripples rotate roughness sampler
+syn keyword drtKeyword samples save_file scale scallop_wave shadowless shutter_close shutter_open sine_wave
+syn keyword drtKeyword sky slice smooth solid_angle specular spherical spotlight srgb
+syn keyword drtKeyword srgbf srgbft srgbt stratified strength string sturm subsurface
+syn keyword drtKeyword t thickness threshold tightness tile2 translate transmit triangle_wave
+syn keyword drtKeyword turb_depth turbulence u ultra_wide_angle union up uv_mapping v
+syn keyword drtKeyword variance water_level waves width wood wrinkles write
 syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|fclose\|fopen\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|read\|switch\|undef\|version\|warning\|while\|write\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
