@@ -55,7 +55,13 @@ std::array<double, 4> vector4(Evaluator& e, const char* what) {
 }
 
 std::string vector4Text(const std::array<double, 4>& v) {
-    return "<" + number(v[0]) + ", " + number(v[1]) + ", " + number(v[2]) + ", " + number(v[3]) + ">";
+    // Appended piece by piece: gcc 12 warns (-Wrestrict, a false positive) on "literal" + a temporary string.
+    std::string text = "<";
+    for (size_t i = 0; i < 4; ++i) {
+        if (i) text += ", ";
+        text += number(v[i]);
+    }
+    return text + ">";
 }
 
 } // namespace
@@ -145,7 +151,13 @@ std::string ShapeSyntax<JuliaFractal>::head(const JuliaFractal& f, ShapeText& ou
     text += f.algebra == JuliaFractal::Algebra::Quaternion ? " quaternion " : " hypercomplex ";
     for (const auto& [word, function] : functionWords())
         if (function == f.function) text += word;
-    if (f.function == Function::Pwr) text += "(" + number(f.exponent[0]) + ", " + number(f.exponent[1]) + ")";
+    if (f.function == Function::Pwr) {
+        text += "(";
+        text += number(f.exponent[0]);
+        text += ", ";
+        text += number(f.exponent[1]);
+        text += ")";
+    }
     text += " max_iteration " + std::to_string(f.maxIteration) + " precision " + number(f.precision);
     if (f.slice != std::array<double, 4>{0, 0, 0, 1} || f.sliceDistance != 0)
         text += " slice " + vector4Text(f.slice) + ", " + number(f.sliceDistance);

@@ -49,8 +49,14 @@ std::string splineText(const Spline& s) {
     std::string text = "spline { ";
     text += splineKindWord(s.kind);
     for (const Spline::Entry& e : s.entries) {
-        text += " " + number(e.t) + ", <";
-        for (int k = 0; k < s.terms; ++k) text += (k ? ", " : "") + number(e.v[size_t(k)]);
+        // Appended piece by piece: gcc 12 warns (-Wrestrict, a false positive) on "literal" + a temporary string.
+        text += " ";
+        text += number(e.t);
+        text += ", <";
+        for (int k = 0; k < s.terms; ++k) {
+            if (k) text += ", ";
+            text += number(e.v[size_t(k)]);
+        }
         text += ">";
     }
     return text + " }";
@@ -128,7 +134,14 @@ std::string expressionText(const Function& f, const std::vector<std::string>& ar
             // A spline function's body takes the call's component; a spline inside an expression its own.
             const int c = f.vector ? channel : i.channel;
             if (c > 3) problems.insert("a spline's fifth component");
-            stack.back() = "(" + splineText(*f.splines[i.index]) + "(" + stack.back() + ")." + componentName(c) + ")";
+            std::string text = "("; // appended piece by piece, as in splineText
+            text += splineText(*f.splines[i.index]);
+            text += "(";
+            text += stack.back();
+            text += ").";
+            text += componentName(c);
+            text += ")";
+            stack.back() = std::move(text);
             break;
         }
         default: {
