@@ -435,7 +435,7 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 n.function = t.text == "quilted" ? quiltedFunction(1, 1) : patternFunction(t);
                 known = true;
                 const Token a = peek();
-                if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
+                if (startsFloat(a)) n.amount = floatExpr(); // a number, or a declared one (quilted Bump_Value)
                 first = false;
                 continue;
             }
@@ -446,7 +446,7 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 known = true;
                 acceptSymbol(",");
                 const Token a = peek();
-                if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
+                if (startsFloat(a)) n.amount = floatExpr();
                 first = false;
                 continue;
             }
@@ -463,7 +463,7 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                     acceptSymbol(",");
                 }
                 const Token a = peek();
-                if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
+                if (startsFloat(a)) n.amount = floatExpr();
                 first = false;
                 continue;
             }
