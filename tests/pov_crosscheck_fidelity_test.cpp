@@ -40,6 +40,7 @@ struct FidelityScene {
 //   isosurface       (isosurfaces were left out; 0.0008 with them)
 //   julia_fractal    (julia fractals were left out; 0.0015 with them)
 //   interior_fade    0.028 (fade_power 1000+ taken as a power law; shadow rays not faded)
+//   light_group      (failed: 'light_group' was an unknown keyword)
 //   leopard_normal   0.061 (normals tilted by the world-space gradient: steep at small scales)
 //   normal_gradient  0.077 (gradient normals were ignored)
 //   parallel_light   0.108 (parallel lights were point lights)
@@ -57,6 +58,7 @@ const FidelityScene kScenes[] = {
     {"interior_fade", 0.012},
     {"isosurface", 0.005},
     {"julia_fractal", 0.006},
+    {"light_group", 0.01},
     {"leopard_normal", 0.015},
     {"normal_gradient", 0.02},
     {"parallel_light", 0.01},

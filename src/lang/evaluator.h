@@ -236,6 +236,7 @@ public:
     // ------------------------------------------------------------ objects
     bool isObjectWord(const Token& t) const;
     ObjectValue object(const Token& keyword); // keyword consumed
+    ObjectValue lightGroup(const Token& keyword); // after 'light_group {' (light_groups.cpp)
     void objectModifiers(ObjectValue& po, const Token& keyword);
     void applyTransform(ObjectValue& o, const Transform& t, SourceLoc loc);
     void setTexture(ObjectValue& o, const Texture& texture);

@@ -220,7 +220,7 @@ void objectBounds(const ObjectValue& po, Vec3& lower, Vec3& upper) { drt::object
 
 bool Evaluator::isObjectWord(const Token& t) const {
     return t.kind == TokenKind::Word && !lookup(t.text) &&
-           (t.text == "object" || shapeReader(t.text) || isUnsupportedShape(t.text));
+           (t.text == "object" || t.text == "light_group" || shapeReader(t.text) || isUnsupportedShape(t.text));
 }
 
 namespace {
@@ -260,6 +260,7 @@ ObjectValue Evaluator::object(const Token& keyword) {
     }
     expectSymbol("{", "after '" + w + "'");
     BlockScope scope(*this, w, keyword.loc);
+    if (w == "light_group") return lightGroup(keyword);
     if (isUnsupportedShape(w)) {
         unsupported("shape-" + w, keyword.loc, "'" + w + "' is not supported; the object is left out");
         skipBlock();

@@ -41,6 +41,7 @@ class SceneWriter {
     void camera(const CameraSpec& c);
     void light(const Light& l);
     void topLevelObject(const Object& o);
+    void lightGroup(const Scene& scene, int group); // its lights, objects and inner groups
     void flattenUnion(const Object& o, const Transform& parentBefore, const MotionChain& parentChain, bool inverse,
                       bool noShadow, bool hollow, const std::vector<Object>& clips);
     void clips(const std::vector<Object>& clippedBy, int indent);
@@ -68,10 +69,43 @@ std::string SceneWriter::write(const Scene& scene) {
     settings(scene);
     camera(scene.camera);
     for (const Light& l : scene.lights)
-        light(l);
+        if (l.group == 0)
+            light(l);
     for (const Object& o : scene.objects)
-        topLevelObject(o);
+        if (o.lightGroup == 0)
+            topLevelObject(o);
+    for (size_t g = 1; g < scene.lightGroupParents.size(); ++g)
+        if (scene.lightGroupParents[g] == 0)
+            lightGroup(scene, int(g));
     return out_;
+}
+
+// The lights and objects of a light_group, written as one (lights and objects
+// inside it keep the places they were given: world space).
+void SceneWriter::lightGroup(const Scene& scene, int group) {
+    const bool used = std::any_of(scene.objects.begin(), scene.objects.end(),
+                                  [&](const Object& o) { return o.lightGroup == group; }) ||
+                      std::any_of(scene.lights.begin(), scene.lights.end(),
+                                  [&](const Light& l) { return l.group == group; });
+    if (!used)
+        return;
+    out_ += "\n";
+    line(0, "light_group {");
+    bool globalLights = false;
+    for (const Light& l : scene.lights)
+        if (l.group == group)
+            light(l);
+    for (const Object& o : scene.objects)
+        if (o.lightGroup == group) {
+            globalLights = globalLights || o.globalLights;
+            topLevelObject(o);
+        }
+    for (size_t g = 1; g < scene.lightGroupParents.size(); ++g)
+        if (scene.lightGroupParents[g] == group)
+            lightGroup(scene, int(g));
+    if (globalLights)
+        line(1, "global_lights on");
+    line(0, "}");
 }
 
 void SceneWriter::sourceComment(int indent, const SourceLoc& loc) {

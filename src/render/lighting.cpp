@@ -390,6 +390,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         // A moving light as it is at this point's time (render/light_path.h);
         // a still one as written, with no copy.
         const Light* light = &scene_.lights[i];
+        if (sp.hit->object && !lightReaches(scene_, *light, *sp.hit->object)) continue; // light_group
         const bool moved = anyLightMoves_ && lightMoves(*light);
         if (moved) light = &(cache.moved_ = lightAt(*light, sp.time));
         if (light->parallel) { // it stands where this point's parallel ray from it starts (scene.h)

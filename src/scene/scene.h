@@ -431,6 +431,12 @@ struct Object {
     // A moving top-level object's clips are in its rest pose's world (the
     // front ends fold the transforms after its motions in) and move with it.
     std::vector<Object> clippedBy;
+    // POV-Ray's light_group: the object is lit by the lights of its group and
+    // of the groups around it (Scene::lightGroupParents), and by the scene's
+    // other lights only with globalLights. 0: no group (every light but the
+    // groups' own).
+    int lightGroup = 0;
+    bool globalLights = true;
     SourceLoc loc;
 };
 
@@ -503,6 +509,9 @@ struct Light {
     // Time (render/light_path.h): how the light moves over the shutter; null
     // for a light that stays still.
     std::shared_ptr<const LightMotion> motion;
+    // The light_group the light belongs to (Object::lightGroup); 0: none, it
+    // lights every object outside the groups and those with globalLights.
+    int group = 0;
     SourceLoc loc;
 };
 
@@ -679,6 +688,22 @@ struct Scene {
     // The scene text read `clock` (scene/frame_clock.h): with the shutter open,
     // the scene is evaluated again over it to find how it moves.
     bool readsClock = false;
+    // light_group nesting: entry g is the group around group g (0: none);
+    // entry 0 is unused.
+    std::vector<int> lightGroupParents{0};
 };
+
+// Whether `light` shines on `object` (POV-Ray's light_group): a group's light
+// lights its group's objects and those of the groups inside it; a light of no
+// group lights the objects of no group and those with globalLights. Every
+// object casts shadows either way.
+inline bool lightReaches(const Scene& scene, const Light& light, const Object& object) {
+    if (light.group == 0) return object.lightGroup == 0 || object.globalLights;
+    const size_t groups = scene.lightGroupParents.size();
+    size_t hops = 0; // parents point outward, so at most `groups` steps
+    for (int g = object.lightGroup; g > 0 && size_t(g) < groups && hops < groups; g = scene.lightGroupParents[size_t(g)], ++hops)
+        if (g == light.group) return true;
+    return false;
+}
 
 } // namespace drt
