@@ -106,13 +106,6 @@ TEST(PovFeatures, QuiltedIsPovRaysFormulaWithItsControls) {
         EXPECT_NEAR(texture.pigment.function->at(p), quilted(p, 0.2, 1), 1e-12) << p.x;
         EXPECT_NEAR(normal.function->at(p), quilted(p, 1, 0.3), 1e-12) << p.x;
     }
-    // The amount may be a declared number (textures/patterns/quilt2.pov: `quilted Bump_Value`).
-    Diagnostics declared;
-    const auto d = load("#declare Bump_Value = 5;\nsphere { 0, 1 normal { quilted Bump_Value control0 0 } }\n", declared);
-    ASSERT_TRUE(d) << declared.formatAll();
-    EXPECT_EQ(declared.warningCount(), 0) << declared.formatAll();
-    ASSERT_TRUE(d->objects.at(0).texture.normal);
-    EXPECT_DOUBLE_EQ(d->objects.at(0).texture.normal->amount, 5);
     Diagnostics bad;
     EXPECT_FALSE(load("sphere { 0, 1 pigment { bozo control0 1 } }", bad));
     EXPECT_NE(bad.formatAll().find("f.pov:1:30: error: unknown keyword 'control0'"), std::string::npos)

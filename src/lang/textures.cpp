@@ -449,7 +449,7 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                                                            : patternFunction(t);
                 known = true;
                 const Token a = peek();
-                if (startsFloat(a)) n.amount = floatExpr(); // a number, or a declared one (quilted Bump_Value)
+                if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
                 first = false;
                 continue;
             }
@@ -459,7 +459,7 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                 known = true;
                 acceptSymbol(",");
                 const Token a = peek();
-                if (startsFloat(a)) n.amount = floatExpr();
+                if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
                 first = false;
             };
             if (t.text == "density_file") { // normal { density_file df3 "file" [interpolate n] [,] [amount] }
@@ -492,7 +492,7 @@ std::optional<Normal> Evaluator::normalBlock(SourceLoc keyword, const std::optio
                     acceptSymbol(",");
                 }
                 const Token a = peek();
-                if (startsFloat(a)) n.amount = floatExpr();
+                if (a.kind == TokenKind::Number || a.is("(") || a.is("-")) n.amount = floatExpr();
                 first = false;
                 continue;
             }
