@@ -247,6 +247,10 @@ public:
     Object placed(ObjectValue po); // a clip or CSG member as a model object
     // Finds a data file (image, font) like an include file; "" if not found.
     std::string findDataFile(const std::string& name, bool imageExtensions) const;
+    // The file name of an image_map or density_file (a string; in .drt a literal one), found by
+    // findDataFile: a located error names the `kind` of file that was not found.
+    void dataFileName(const char* format, const char* kind, bool imageExtensions, std::string& file,
+                      std::string& path, SourceLoc& loc);
     std::string currentDir() const;
     const std::string& mainDir() const { return mainDir_; }
     std::string findInclude(const std::string& name, const std::string& fromDir) const;

@@ -37,16 +37,21 @@ std::string Evaluator::findDataFile(const std::string& name, bool imageExtension
     return fs::absolute(path, ec).lexically_normal().string();
 }
 
+void Evaluator::dataFileName(const char* format, const char* kind, bool imageExtensions, std::string& file,
+                             std::string& path, SourceLoc& loc) {
+    const Token name = peek();
+    if (syntax().kind == DialectKind::Drt && name.kind != TokenKind::String)
+        failExpected(next(), std::string("the ") + format + " file name in quotes");
+    file = stringExpr();
+    loc = name.loc;
+    path = findDataFile(file, imageExtensions);
+    if (path.empty()) fail(name.loc, std::string("cannot find ") + kind + " file '" + file + "'");
+}
+
 std::shared_ptr<const DensityFile> Evaluator::densityFile(const Token& keyword) {
     if (!acceptWord("df3")) failExpected(peek(), "'df3' (the file's format) after '" + keyword.text + "'");
     auto d = std::make_shared<DensityFile>();
-    const Token file = peek();
-    if (syntax().kind == DialectKind::Drt && file.kind != TokenKind::String)
-        failExpected(next(), "the df3 file name in quotes");
-    d->file = stringExpr();
-    d->loc = file.loc;
-    d->path = findDataFile(d->file, false);
-    if (d->path.empty()) fail(file.loc, "cannot find density file '" + d->file + "'");
+    dataFileName("df3", "density", false, d->file, d->path, d->loc);
     if (acceptWord("interpolate")) return densityInterpolate(d);
     return d;
 }
@@ -73,13 +78,7 @@ std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword) {
     }
     if (isImageTypeWord(peek())) next();
     auto map = std::make_shared<ImageMap>();
-    const Token file = peek();
-    if (syntax().kind == DialectKind::Drt && file.kind != TokenKind::String)
-        failExpected(next(), "the image file name in quotes");
-    map->file = stringExpr();
-    map->loc = file.loc;
-    map->path = findDataFile(map->file, true);
-    if (map->path.empty()) fail(file.loc, "cannot find image file '" + map->file + "'");
+    dataFileName("image", "image", true, map->file, map->path, map->loc);
     for (;;) {
         const Token t = next();
         if (t.is("}")) break;
