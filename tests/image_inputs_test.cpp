@@ -430,5 +430,71 @@ TEST(ImageMap, RenderRefusesAnImageThatWasNotRead) {
     EXPECT_TRUE(assetsResolved(test::withAssets(*s)));
 }
 
+// ------------------------------------------------------------ image_pattern
+
+// The pattern value at p of the only object's pigment, through a colour map from black to white.
+double patternValue(const Scene& s, const Vec3& p) {
+    if (s.objects.empty()) return ADD_FAILURE() << "no object", -1;
+    const Pigment& pigment = s.objects[0].texture.pigment;
+    EXPECT_EQ(pigment.pattern, PatternKind::ImagePattern);
+    return evaluatePigment(pigment, p).rgb.g;
+}
+
+TEST(ImagePattern, ValueIsTheGreyOfTheFilesOwnNumbers) {
+    // Measured on POV-Ray 3.7: 0.297 r + 0.589 g + 0.114 b of the stored values, alpha ignored.
+    const std::string dir = test::tempDir();
+    quadrants(dir);
+    Diagnostics diags;
+    const Scene s = loadPov("#version 3.7; global_settings { assumed_gamma 1 }\n"
+                            "plane { z, 0 pigment { image_pattern { png \"quad.png\" } "
+                            "color_map { [0 rgb 0] [1 rgb 1] } } }",
+                            dir, diags);
+    EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
+    EXPECT_NEAR(patternValue(s, {0.25, 0.75, 0}), 0.297, 1e-6); // red
+    EXPECT_NEAR(patternValue(s, {0.75, 0.75, 0}), 0.589, 1e-6); // green
+    EXPECT_NEAR(patternValue(s, {0.25, 0.25, 0}), 0.114, 1e-6); // blue
+    EXPECT_NEAR(patternValue(s, {1.75, 0.25, 3}), 1.0, 1e-6);   // white, repeated, z ignored
+    // A grey of 128 is 128/255, not its sRGB-decoded 0.216; an alpha channel changes nothing.
+    writePng8(dir + "/grey.png", 2, 1, 2, {128, 255, 64, 0});
+    Diagnostics more;
+    const Scene g = loadPov("#version 3.7; global_settings { assumed_gamma 1 }\n"
+                            "plane { z, 0 pigment { image_pattern { png \"grey.png\" once } } }",
+                            dir, more);
+    EXPECT_NEAR(patternValue(g, {0.25, 0.5, 0}), 128 / 255.0, 1e-6);
+    EXPECT_NEAR(patternValue(g, {0.75, 0.5, 0}), 64 / 255.0, 1e-6);
+    EXPECT_EQ(patternValue(g, {1.25, 0.5, 0}), 0); // off a `once` map
+}
+
+TEST(ImagePattern, DrtRoundTripAndUseAlpha) {
+    const std::string dir = test::tempDir();
+    quadrants(dir);
+    Diagnostics diags;
+    const auto scene = loadSceneText(
+        "sphere { 0, 1 pigment { image_pattern { \"quad.png\" interpolate 2 } "
+        "colour_map { [0, rgb <1, 0, 0>] [1, rgb <0, 0, 1>] } scale 2 } }",
+        "t.drt", diags, dir);
+    ASSERT_TRUE(scene) << diags.formatAll();
+    const std::string text = writeDrtScene(*scene);
+    EXPECT_NE(text.find("image_pattern {"), std::string::npos) << text;
+    EXPECT_TRUE(drtInexpressible(*scene).empty());
+    Diagnostics again;
+    const auto back = loadSceneText(text, "back.drt", again, "/");
+    ASSERT_TRUE(back) << again.formatAll() << "\n" << text;
+    EXPECT_EQ(writeDrtScene(*back), text);
+    const Scene a = test::withAssets(*scene), b = test::withAssets(*back);
+    for (const Vec3 p : {Vec3{0.3, 1.2, -0.4}, Vec3{2.0, 0.5, 1.0}})
+        EXPECT_EQ(evaluatePigment(a.objects[0].texture.pigment, p), evaluatePigment(b.objects[0].texture.pigment, p));
+    // use_alpha: a warning in a .pov scene, a located error in .drt.
+    Diagnostics pov;
+    loadPov("plane { z, 0 pigment { image_pattern { png \"quad.png\" use_alpha } } }", dir, pov);
+    EXPECT_EQ(pov.warningCount(), 1) << pov.formatAll();
+    Diagnostics drt;
+    EXPECT_FALSE(loadSceneText("plane { z, 0\n  pigment { image_pattern { \"quad.png\" use_alpha } } }", "t.drt", drt, dir));
+    test::expectErrorAt(drt, "t.drt", 2, 40, "image_pattern's use_alpha is not supported; the pattern is the image's grey");
+    Diagnostics missing;
+    EXPECT_FALSE(loadSceneText("plane { z, 0\n  pigment { image_pattern { \"gone.png\" } } }", "t.drt", missing, dir));
+    EXPECT_NE(missing.formatAll().find("t.drt:2:29"), std::string::npos) << missing.formatAll();
+}
+
 } // namespace
 } // namespace drt

@@ -290,5 +290,31 @@ TEST(NoisePov, WoodWithTurbulenceAndBumpsLoadsWithNotesOnly) {
     EXPECT_EQ(other.warningCount(), 1) << other.formatAll();
 }
 
+TEST(NoisePov, WoodWithoutAColourMapTakesPovRaysBrowns) {
+    // Measured on POV-Ray 3.7 (pigment { wood } along x, no turbulence): light
+    // brown up to x = 0.3 (value 0.6 of the triangle wave), dark brown to 0.7.
+    Diagnostics diags;
+    const auto s = loadPovSceneText("#declare P = pigment { wood }\n"
+                                    "sphere { 0, 1 pigment { P } }\n"
+                                    "sphere { 0, 1 pigment { P color_map { [0 rgb 0] [1 rgb 1] } } }",
+                                    "s.pov", diags);
+    ASSERT_TRUE(s) << diags.formatAll();
+    const Pigment& bare = s->objects[0].texture.pigment;
+    for (const double x : {0.05, 0.29, 0.71, 0.95}) {
+        const ColorFT c = evaluatePigment(bare, Vec3(x, 0, 0));
+        EXPECT_NEAR(c.rgb.r, 0.666, 1e-12) << x;
+        EXPECT_NEAR(c.rgb.g, 0.312, 1e-12) << x;
+        EXPECT_NEAR(c.rgb.b, 0.2, 1e-12) << x;
+    }
+    for (const double x : {0.31, 0.5, 0.69}) {
+        const ColorFT c = evaluatePigment(bare, Vec3(0, x, 0)); // rings round the z axis
+        EXPECT_NEAR(c.rgb.r, 0.4, 1e-12) << x;
+        EXPECT_NEAR(c.rgb.g, 0.1333, 1e-12) << x;
+        EXPECT_NEAR(c.rgb.b, 0.0667, 1e-12) << x;
+    }
+    // A colour map given later replaces the default.
+    EXPECT_NEAR(evaluatePigment(s->objects[1].texture.pigment, Vec3(0.2, 0, 0)).rgb.g, 0.4, 1e-9);
+}
+
 } // namespace
 } // namespace drt

@@ -15,6 +15,7 @@ std::string loadImageMap(ImageMap& map) {
     // The scene's gamma wins, then the file's own (a PNG gAMA chunk), then sRGB for integer files.
     const double gamma = map.gamma > 0 ? map.gamma : info.fileGamma;
     auto decode = [&](float v) -> float {
+        if (map.fileValues) return v;
         if (gamma > 0) return static_cast<float>(std::pow(std::max(0.0f, v), gamma));
         return info.srgbEncoded ? static_cast<float>(srgbDecode(v)) : v;
     };

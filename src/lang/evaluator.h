@@ -223,7 +223,8 @@ public:
     static bool isFractalWord(const std::string& word);
     std::shared_ptr<const FractalPattern> fractalPattern(const Token& keyword);
     bool fractalModifier(const Token& t, std::shared_ptr<const FractalPattern>& fractal);
-    std::optional<Pigment> imageMapPigment(SourceLoc keyword); // after 'image_map'
+    // After 'image_map', or after 'image_pattern' (`pattern`: a colour-map pattern of the image's grey).
+    std::optional<Pigment> imageMapPigment(SourceLoc keyword, bool pattern = false);
     // `density_file df3 "file" [interpolate n]`, read after 'density_file'.
     std::shared_ptr<const DensityFile> densityFile(const Token& keyword);
     // `interpolate n` of a density_file, read after 'interpolate': `d` with it.

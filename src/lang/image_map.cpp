@@ -67,12 +67,13 @@ std::shared_ptr<const DensityFile> Evaluator::densityInterpolate(const std::shar
     return changed;
 }
 
-std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword) {
-    expectSymbol("{", "after 'image_map'");
-    BlockScope scope(*this, "image_map", keyword);
+std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword, bool pattern) {
+    const std::string name = pattern ? "image_pattern" : "image_map";
+    expectSymbol("{", "after '" + name + "'");
+    BlockScope scope(*this, name, keyword);
     if (peek().isWord("function")) {
-        unsupported("image_map-function", peek().loc,
-                    "image_map { function ... } is not supported; the pigment becomes mid grey");
+        unsupported(name + "-function", peek().loc,
+                    name + " { function ... } is not supported; the pigment becomes mid grey");
         skipBlock();
         return std::nullopt;
     }
@@ -120,6 +121,9 @@ std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword) {
             }
         } else if (t.isWord("premultiplied")) {
             floatExpr();
+        } else if (pattern && t.isWord("use_alpha")) {
+            unsupported("image_pattern-use_alpha", t.loc,
+                        "image_pattern's use_alpha is not supported; the pattern is the image's grey");
         } else if (t.isWord("use_color") || t.isWord("use_colour") || t.isWord("use_index") || t.isWord("use_alpha")) {
         } else if (t.kind == TokenKind::Word) {
             failUnknown(t, Block::ImageMap);
@@ -128,8 +132,9 @@ std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword) {
         }
     }
     map->workingGamma = scene().versionGammaRules ? workingGamma() : scene_.global.assumedGamma;
+    if (pattern) map->fileValues = true, map->workingGamma = 1;
     Pigment p;
-    p.pattern = PatternKind::ImageMap;
+    p.pattern = pattern ? PatternKind::ImagePattern : PatternKind::ImageMap;
     p.imageMap = std::move(map);
     return p;
 }

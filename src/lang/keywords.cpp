@@ -56,7 +56,8 @@ const std::map<Block, Words>& table() {
         Words pigment{"color", "colour", "rgb", "rgbf", "rgbt", "rgbft", "srgb", "checker", "hexagon", "brick",
                       "brick_size", "mortar", "gradient", "color_map", "colour_map",
                       "pigment_map", "average", "image_map", "turbulence", "octaves", "omega", "lambda", "warp",
-                      "quick_color", "uv_mapping", "function", "mandel", "julia", "magnet"};
+                      "quick_color", "uv_mapping", "function", "mandel", "julia", "magnet",
+                      "image_pattern"};
         for (const std::string& w : noisePatternNames()) pigment.push_back(w);
         for (const PlacePatternWord& w : placePatternWords()) pigment.push_back(w.word);
         pigment = with(pigment, waveWords());

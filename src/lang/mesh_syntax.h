@@ -30,6 +30,11 @@ TriangleCorners readTriangleCorners(Evaluator& e, bool smooth);
 void readTriangleMesh(Evaluator& e, const Token& keyword, Mesh& m);
 void readMesh2(Evaluator& e, const Token& keyword, Mesh& m);
 
+// bicubic_patch (shapes_bicubic_patch.cpp): its items and points, into
+// Mesh::indexed and Mesh::patch; and its .drt text (without its closing brace).
+void readBicubicPatch(Evaluator& e, const Token& keyword, Mesh& m);
+std::string bicubicPatchHead(const Mesh& m, ShapeText& text);
+
 // A compact mesh as mesh2 text (without its closing brace).
 std::string indexedMeshHead(const Mesh& m, ShapeText& text);
 

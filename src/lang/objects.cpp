@@ -71,8 +71,7 @@ ShapeReader shapeReader(const std::string& keyword) {
 }
 
 bool isUnsupportedShape(const std::string& keyword) {
-    static const std::set<std::string> words = {"parametric",
-                                                "sphere_sweep", "bicubic_patch", "ovus"};
+    static const std::set<std::string> words = {"parametric", "sphere_sweep", "ovus"};
     return words.count(keyword) > 0;
 }
 

@@ -54,9 +54,9 @@ std::vector<ColorFT> listDefaults(PatternKind kind) {
 }
 
 // A colour-map pattern without a map uses POV-Ray's: the grey ramp (radial
-// has its own, set when the pigment ends).
+// and wood have their own, set when the pigment ends).
 void greyRamp(Pigment& p) {
-    if (p.colorMap.empty() && p.pattern != PatternKind::Radial)
+    if (p.colorMap.empty() && p.pattern != PatternKind::Radial && p.pattern != PatternKind::Wood)
         p.colorMap = {{0.0, {Color(0), 0, 0}}, {1.0, {Color(1), 0, 0}}};
 }
 
@@ -177,6 +177,8 @@ Pigment Evaluator::pigmentBody(const Pigment& base, const char* closer, const st
     }
     if (p.pattern == PatternKind::Radial && p.colorMap.empty() && p.pigmentMap.empty()) // POV-Ray's default radial map
         p.colorMap = {{0.0, rgb(0, 1, 1)}, {0.333, rgb(1, 1, 0)}, {0.666, rgb(1, 0, 1)}, {1.0, rgb(0, 1, 1)}};
+    if (p.pattern == PatternKind::Wood && p.colorMap.empty() && p.pigmentMap.empty()) // POV-Ray's, measured
+        p.colorMap = {{0.6, rgb(0.666, 0.312, 0.2)}, {0.6, rgb(0.4, 0.1333, 0.0667)}};
     if (!approximated.empty() && !p.pigmentMap.empty()) {
         warnOnce("pattern-" + approximated, approximatedLoc,
                  "pattern '" + approximated + "' is approximated by the equally weighted average of its pigment_map");
@@ -370,6 +372,19 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
         std::optional<Pigment> image = imageMapPigment(t.loc);
         p = image ? *image : solid(rgb(0.5, 0.5, 0.5));
         p.toWorld = keep;
+    } else if (w == "image_pattern") {
+        next();
+        const std::optional<Pigment> image = imageMapPigment(t.loc, true);
+        if (image) {
+            p.pattern = PatternKind::ImagePattern;
+            p.imageMap = image->imageMap;
+            p.children.clear();
+            greyRamp(p);
+        } else { // image_pattern { function ... }: mid grey, as for image_map
+            const Transform keep = p.toWorld;
+            p = solid(rgb(0.5, 0.5, 0.5));
+            p.toWorld = keep;
+        }
     } else if (w == "bump_map" || w == "material_map") {
         next();
         unsupported(w, t.loc, "'" + w + "' is not supported; the pigment becomes mid grey");

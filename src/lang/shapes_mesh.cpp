@@ -6,6 +6,7 @@
 //   polygon { n, p1, ..., pn }   (triangulated as a fan: exact for convex outlines)
 //   height_field { [type] "file" [smooth] [water_level w] }  (the image is read after parsing)
 //   height_field { function W, H { ... } [smooth] [water_level w] }  (sampled now)
+//   bicubic_patch { type t ... 16 points }  (tessellated now: shapes_bicubic_patch.cpp)
 #include "lang/mesh_syntax.h"
 #include "scene/height_field.h"
 #include "lang/writer_detail.h"
@@ -173,7 +174,8 @@ bool readHeightField(Evaluator& e, Mesh& m) {
 
 template <>
 const std::vector<std::string>& ShapeSyntax<Mesh>::keywords() {
-    static const std::vector<std::string> w{"triangle", "smooth_triangle", "mesh", "mesh2", "polygon", "height_field"};
+    static const std::vector<std::string> w{"triangle", "smooth_triangle", "mesh", "mesh2", "polygon", "height_field",
+                                            "bicubic_patch"};
     return w;
 }
 
@@ -185,6 +187,7 @@ void ShapeSyntax<Mesh>::read(Evaluator& e, const Token& keyword, ObjectValue& o)
     else if (w == "mesh") readMesh(e, keyword, m);
     else if (w == "mesh2") readMesh2(e, keyword, m);
     else if (w == "polygon") readPolygon(e, keyword, m);
+    else if (w == "bicubic_patch") readBicubicPatch(e, keyword, m);
     else if (!readHeightField(e, m)) o.lightOnly = true; // left out
     o.object.shape = std::move(m);
 }
@@ -194,6 +197,7 @@ std::string ShapeSyntax<Mesh>::head(const Mesh& m, ShapeText& text) {
     // A model file not read yet: its name, which reads back to the same mesh.
     if (m.source && m.source->kind == MeshSource::Kind::ModelFile)
         return "mesh { file " + writer::quoted(m.source->path);
+    if (m.patch) return bicubicPatchHead(m, text);
     if (m.indexed) return indexedMeshHead(m, text);
     if (m.triangles.empty()) {
         text.problems.insert("a mesh with no triangles (left out)");

@@ -50,7 +50,7 @@ Vec3 unnormalised(const Vec3& n);
 
 // ------------------------------------------------------------ writer_image_map.cpp
 
-std::string imageMapText(const ImageMap& m); // " image_map { \"/abs/file.png\" ... }"
+std::string imageMapText(const ImageMap& m); // " image_map { \"/abs/file.png\" ... }" (image_pattern for its files' values)
 std::string densityFileText(const DensityFile& d); // " density_file df3 \"/abs/file.df3\" [interpolate n]"
 
 // ------------------------------------------------------------ writer_texture.cpp

@@ -249,6 +249,11 @@ std::string pigmentBody(const Pigment& p, const std::vector<Step>& suffix, bool&
         if (p.imageMap) text += imageMapText(*p.imageMap);
         else problems.insert("an image_map without its image");
         break;
+    case PatternKind::ImagePattern:
+        if (p.imageMap) text += imageMapText(*p.imageMap);
+        else problems.insert("an image_pattern without its image");
+        colorMap();
+        break;
     default:
         text += std::string(" ") + noiseKeyword(p.pattern);
         colorMap();

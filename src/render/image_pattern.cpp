@@ -159,4 +159,10 @@ ColorFT imageMapColor(const ImageMap& m, const Vec3& p) {
     return c;
 }
 
+double imagePatternValue(const ImageMap& map, const Vec3& p) {
+    const ColorFT c = imageMapColor(map, p);
+    if (c.transmit == 1 && c.rgb.r == 1 && c.rgb.g == 1 && c.rgb.b == 1) return 0; // off the map
+    return 0.297 * c.rgb.r + 0.589 * c.rgb.g + 0.114 * c.rgb.b;
+}
+
 } // namespace drt

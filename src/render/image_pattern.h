@@ -14,4 +14,9 @@ namespace drt {
 // a point on the projection's axis) the colour is clear: white, transmit 1.
 ColorFT imageMapColor(const ImageMap& map, const Vec3& p);
 
+// POV-Ray's image_pattern: the grey 0.297 r + 0.589 g + 0.114 b of the texel
+// imageMapColor finds (the file's own numbers: ImageMap::fileValues), alpha
+// ignored; 0 off the map (measured on POV-Ray 3.7).
+double imagePatternValue(const ImageMap& map, const Vec3& p);
+
 } // namespace drt

@@ -155,6 +155,7 @@ PatternSample samplePatternAt(const Pigment& pigment, const Vec3& p) {
     case PatternKind::Function: value = pigment.function ? pigment.function->at(p) : 0.0; break; // see installFunctionHooks
     case PatternKind::Fractal: value = pigment.fractal ? fractalValue(*pigment.fractal, p.x, p.y) : 0.0; break;
     case PatternKind::DensityFile: value = pigment.densityFile ? densityFileValue(*pigment.densityFile, p) : 0.0; break;
+    case PatternKind::ImagePattern: value = pigment.imageMap ? imagePatternValue(*pigment.imageMap, p) : 0.0; break;
     default: break;
     }
     // POV-Ray's pattern step: fmod(v frequency + phase, 1.00001), then the wave.

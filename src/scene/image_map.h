@@ -26,6 +26,9 @@ struct ImageMap {
     double transmitAll = 0; // added to every texel's transmit (1 - alpha)
     double gamma = 0;      // the file's encoding exponent; 0: sRGB for integer files, linear for float files
     double workingGamma = 1; // the scene's assumed_gamma: texels are encoded with it (c^(1/g)) as scene colours are
+    // image_pattern: the texels are the file's own numbers (0..1), not decoded
+    // by any gamma (POV-Ray's pattern value is their grey; workingGamma 1).
+    bool fileValues = false;
 
     // Decoded texels, linear RGB and transmit (1 - alpha), rows top first;
     // empty until the assets are resolved.

@@ -67,6 +67,7 @@ enum class PatternKind {
     // map value being its weight (POV-Ray's `average`).
     Average,
     ImageMap, // an image file (scene/image_map.h)
+    ImagePattern, // colour map of an image's grey value (Pigment::imageMap, its texels as the file stores them)
     DensityFile, // a df3 voxel file over the unit cube (Pigment::densityFile, scene/density_file.h)
 };
 
@@ -90,7 +91,7 @@ struct DensityFile;
 
 struct Pigment {
     PatternKind pattern = PatternKind::Solid;
-    std::shared_ptr<const ImageMap> imageMap; // ImageMap: the decoded image and its mapping
+    std::shared_ptr<const ImageMap> imageMap; // ImageMap, ImagePattern: the decoded image and its mapping
     std::shared_ptr<const Function> function; // Function: its value at the pattern point
     std::shared_ptr<const FractalPattern> fractal; // Fractal: which fractal, with its parameters
     std::shared_ptr<const DensityFile> densityFile; // DensityFile: the file and, once resolved, its voxels
@@ -380,6 +381,7 @@ struct MeshSource {
     SourceLoc loc; // the file name in the scene
 };
 
+struct BicubicPatch;
 struct Mesh {
     // The file of the triangles: to be read while `indexed` is empty (src/assets); a model file's stays set.
     std::shared_ptr<const MeshSource> source;
@@ -393,6 +395,9 @@ struct Mesh {
     // empty and the triangles are here. Copies of the Mesh share it, and the
     // accelerator builds one BVH for all the objects that show it.
     std::shared_ptr<const IndexedMesh> indexed;
+    // The bicubic_patch the triangles were made from (scene/bicubic_patch.h):
+    // what the writer writes back instead of the triangles.
+    std::shared_ptr<const BicubicPatch> patch;
     // Textures of single triangles (IndexedMesh::faceTextures index them);
     // the others take the object's texture. In the mesh's object space, like
     // Object::texture.

@@ -14,14 +14,14 @@ syn keyword drtFunction strupr substr tan tanh trace val vaxis_rotate vcross
 syn keyword drtFunction vdot vlength vnormalize vrotate vstr
 syn keyword drtBoolean false no off on true yes
 syn keyword drtConstant image_height image_width pi tau x y z
-syn keyword drtBlock background blob box camera clipped_by cone contained_by cubic
-syn keyword drtBlock cylinder density density_map disc face_indices finish fog global_settings
-syn keyword drtBlock height_field image_map interior isosurface julia_fractal lathe light_group light_source
-syn keyword drtBlock media mesh mesh2 motion normal normal_indices normal_vectors object
-syn keyword drtBlock pattern pigment pigment_map pigment_pattern plane poly prism quadric
-syn keyword drtBlock quartic radiosity render scattering sky_sphere slope_map smooth_triangle sor
-syn keyword drtBlock sphere spline superellipsoid text texture texture_list texture_map tiles
-syn keyword drtBlock torus triangle uv_indices uv_vectors vertex_vectors
+syn keyword drtBlock background bicubic_patch blob box camera clipped_by cone contained_by
+syn keyword drtBlock cubic cylinder density density_map disc face_indices finish fog
+syn keyword drtBlock global_settings height_field image_map image_pattern interior isosurface julia_fractal lathe
+syn keyword drtBlock light_group light_source media mesh mesh2 motion normal normal_indices
+syn keyword drtBlock normal_vectors object pattern pigment pigment_map pigment_pattern plane poly
+syn keyword drtBlock prism quadric quartic radiosity render scattering sky_sphere slope_map
+syn keyword drtBlock smooth_triangle sor sphere spline superellipsoid text texture texture_list
+syn keyword drtBlock texture_map tiles torus triangle uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections always_sample
 syn keyword drtKeyword ambient ambient_light angle aperture append area_illumination area_light area_sampling
 syn keyword drtKeyword array assumed_gamma at average bezier_spline blue boxed bozo
@@ -32,26 +32,27 @@ syn keyword drtKeyword cubic_wave cylindrical density_file dents df3 difference 
 syn keyword drtKeyword distance eccentricity emission error error_bound evaluate exponent exterior
 syn keyword drtKeyword extinction f_noise3d f_noise_generator f_ph f_r f_rounded_box f_sphere f_superellipsoid
 syn keyword drtKeyword f_th f_torus fade_color fade_colour fade_distance fade_power falloff file
-syn keyword drtKeyword filter final_clock final_frame fisheye focal_distance focal_point fog_alt fog_offset
-syn keyword drtKeyword fog_type font frame_number frequency fresnel gamma global_lights gradient
-syn keyword drtKeyword granite gray gray_threshold green grid height hexagon hierarchy
-syn keyword drtKeyword hollow hypercomplex initial_clock initial_frame internal interpolate intersection intervals
-syn keyword drtKeyword inverse inverse_square ior jitter julia lambda leopard linear_spline
-syn keyword drtKeyword linear_sweep load_file location look_at low_error_factor magnet mandel map_type
-syn keyword drtKeyword marble matrix max_gradient max_iteration max_sample max_samples max_trace max_trace_level
-syn keyword drtKeyword maximum_reuse media_attenuation media_interaction merge metallic method min_samples minimum_reuse
-syn keyword drtKeyword mortar natural_spline nearest_count no_shadow octaves offset omega once
-syn keyword drtKeyword onion open orient orthographic panoramic parallel perspective phase
-syn keyword drtKeyword phong phong_size planar point_at poly_wave pov_grid precision pretrace_end
-syn keyword drtKeyword pretrace_start pwr quadratic_spline quaternion quilted radial radius ramp_wave
-syn keyword drtKeyword ratio read reciprocal recursion_limit red reflection reflection_blur refraction_blur
-syn keyword drtKeyword rgb rgbf rgbft rgbt right ripples rotate roughness
-syn keyword drtKeyword sampler samples save_file scale scallop_wave shadowless shutter_close shutter_open
-syn keyword drtKeyword sine_wave sky slice smooth solid_angle specular spherical spotlight
-syn keyword drtKeyword srgb srgbf srgbft srgbt stratified strength string sturm
-syn keyword drtKeyword subsurface t thickness threshold tightness tile2 translate transmit
-syn keyword drtKeyword triangle_wave turb_depth turbulence u ultra_wide_angle union up uv_mapping
-syn keyword drtKeyword v variance water_level waves width wood wrinkles write
+syn keyword drtKeyword filter final_clock final_frame fisheye flatness focal_distance focal_point fog_alt
+syn keyword drtKeyword fog_offset fog_type font frame_number frequency fresnel gamma global_lights
+syn keyword drtKeyword gradient granite gray gray_threshold green grid height hexagon
+syn keyword drtKeyword hierarchy hollow hypercomplex initial_clock initial_frame internal interpolate intersection
+syn keyword drtKeyword intervals inverse inverse_square ior jitter julia lambda leopard
+syn keyword drtKeyword linear_spline linear_sweep load_file location look_at low_error_factor magnet mandel
+syn keyword drtKeyword map_type marble matrix max_gradient max_iteration max_sample max_samples max_trace
+syn keyword drtKeyword max_trace_level maximum_reuse media_attenuation media_interaction merge metallic method min_samples
+syn keyword drtKeyword minimum_reuse mortar natural_spline nearest_count no_shadow octaves offset omega
+syn keyword drtKeyword once onion open orient orthographic panoramic parallel perspective
+syn keyword drtKeyword phase phong phong_size planar point_at poly_wave pov_grid precision
+syn keyword drtKeyword pretrace_end pretrace_start pwr quadratic_spline quaternion quilted radial radius
+syn keyword drtKeyword ramp_wave ratio read reciprocal recursion_limit red reflection reflection_blur
+syn keyword drtKeyword refraction_blur rgb rgbf rgbft rgbt right ripples rotate
+syn keyword drtKeyword roughness sampler samples save_file scale scallop_wave shadowless shutter_close
+syn keyword drtKeyword shutter_open sine_wave sky slice smooth solid_angle specular spherical
+syn keyword drtKeyword spotlight srgb srgbf srgbft srgbt stratified strength string
+syn keyword drtKeyword sturm subsurface t thickness threshold tightness tile2 translate
+syn keyword drtKeyword transmit triangle_wave turb_depth turbulence type u u_steps ultra_wide_angle
+syn keyword drtKeyword union up uv_mapping v v_steps variance water_level waves
+syn keyword drtKeyword width wood wrinkles write
 syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|fclose\|fopen\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|read\|switch\|undef\|version\|warning\|while\|write\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
