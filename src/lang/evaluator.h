@@ -224,6 +224,9 @@ public:
     std::shared_ptr<const FractalPattern> fractalPattern(const Token& keyword);
     bool fractalModifier(const Token& t, std::shared_ptr<const FractalPattern>& fractal);
     std::optional<Pigment> imageMapPigment(SourceLoc keyword); // after 'image_map'
+    // The file and modifiers of an image_map or a material_map, after its '{', up to its '}'. `item`, when set,
+    // is offered each token first (material_map's textures) and returns true if it took it.
+    std::shared_ptr<ImageMap> imageMapBody(const std::function<bool(const Token&)>& item);
     // `density_file df3 "file" [interpolate n]`, read after 'density_file'.
     std::shared_ptr<const DensityFile> densityFile(const Token& keyword);
     // `interpolate n` of a density_file, read after 'interpolate': `d` with it.

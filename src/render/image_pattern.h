@@ -14,4 +14,8 @@ namespace drt {
 // a point on the projection's axis) the colour is clear: white, transmit 1.
 ColorFT imageMapColor(const ImageMap& map, const Vec3& p);
 
+// A material_map's index at a pattern-space point: the nearest texel's palette
+// index (ImageMap::indices), projected as imageMapColor projects; 0 off the map.
+int imageMapIndex(const ImageMap& map, const Vec3& p);
+
 } // namespace drt

@@ -17,11 +17,11 @@ syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background blob box camera clipped_by cone contained_by cubic
 syn keyword drtBlock cylinder density density_map disc face_indices finish fog global_settings
 syn keyword drtBlock height_field image_map interior isosurface julia_fractal lathe light_group light_source
-syn keyword drtBlock media mesh mesh2 motion normal normal_indices normal_vectors object
-syn keyword drtBlock pattern pigment pigment_map pigment_pattern plane poly prism quadric
-syn keyword drtBlock quartic radiosity render scattering sky_sphere slope_map smooth_triangle sor
-syn keyword drtBlock sphere spline superellipsoid text texture texture_list texture_map tiles
-syn keyword drtBlock torus triangle uv_indices uv_vectors vertex_vectors
+syn keyword drtBlock material_map media mesh mesh2 motion normal normal_indices normal_vectors
+syn keyword drtBlock object pattern pigment pigment_map pigment_pattern plane poly prism
+syn keyword drtBlock quadric quartic radiosity render scattering sky_sphere slope_map smooth_triangle
+syn keyword drtBlock sor sphere spline superellipsoid text texture texture_list texture_map
+syn keyword drtBlock tiles torus triangle uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections always_sample
 syn keyword drtKeyword ambient ambient_light angle aperture append area_illumination area_light area_sampling
 syn keyword drtKeyword array assumed_gamma at average bezier_spline blue boxed bozo
