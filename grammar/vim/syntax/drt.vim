@@ -11,7 +11,7 @@ syn keyword drtFunction floor function inside int ln log max max_extent
 syn keyword drtFunction min min_extent mod pow radians rand seed select
 syn keyword drtFunction sin sinh sqr sqrt str strcmp strlen strlwr
 syn keyword drtFunction strupr substr tan tanh trace val vaxis_rotate vcross
-syn keyword drtFunction vdot vlength vnormalize vrotate vstr
+syn keyword drtFunction vdot vlength vnormalize vrotate vstr vturbulence
 syn keyword drtBoolean false no off on true yes
 syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background blob box camera clipped_by cone contained_by cubic
