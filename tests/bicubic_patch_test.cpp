@@ -158,6 +158,25 @@ TEST(PovBicubicPatch, ReadsPovRaysFormIntoAMesh) {
     EXPECT_EQ(b.patch->uvCorners[2].u, 2.0f);
 }
 
+TEST(PovBicubicPatch, ObjectUvMappingMapsTheTexturesAfterIt) {
+    // portfolio/allobjects.pov: `uv_mapping texture { pigment { checker ... scale 1/3 } }` in the patch.
+    const std::string points = "<0,0,0> <1,0,0> <2,0,0> <3,0,0> <0,1,0> <1,1,0> <2,1,0> <3,1,0> "
+                               "<0,2,0> <1,2,0> <2,2,0> <3,2,0> <0,3,0> <1,3,0> <2,3,0> <3,3,0>";
+    Diagnostics diags;
+    const std::optional<Scene> scene = loadPovSceneText(
+        "bicubic_patch { type 1 " + points +
+            " uv_mapping texture { pigment { checker rgb 0 rgb 1 scale 1/3 } } scale 5 }\n"
+            "sphere { 0, 1 texture { pigment { checker rgb 0 rgb 1 } } uv_mapping }",
+        "s.pov", diags);
+    ASSERT_TRUE(scene) << diags.formatAll();
+    EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
+    const Pigment& mapped = scene->objects[0].texture.pigment;
+    EXPECT_TRUE(mapped.uvMapping);
+    EXPECT_TRUE(mapped.children.at(0).uvMapping);
+    EXPECT_NEAR(mapped.toWorld.point({1, 0, 0}).x, 1.0 / 3, 1e-12); // the object's scale 5 leaves it
+    EXPECT_FALSE(scene->objects[1].texture.pigment.uvMapping);      // a texture before it is not mapped
+}
+
 TEST(DrtBicubicPatch, ParsesAndRoundTripsAsAPatch) {
     const std::string text = R"(
 camera { location <0, 2, -8> look_at <0, 0, 0> }

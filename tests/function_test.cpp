@@ -316,3 +316,45 @@ TEST(FunctionErrors, TheCommandLineShowsTheLocationWithACaretAndFails) {
 
 } // namespace
 } // namespace drt
+
+namespace drt {
+namespace {
+
+// vturbulence(lambda, omega, octaves, p) is the displacement a pattern's
+// `turbulence 1` with the same lambda, omega and octaves gives p: a gradient x
+// pattern so warped reads fract(p.x + V.x) at p. And octaves add up:
+// V(n + 1 octaves at p) = V(1 at p) + omega V(n at lambda p).
+TEST(Function, VturbulenceIsThePatternWarpsDisplacement) {
+    const Vec3 p(0.3, 0.7, 1.1);
+    for (bool pov : {true, false}) {
+        const std::string at = "<0.3, 0.7, 1.1>";
+        const double vx = value("#declare V = vturbulence(2.5, 0.4, 3, " + at + ");", "V.x", pov);
+        const double vy = value("#declare V = vturbulence(2.5, 0.4, 3, " + at + ");", "V.y", pov);
+        EXPECT_GT(std::abs(vx) + std::abs(vy), 1e-3) << "a zero vector would pass the identities below";
+        Pigment gradient;
+        gradient.pattern = PatternKind::Gradient;
+        gradient.gradientAxis = Vec3(1, 0, 0);
+        gradient.turbulence.amount = Vec3(1.0);
+        gradient.turbulence.lambda = 2.5;
+        gradient.turbulence.omega = 0.4;
+        gradient.turbulence.octaves = 3;
+        const double warped = samplePattern(gradient, p).value;
+        const double expected = p.x + vx - std::floor(p.x + vx);
+        EXPECT_NEAR(warped, expected, 2e-9) << (pov ? "POV-Ray dialect" : ".drt dialect");
+        // Octaves: 3 at p = 1 at p + 0.4 x (2 at 2.5 p).
+        const double one = value("", "vturbulence(2.5, 0.4, 1, " + at + ").x", pov);
+        const double two = value("", "vturbulence(2.5, 0.4, 2, <0.75, 1.75, 2.75>).x", pov);
+        EXPECT_NEAR(vx, one + 0.4 * two, 3e-9);
+        EXPECT_NEAR(vy, value("", "vturbulence(2.5, 0.4, 1, " + at + ").y", pov) +
+                            0.4 * value("", "vturbulence(2.5, 0.4, 2, <0.75, 1.75, 2.75>).y", pov),
+                    3e-9);
+    }
+    // Octaves past POV-Ray's 10 are clipped to 10; a non-number is a located error.
+    EXPECT_DOUBLE_EQ(value("", "vturbulence(2, 0.5, 50, <0.1, 0.2, 0.3>).z"),
+                     value("", "vturbulence(2, 0.5, 10, <0.1, 0.2, 0.3>).z"));
+    EXPECT_EQ(firstError("#declare V = vturbulence(2, 0.5, \"a\", <0, 0, 0>);\n"),
+              "1:34: argument of 'vturbulence' must be a number, not a string");
+}
+
+} // namespace
+} // namespace drt

@@ -41,7 +41,7 @@ bool resolveAssets(Scene& scene, Diagnostics& diags) {
         auto [it, fresh] = decoded.try_emplace(pigment.imageMap.get());
         if (fresh) {
             auto map = std::make_shared<ImageMap>(*pigment.imageMap);
-            if (const std::string error = loadImageMap(*map); !error.empty()) diags.error(map->loc, error);
+            if (const std::string error = loadImageMap(*map, diags); !error.empty()) diags.error(map->loc, error);
             it->second = std::move(map);
         }
         pigment.imageMap = it->second;

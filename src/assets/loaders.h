@@ -13,9 +13,11 @@ namespace drt {
 // Reads `map.path` and fills the texels, decoded with v^gamma when
 // `map.gamma` > 0, else with the gamma the file states (a PNG gAMA chunk,
 // a linear file), else from sRGB for integer files; float files (EXR, HDR)
-// are linear. Alpha becomes transmit = 1 - alpha. Returns "" on success,
-// else the reason.
-std::string loadImageMap(ImageMap& map);
+// are linear. Alpha becomes transmit = 1 - alpha. A material_map's image and
+// one with per-index amounts also get their palette indices (warnings, such as
+// per-index amounts on an image without a palette, go to `diags`). Returns ""
+// on success, else the reason.
+std::string loadImageMap(ImageMap& map, Diagnostics& diags);
 
 // Reads `d.path`, a df3 file, into the voxels (density_file_load.cpp);
 // refuses a file whose voxels would take more than `limits.memoryMB`.

@@ -2,6 +2,7 @@
 // image I/O path, through OpenImageIO.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -57,5 +58,13 @@ struct ImageFileInfo {
 // Reads the values as stored, scaled to [0, 1] for integer files (value / 255,
 // value / 65535), without any sRGB decoding. Returns "" on success, else the reason.
 std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info);
+
+// The palette index of every pixel of a colour-mapped PNG (width x height, rows
+// top first), for POV-Ray's per-index image_map amounts and material_map.
+// OpenImageIO expands palettes into colours, so this one read goes through
+// libpng. A file that is not a palette PNG leaves `indices` empty. Returns ""
+// or the reason; the caller has read the image's colours (and so checked its
+// size against the memory limit) first.
+std::string readPaletteIndices(const std::string& path, int width, int height, std::vector<uint8_t>& indices);
 
 } // namespace drt

@@ -225,6 +225,10 @@ public:
     bool fractalModifier(const Token& t, std::shared_ptr<const FractalPattern>& fractal);
     // After 'image_map', or after 'image_pattern' (`pattern`: a colour-map pattern of the image's grey).
     std::optional<Pigment> imageMapPigment(SourceLoc keyword, bool pattern = false);
+    // The file and modifiers of an image_map, an image_pattern (`pattern`: use_alpha is known) or a
+    // material_map, after its '{', up to its '}'. `item`, when set, is offered each token first
+    // (material_map's textures) and returns true if it took it.
+    std::shared_ptr<ImageMap> imageMapBody(const std::function<bool(const Token&)>& item, bool pattern = false);
     // `density_file df3 "file" [interpolate n]`, read after 'density_file'.
     std::shared_ptr<const DensityFile> densityFile(const Token& keyword);
     // `interpolate n` of a density_file, read after 'interpolate': `d` with it.

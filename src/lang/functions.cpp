@@ -1,6 +1,7 @@
 // Built-in constants and functions of the scene language (POV-Ray's, with
 // POV-Ray's meanings: log is base 10, ln the natural logarithm).
 #include "lang/evaluator.h"
+#include "scene/noise_hooks.h"
 #include "scene/bounds.h"
 
 #include <cmath>
@@ -293,9 +294,13 @@ bool Evaluator::builtin(const Token& name, Value& out) {
             need(3, 3);
             if (length(vec(1)) == 0) fail(locs[1], "vaxis_rotate about a zero axis");
             r = Transform::rotateAxis(vec(1), f(2)).vector(vec(0));
-        } else {
+        } else { // vturbulence(lambda, omega, octaves, point): the renderer's turbulence (scene/noise_hooks.h)
             need(4, 4);
-            warnOnce("vturbulence", name.loc, "vturbulence() is not supported; it returns <0,0,0>");
+            // Octaves beyond POV-Ray's 1 to 10 are clipped, as in a pattern's turbulence.
+            const int octaves = std::clamp(count(2, "vturbulence() octaves", -1e9, 1e9), 1, 10);
+            const NoiseHooks hooks = noiseHooks();
+            if (!hooks.turbulence) fail(name.loc, "vturbulence() needs drt's renderer, which this program does not link");
+            r = hooks.turbulence(f(0), f(1), octaves, vec(3));
         }
         out = Value::makeVector(r);
         return true;

@@ -1,5 +1,6 @@
 // pigment { image_map { [type] "file" [map_type n] [once] [interpolate n]
-// [filter all f] [transmit all t] [gamma g] ... } }: the image is found here and
+// [filter all f] [transmit all t] [filter i, f] [transmit i, t] [gamma g] ... } }
+// and texture { material_map { [type] "file" [modifiers] texture {..}.. } }: the image is found here and
 // decoded once after parsing (assets/assets.h), shared by every copy of the
 // pigment. Files are found like include files (image extensions tried for a
 // name without one).
@@ -77,6 +78,13 @@ std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword, bool patter
         skipBlock();
         return std::nullopt;
     }
+    Pigment p;
+    p.pattern = pattern ? PatternKind::ImagePattern : PatternKind::ImageMap;
+    p.imageMap = imageMapBody(nullptr, pattern);
+    return p;
+}
+
+std::shared_ptr<ImageMap> Evaluator::imageMapBody(const std::function<bool(const Token&)>& item, bool pattern) {
     if (isImageTypeWord(peek())) next();
     auto map = std::make_shared<ImageMap>();
     dataFileName("image", "image", true, map->file, map->path, map->loc);
@@ -84,6 +92,7 @@ std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword, bool patter
         const Token t = next();
         if (t.is("}")) break;
         const SourceLoc at = peek().loc;
+        if (item && item(t)) continue;
         if (t.isWord("map_type")) {
             const int type = intExpr("the map type");
             if (type == 0 || type == 1 || type == 2 || type == 5) map->projection = ImageMap::Projection(type);
@@ -103,14 +112,13 @@ std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword, bool patter
             const bool filter = t.isWord("filter");
             if (acceptWord("all")) {
                 (filter ? map->filterAll : map->transmitAll) = floatExpr("the amount");
-            } else if (syntax().kind == DialectKind::Drt) {
-                failExpected(peek(), "'all' and an amount");
-            } else { // a palette index: OpenImageIO expands palettes, so indices are unknown
-                floatExpr();
-                acceptSymbol(",");
-                floatExpr();
-                warnOnce("image_map-index", t.loc,
-                         "per-index filter/transmit in an image_map is not supported and is ignored");
+            } else { // a palette index and its amount (assets/image_map_load.cpp)
+                const int index = intExpr("the palette index");
+                if (index < 0 || index > 255) error(at, "a palette index runs from 0 to 255" + got(index));
+                if (syntax().kind == DialectKind::Drt) expectSymbol(",", "between the palette index and its amount");
+                else acceptSymbol(",");
+                const double amount = floatExpr("the amount");
+                (filter ? map->indexFilter : map->indexTransmit).push_back({index, amount});
             }
         } else if (t.isWord("gamma")) {
             if (acceptWord("srgb")) {
@@ -128,15 +136,13 @@ std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword, bool patter
         } else if (t.kind == TokenKind::Word) {
             failUnknown(t, Block::ImageMap);
         } else {
-            failInBlock(t, "an image_map item (map_type once interpolate filter transmit gamma) or '}'");
+            failInBlock(t, item ? "a material_map item (map_type once interpolate texture) or '}'"
+                                : "an image_map item (map_type once interpolate filter transmit gamma) or '}'");
         }
     }
     map->workingGamma = scene().versionGammaRules ? workingGamma() : scene_.global.assumedGamma;
     if (pattern) map->fileValues = true, map->workingGamma = 1;
-    Pigment p;
-    p.pattern = pattern ? PatternKind::ImagePattern : PatternKind::ImageMap;
-    p.imageMap = std::move(map);
-    return p;
+    return map;
 }
 
 // ------------------------------------------------------------ transforms

@@ -295,6 +295,18 @@ ObjectValue Evaluator::object(const Token& keyword) {
 void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
     Object& o = po.object;
     int textures = 0; // a second `texture` is a layer on top of the first (POV-Ray)
+    // uv_mapping among the object's modifiers: the textures given after it read the surface's uvs.
+    bool uvMapped = false;
+    const auto uvMap = [&](Texture tex) {
+        if (!uvMapped) return tex;
+        const auto mapLayer = [](Texture& layer) {
+            setUvMapping(layer.pigment, true);
+            if (layer.normal) layer.normal->uvMapping = true;
+        };
+        mapLayer(tex);
+        for (Texture& above : tex.layersAbove) mapLayer(above);
+        return tex;
+    };
     std::vector<Object> boundedBy; // for `clipped_by { bounded_by }`
     auto topTexture = [&]() { return po.textured ? o.texture : defaultTexture_; };
     for (;;) {
@@ -328,10 +340,10 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
         if (m == "texture") {
             if (textures++ > 0) {
                 Texture layered = o.texture;
-                layerOnTop(layered, texture(defaultTexture_), t.loc);
+                layerOnTop(layered, uvMap(texture(defaultTexture_)), t.loc);
                 setTexture(po, layered);
             } else {
-                setTexture(po, texture(topTexture()));
+                setTexture(po, uvMap(texture(topTexture())));
             }
         } else if (m == "pigment" || m == "finish" || m == "normal") {
             // Of the top layer (measured against POV-Ray); an untextured object starts from the default.
@@ -341,7 +353,7 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
             else if (m == "finish") top.finish = finish(top.finish);
             else if (std::optional<Normal> n = normalBlock(t.loc, std::nullopt)) top.normal = std::move(n);
             else continue;
-            setTexture(po, tex);
+            setTexture(po, uvMap(tex));
         } else if (m == "interior") {
             setInterior(po, interior(o.interior));
         } else if (m == "material") {
@@ -394,8 +406,10 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
             unsupported(m, t.loc, "'" + m + "' is not supported and is ignored");
             expectSymbol("{", "after '" + m + "'");
             skipBlock();
+        } else if (m == "uv_mapping") {
+            uvMapped = optionalBool(true);
         } else if (m == "no_image" || m == "no_reflection" || m == "no_radiosity" || m == "double_illuminate" ||
-                   m == "uv_mapping" || m == "cutaway_textures") {
+                   m == "cutaway_textures") {
             unsupported(m, t.loc, "'" + m + "' is not supported and is ignored");
             optionalBool(true);
         } else {

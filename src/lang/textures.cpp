@@ -2,6 +2,7 @@
 // brick and tiles of textures), pigment_map, material and normal. Map entries
 // hold a texture / pigment *body*: `[0.5 T_Stone scale 2]`, `[0.3 checker Red White]`.
 #include "lang/evaluator.h"
+#include "scene/image_map.h"
 #include "lang/quilted.h"
 #include "lang/mesh_syntax.h"
 
@@ -149,7 +150,7 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
     const std::string& w = word.text;
     std::string approximated; // a pattern drt lacks: the entries are averaged
     bool uvPattern = false;   // uv_mapping among the pattern's modifiers
-    const bool block = w == "checker" || w == "hexagon" || w == "brick" || w == "tiles";
+    const bool block = w == "checker" || w == "hexagon" || w == "brick" || w == "tiles" || w == "material_map";
     // checker / hexagon / brick: `count` textures, commas optional.
     auto blockTextures = [&](int count) {
         for (int i = 0; i < count && peek().isWord("texture"); ++i) {
@@ -216,29 +217,19 @@ Texture Evaluator::patternedTexture(const Token& word, const char* closer, const
         pattern.pattern = *kind;
         noiseNote(w, word.loc);
     } else if (w == "material_map") {
-        // An image-indexed material: the first texture inside stands in.
-        unsupported("material_map", word.loc, "'material_map' is not supported; its first texture is used");
+        // material_map { FILE "file" [modifiers] texture {..}.. }: the texture numbered by the texel's palette
+        // index (modulo their count; render/image_pattern.h).
         expectSymbol("{", "after 'material_map'");
-        Texture first = defaultTexture_;
-        bool taken = false;
-        for (int depth = 1; depth > 0;) {
-            const Token s = next();
-            if (s.kind == TokenKind::EndOfFile) fail(word.loc, "unbalanced '{' in material_map");
-            if (!taken && s.isWord("texture")) {
-                first = texture(defaultTexture_);
-                taken = true;
-                continue;
-            }
-            depth += s.is("{") ? 1 : s.is("}") ? -1 : 0;
-        }
-        tex = first;
-        for (;;) { // transforms after the map still apply; no entries to average
-            const Token t = next();
-            if (t.is(closer)) return tex;
-            pushBack(t);
-            if (std::optional<Transform> tr = transformItem()) transformTextureSpaces(tex, *tr);
-            else failExpected(t, "a transform or " + where);
-        }
+        BlockScope scope(*this, "material_map", word.loc);
+        pattern.pattern = PatternKind::ImageMap;
+        std::shared_ptr<ImageMap> map = imageMapBody([&](const Token& t) {
+            if (!t.isWord("texture")) return false;
+            tex.map.push_back({double(tex.map.size()), texture(defaultTexture_)});
+            return true;
+        });
+        if (tex.map.empty()) refuse(word.loc, "a material_map needs at least one texture", true);
+        map->material = true;
+        pattern.imageMap = std::move(map);
     } else if (w == "texture_map") {
         // A map without a pattern: POV-Ray's default pattern is none; averaged below.
         if (syntax().unsupportedIsError) fail(word.loc, "a texture_map needs a pattern before it");

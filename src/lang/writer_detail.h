@@ -50,7 +50,9 @@ Vec3 unnormalised(const Vec3& n);
 
 // ------------------------------------------------------------ writer_image_map.cpp
 
-std::string imageMapText(const ImageMap& m); // " image_map { \"/abs/file.png\" ... }" (image_pattern for its files' values)
+// " image_map { \"/abs/file.png\" ... }" (" image_pattern {" for a pattern's image: ImageMap::fileValues);
+// a material_map's image as " material_map { \"/abs/file.png\" ... TEXTURES }".
+std::string imageMapText(const ImageMap& m, const std::string& textures = "");
 std::string densityFileText(const DensityFile& d); // " density_file df3 \"/abs/file.df3\" [interpolate n]"
 
 // ------------------------------------------------------------ writer_texture.cpp

@@ -329,7 +329,13 @@ std::string textureBody(const Texture& t, const std::vector<Step>& suffix, bool&
         p.pattern == PatternKind::Checker || p.pattern == PatternKind::Hexagon || p.pattern == PatternKind::Brick;
     const bool layeredEntry = std::any_of(t.map.begin(), t.map.end(),
                                           [](const Texture::MapEntry& e) { return !e.texture.layersAbove.empty(); });
-    if (block && p.pattern == PatternKind::Checker && t.map.size() == 2 && layeredEntry) {
+    if (p.pattern == PatternKind::ImageMap && p.imageMap && p.imageMap->material) {
+        std::string textures;
+        if (layeredEntry) problems.insert("layered textures inside a material_map");
+        for (const Texture::MapEntry& e : t.map)
+            textures += " texture {" + textureBody(e.texture, childSuffix, exact, problems) + " }";
+        text += imageMapText(*p.imageMap, textures);
+    } else if (block && p.pattern == PatternKind::Checker && t.map.size() == 2 && layeredEntry) {
         text += " tiles {" + blocks(t.map[1].texture) + " tile2" + blocks(t.map[0].texture) + " }"; // see the parser
     } else if (block) {
         const size_t count = p.pattern == PatternKind::Hexagon ? 3 : 2;

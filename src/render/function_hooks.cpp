@@ -5,6 +5,7 @@
 
 #include "render/noise.h"
 #include "render/pigment.h"
+#include "scene/noise_hooks.h"
 
 namespace drt {
 
@@ -30,11 +31,22 @@ double functionColour(const Pigment& pigment, const Vec3& p, int channel) {
     }
 }
 
+// vturbulence(lambda, omega, octaves, p): the turbulence that warps patterns, of amount 1.
+Vec3 functionTurbulence(double lambda, double omega, int octaves, const Vec3& p) {
+    Turbulence t;
+    t.amount = Vec3(1.0);
+    t.lambda = lambda;
+    t.omega = omega;
+    t.octaves = octaves;
+    return turbulenceOffset(t, p);
+}
+
 } // namespace
 
 bool installFunctionHooks() {
     static const bool installed = [] {
         setFunctionHooks({functionNoise, functionPattern, functionColour});
+        setNoiseHooks({functionTurbulence});
         return true;
     }();
     return installed;

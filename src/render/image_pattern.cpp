@@ -66,7 +66,7 @@ bool project(const ImageMap& m, const Vec3& p, double& u, double& v) {
 
 // One texel by (possibly out-of-range) pixel coordinates: repeated, or
 // clamped to the edge when the map is shown once.
-ColorFT texel(const ImageMap& m, double x, double y) {
+size_t texelIndex(const ImageMap& m, double x, double y) {
     int ix, iy;
     if (m.once) {
         ix = x < 0 ? 0 : x >= m.width ? m.width - 1 : int(x);
@@ -75,8 +75,14 @@ ColorFT texel(const ImageMap& m, double x, double y) {
         ix = std::min(int(wrap(x, m.width)), m.width - 1);
         iy = std::min(int(wrap(y, m.height)), m.height - 1);
     }
-    const float* t = &m.rgbt[(size_t(iy) * m.width + ix) * 4];
-    return ColorFT{Color(t[0], t[1], t[2]), m.filterAll, t[3] + m.transmitAll};
+    return size_t(iy) * size_t(m.width) + size_t(ix);
+}
+
+ColorFT texel(const ImageMap& m, double x, double y) {
+    const size_t i = texelIndex(m, x, y);
+    const float* t = &m.rgbt[i * 4];
+    const double filter = m.filter.empty() ? m.filterAll : m.filterAll + m.filter[i];
+    return ColorFT{Color(t[0], t[1], t[2]), filter, t[3] + m.transmitAll};
 }
 
 ColorFT weighted(const ColorFT& c, double k) { return ColorFT{c.rgb * k, c.filter * k, c.transmit * k}; }
@@ -137,17 +143,30 @@ ColorFT bicubic(const ImageMap& m, double x, double y) {
     return c;
 }
 
+// The texel coordinates of a pattern-space point; false off the map.
+bool imageCoordinates(const ImageMap& m, const Vec3& p, double& x, double& y) {
+    if (m.width < 1 || m.height < 1) return false;
+    double u = 0, v = 0;
+    if (!project(m, p, u, v)) return false;
+    u += kImageEpsilon, v += kImageEpsilon;
+    if (m.once && (u >= m.width || v >= m.height || u < 0 || v < 0)) return false;
+    // Image rows run top down: v up the image is row height - v.
+    x = wrap(u, m.width), y = wrap(-v, m.height);
+    return true;
+}
+
 } // namespace
+
+int imageMapIndex(const ImageMap& m, const Vec3& p) {
+    double x = 0, y = 0;
+    if (m.indices.empty() || !imageCoordinates(m, p, x, y)) return 0;
+    return m.indices[texelIndex(m, x, y)];
+}
 
 ColorFT imageMapColor(const ImageMap& m, const Vec3& p) {
     const ColorFT clear{Color(1), 0, 1};
-    if (m.width < 1 || m.height < 1) return clear;
-    double u = 0, v = 0;
-    if (!project(m, p, u, v)) return clear;
-    u += kImageEpsilon, v += kImageEpsilon;
-    if (m.once && (u >= m.width || v >= m.height || u < 0 || v < 0)) return clear;
-    // Image rows run top down: v up the image is row height - v.
-    const double x = wrap(u, m.width), y = wrap(-v, m.height);
+    double x = 0, y = 0;
+    if (!imageCoordinates(m, p, x, y)) return clear;
     ColorFT c = m.interpolation == ImageMap::Interpolation::None      ? texel(m, x, y)
                 : m.interpolation == ImageMap::Interpolation::Bicubic ? bicubic(m, x, y)
                                                                        : interpolated(m, x, y);

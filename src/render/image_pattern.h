@@ -19,4 +19,8 @@ ColorFT imageMapColor(const ImageMap& map, const Vec3& p);
 // ignored; 0 off the map (measured on POV-Ray 3.7).
 double imagePatternValue(const ImageMap& map, const Vec3& p);
 
+// A material_map's index at a pattern-space point: the nearest texel's palette
+// index (ImageMap::indices), projected as imageMapColor projects; 0 off the map.
+int imageMapIndex(const ImageMap& map, const Vec3& p);
+
 } // namespace drt

@@ -140,8 +140,10 @@ PatternSample samplePatternAt(const Pigment& pigment, const Vec3& p) {
     double value = 0;
     switch (pigment.pattern) {
     case PatternKind::Solid:
-    case PatternKind::Average:
-    case PatternKind::ImageMap: return s;
+    case PatternKind::Average: return s;
+    case PatternKind::ImageMap: // a material_map's texture number; an image_map has a colour, not a value
+        if (pigment.imageMap && pigment.imageMap->material) s.block = true, s.index = imageMapIndex(*pigment.imageMap, p);
+        return s;
     case PatternKind::Checker: s.block = true, s.index = checkerIndex(p); return s;
     case PatternKind::Hexagon: s.block = true, s.index = hexagonIndex(p); return s;
     case PatternKind::Brick: s.block = true, s.index = brickIndex(p, pigment.brickSize, pigment.mortar); return s;

@@ -46,7 +46,10 @@ void forEachPickedEntry(const Texture& patterned, const Vec3& worldPoint, const 
     }
     const PatternSample s = samplePattern(patterned.pigment, worldPoint, uv);
     if (s.block) {
-        if (s.index >= 0 && size_t(s.index) < map.size()) visit(map[size_t(s.index)].texture, 1.0);
+        // A material_map's palette index counts round its textures.
+        const size_t i = patterned.pigment.pattern == PatternKind::ImageMap ? size_t(s.index) % map.size()
+                                                                             : size_t(s.index);
+        if (s.index >= 0 && i < map.size()) visit(map[i].texture, 1.0);
         return;
     }
     const MapBlend b = blendMapEntries(map.size(), [&](size_t i) { return map[i].value; }, s.value);

@@ -6,6 +6,7 @@
 
 #include "core/diagnostics.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,11 +31,26 @@ struct ImageMap {
     // by any gamma (POV-Ray's pattern value is their grey; workingGamma 1).
     bool fileValues = false;
 
+    // POV-Ray's per-index amounts of a palette image (`filter N, a`, `transmit N, a`): the texels whose palette
+    // index is N get filter a (transmit a, in place of the file's alpha). An image without a palette has no
+    // indices; the amounts are then left out with a warning.
+    struct IndexAmount {
+        int index = 0;
+        double amount = 0;
+    };
+    std::vector<IndexAmount> indexFilter, indexTransmit;
+    // A material_map's image: the texel picks a texture by its palette index, or without a palette by its
+    // 8-bit red value, modulo the number of textures (render/image_pattern.h imageMapIndex).
+    bool material = false;
+    bool needsIndices() const { return material || !indexFilter.empty() || !indexTransmit.empty(); }
+
     // Decoded texels, linear RGB and transmit (1 - alpha), rows top first;
     // empty until the assets are resolved.
     int width = 0;
     int height = 0;
     std::vector<float> rgbt; // 4 floats per texel
+    std::vector<uint8_t> indices; // per texel, for a material_map (palette index, or red value 0-255)
+    std::vector<float> filter;    // per texel, only when a per-index filter is given (else filterAll alone)
 };
 
 } // namespace drt

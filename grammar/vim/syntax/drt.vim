@@ -11,17 +11,17 @@ syn keyword drtFunction floor function inside int ln log max max_extent
 syn keyword drtFunction min min_extent mod pow radians rand seed select
 syn keyword drtFunction sin sinh sqr sqrt str strcmp strlen strlwr
 syn keyword drtFunction strupr substr tan tanh trace val vaxis_rotate vcross
-syn keyword drtFunction vdot vlength vnormalize vrotate vstr
+syn keyword drtFunction vdot vlength vnormalize vrotate vstr vturbulence
 syn keyword drtBoolean false no off on true yes
 syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background bicubic_patch blob box camera clipped_by cone contained_by
 syn keyword drtBlock cubic cylinder density density_map disc face_indices finish fog
 syn keyword drtBlock global_settings height_field image_map image_pattern interior isosurface julia_fractal lathe
-syn keyword drtBlock light_group light_source media mesh mesh2 motion normal normal_indices
-syn keyword drtBlock normal_vectors object pattern pigment pigment_map pigment_pattern plane poly
-syn keyword drtBlock prism quadric quartic radiosity render scattering sky_sphere slope_map
-syn keyword drtBlock smooth_triangle sor sphere spline superellipsoid text texture texture_list
-syn keyword drtBlock texture_map tiles torus triangle uv_indices uv_vectors vertex_vectors
+syn keyword drtBlock light_group light_source material_map media mesh mesh2 motion normal
+syn keyword drtBlock normal_indices normal_vectors object pattern pigment pigment_map pigment_pattern plane
+syn keyword drtBlock poly prism quadric quartic radiosity render scattering sky_sphere
+syn keyword drtBlock slope_map smooth_triangle sor sphere spline superellipsoid text texture
+syn keyword drtBlock texture_list texture_map tiles torus triangle uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections always_sample
 syn keyword drtKeyword ambient ambient_light angle aperture append area_illumination area_light area_sampling
 syn keyword drtKeyword array assumed_gamma at average bezier_spline blue boxed bozo
