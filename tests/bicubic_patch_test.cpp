@@ -177,6 +177,22 @@ TEST(PovBicubicPatch, ObjectUvMappingMapsTheTexturesAfterIt) {
     EXPECT_FALSE(scene->objects[1].texture.pigment.uvMapping);      // a texture before it is not mapped
 }
 
+TEST(PovBicubicPatch, MeshOfADeclaredMeshIsACopyOfIt) {
+    // POV-Ray's `mesh { Name modifiers }` (camera/mesh_camera demos), here with a declared patch.
+    const std::string points = "<0,0,0> <1,0,0> <2,0,0> <3,0,0> <0,1,0> <1,1,0> <2,1,0> <3,1,0> "
+                               "<0,2,0> <1,2,0> <2,2,0> <3,2,0> <0,3,0> <1,3,0> <2,3,0> <3,3,0>";
+    Diagnostics diags;
+    const std::optional<Scene> scene = loadPovSceneText("#declare M = bicubic_patch { type 1 u_steps 1 " + points +
+                                                            " translate x }\nmesh { M translate y }",
+                                                        "s.pov", diags);
+    ASSERT_TRUE(scene) << diags.formatAll();
+    ASSERT_EQ(scene->objects.size(), 1u);
+    const Mesh& m = std::get<Mesh>(scene->objects[0].shape);
+    ASSERT_TRUE(m.patch);
+    EXPECT_EQ(m.indexed->triangleCount(), 4u);
+    EXPECT_EQ(scene->objects[0].transform.point({0, 0, 0}), (Vec3{1, 1, 0}));
+}
+
 TEST(DrtBicubicPatch, ParsesAndRoundTripsAsAPatch) {
     const std::string text = R"(
 camera { location <0, 2, -8> look_at <0, 0, 0> }

@@ -324,6 +324,23 @@ namespace {
 // `turbulence 1` with the same lambda, omega and octaves gives p: a gradient x
 // pattern so warped reads fract(p.x + V.x) at p. And octaves add up:
 // V(n + 1 octaves at p) = V(1 at p) + omega V(n at lambda p).
+TEST(Function, TransformFunctionIsTheTransformedPoint) {
+    // transforms.inc's vtransform(V, T) is function { transform { T } }(V.x, V.y, V.z): the point moved by T.
+    for (bool pov : {true, false}) {
+        const std::string f = "#declare F = function { transform { scale <2, 3, 4> rotate <0, 0, 90> translate <1, 0, 0> } }\n"
+                              "#declare V = F(1, 1, 1);\n";
+        // scale: <2, 3, 4>; rotating 90 degrees about z takes x to y and y to -x: <-3, 2, 4>; then + x.
+        EXPECT_NEAR(value(f, "V.x", pov), -2, 1e-9);
+        EXPECT_NEAR(value(f, "V.y", pov), 2, 1e-9);
+        EXPECT_NEAR(value(f, "V.z", pov), 4, 1e-9);
+        EXPECT_NEAR(value(f + "#declare H = function { F(x, y, z).y + F(x, y, z).x }", "H(1, 1, 1)", pov), 0, 1e-9);
+        EXPECT_NEAR(value("#declare G = function { transform { translate <1, 2, 3> inverse } }", "G(0, 0, 0).y", pov), -2,
+                    1e-12);
+    }
+    EXPECT_EQ(firstError("#declare F = function(a, b) { transform { scale 2 } }\n"),
+              "1:31: a transform function has three parameters (x, y, z)");
+}
+
 TEST(Function, VturbulenceIsThePatternWarpsDisplacement) {
     const Vec3 p(0.3, 0.7, 1.1);
     for (bool pov : {true, false}) {

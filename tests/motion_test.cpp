@@ -363,7 +363,7 @@ TEST(MovingObjects, EveryShapeKindMoves) {
         makeObject(Sphere{{0, 0, 0}, 0.5}),        makeObject(Box{{-0.4, -0.4, -0.4}, {0.4, 0.4, 0.4}}),
         makeObject(Cylinder{{0, -0.4, 0}, {0, 0.4, 0}, 0.4}), makeObject(Cone{{0, -0.4, 0}, 0.5, {0, 0.4, 0}, 0.1}),
         makeObject(Disc{{0, 0, 0}, {0, 0, 1}, 0.5}), makeObject(Torus{0.4, 0.1}),
-        makeObject(Mesh{nullptr, {{-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0, 0.5, 0}}, {{0, 1, 2}}, {}, {}, {}, {}})};
+        makeObject(Mesh{nullptr, {{-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0, 0.5, 0}}, {{0, 1, 2}}, {}, {}, {}, {}, {}})};
     Csg difference;
     difference.op = Csg::Op::Difference;
     difference.children = {makeObject(Sphere{{0, 0, 0}, 0.5}), makeObject(Sphere{{0, 0, -0.5}, 0.3})};

@@ -172,7 +172,7 @@ private:
         const int n = arguments(name.text);
         if (!callee->anyArity) checkCount(name, n, int(callee->params.size()));
         const int channel = callee->colour   ? channelSuffix()
-                            : callee->vector ? componentSuffix(callee->splines.at(0)->terms)
+                            : callee->vector ? componentSuffix(callee->splines.empty() ? 3 : callee->splines.at(0)->terms)
                                              : 0;
         size_t index = 0;
         while (index < f_.callees.size() && f_.callees[index] != callee) ++index;
@@ -375,6 +375,17 @@ std::shared_ptr<const Function> Evaluator::functionBody(const Token& keyword) {
         f->totalStack = f->stackSize;
         return f;
     }
+    if (first.isWord("transform")) { // function { transform { ... } }: a vector function of x, y, z
+        next();
+        f->vector = true;
+        f->transforms.push_back(transformBlock());
+        if (f->params.size() != 3) fail(first.loc, "a transform function has three parameters (x, y, z)");
+        for (uint16_t i = 0; i < 3; ++i) compiler.push({FnOp::Param, 0, 0, i});
+        compiler.emit({FnOp::Transform, 3, 0, 0}, -2);
+        expectSymbol("}", "to close the function's body");
+        f->totalStack = f->stackSize;
+        return f;
+    }
     if (first.isWord("internal")) {
         next();
         expectSymbol("(", "after 'internal'");
@@ -442,10 +453,10 @@ Value Evaluator::callFunction(const Token& name, const Function& f) {
         for (int i = 0; i < 5; ++i) c[size_t(i)] = f(args.data(), i);
         return Value::makeColor(c);
     }
-    if (f.vector) { // a spline function
+    if (f.vector) { // a spline or transform function
         Value v;
         v.kind = Value::Kind::Vector;
-        v.size = f.splines.at(0)->terms;
+        v.size = f.splines.empty() ? 3 : f.splines.at(0)->terms;
         for (int i = 0; i < 5; ++i) v.v[size_t(i)] = f(args.data(), i);
         return v;
     }

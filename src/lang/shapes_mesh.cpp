@@ -181,8 +181,19 @@ const std::vector<std::string>& ShapeSyntax<Mesh>::keywords() {
 
 template <>
 void ShapeSyntax<Mesh>::read(Evaluator& e, const Token& keyword, ObjectValue& o) {
-    Mesh m;
     const std::string& w = keyword.text;
+    // mesh { Name modifiers }: a copy of a declared mesh, as in POV-Ray (the mesh_camera demos write it).
+    if (w == "mesh" && e.peek().kind == TokenKind::Word) {
+        const Cell declared = e.lookup(e.peek().text);
+        if (declared && declared->kind == Value::Kind::Object && declared->object &&
+            std::holds_alternative<Mesh>(declared->object->object.shape)) {
+            const Token name = e.next();
+            e.use(name.text);
+            o = *declared->object;
+            return;
+        }
+    }
+    Mesh m;
     if (w == "triangle" || w == "smooth_triangle") triangle(e, m, w == "smooth_triangle");
     else if (w == "mesh") readMesh(e, keyword, m);
     else if (w == "mesh2") readMesh2(e, keyword, m);

@@ -130,6 +130,13 @@ std::string expressionText(const Function& f, const std::vector<std::string>& ar
             }
             break;
         }
+        case FnOp::Transform: {
+            const auto a = pop(3);
+            const int c = f.vector ? channel : i.channel;
+            problems.insert("a transform function inside an expression (its x, y, z kept)");
+            stack.push_back(a[size_t(c >= 0 && c < 3 ? c : 0)]);
+            break;
+        }
         case FnOp::Spline: {
             // A spline function's body takes the call's component; a spline inside an expression its own.
             const int c = f.vector ? channel : i.channel;
@@ -161,6 +168,8 @@ std::string functionText(const Function& f, std::set<std::string>& problems) {
         return "0";
     }
     if (f.vector && f.code.size() == 2 && f.code.back().op == FnOp::Spline) return splineText(*f.splines[0]);
+    if (f.vector && f.code.size() == 4 && f.code.back().op == FnOp::Transform)
+        return "transform {" + formatSteps(decompose(f.transforms[0])) + " }";
     const bool wholeBody = f.code.size() == 4 && f.params.size() == 3 && f.code[0].op == FnOp::Param &&
                            f.code[0].index == 0 && f.code[1].index == 1 && f.code[2].index == 2;
     if (wholeBody && (f.colour ? f.code.back().op == FnOp::Colour : f.code.back().op == FnOp::Pattern)) {

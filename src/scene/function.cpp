@@ -157,6 +157,13 @@ double run(const Function& f, const double* args, int channel, double* stack) {
             ++top;
             break;
         }
+        case FnOp::Transform: {
+            top -= 3;
+            const int c = f.vector ? channel : i.channel;
+            top[0] = f.transforms[i.index].point(Vec3(top[0], top[1], top[2]))[c >= 0 && c < 3 ? c : 0];
+            ++top;
+            break;
+        }
         case FnOp::Spline: {
             const int c = f.vector ? channel : i.channel;
             top[-1] = f.splines[i.index]->at(top[-1])[size_t(c >= 0 && c < 5 ? c : 0)];
@@ -215,7 +222,7 @@ double Function::operator()(const double* args, int channel) const {
 bool Function::operator==(const Function& o) const {
     if (params != o.params || colour != o.colour || vector != o.vector || code.size() != o.code.size() ||
         callees.size() != o.callees.size() || patterns.size() != o.patterns.size() ||
-        splines.size() != o.splines.size())
+        splines.size() != o.splines.size() || transforms != o.transforms)
         return false;
     for (size_t i = 0; i < code.size(); ++i) {
         const FnInstr &a = code[i], &b = o.code[i];

@@ -10,9 +10,12 @@
 // pigment (`function { pattern { ... } }`, `function { pigment { ... } }`):
 // those are evaluated by the renderer's pattern code through the hooks at the
 // end of this header. A spline (`function { spline { ... } }`) is a function
-// too: of one parameter, its value a vector whose component a call picks.
+// too: of one parameter, its value a vector whose component a call picks;
+// so is a transform (`function { transform { ... } }`): of x, y, z, its value
+// the transformed point (transforms.inc's vtransform).
 #pragma once
 
+#include "core/transform.h"
 #include "core/vec.h"
 #include "scene/spline.h"
 
@@ -39,6 +42,7 @@ enum class FnOp : uint8_t {
     Pattern, // x y z -> the value of patterns[index] at <x, y, z> (in [0, 1])
     Colour,  // x y z -> channel `channel` of pigment patterns[index] at <x, y, z>
     Spline,  // t -> component `channel` of splines[index] at t
+    Transform, // x y z -> component `channel` of transforms[index] applied to the point <x, y, z>
 };
 
 enum class FnMath1 : uint16_t {
@@ -81,13 +85,15 @@ struct Function {
     std::vector<std::shared_ptr<const Function>> callees;
     std::vector<std::shared_ptr<const Pigment>> patterns; // Pattern and Colour operands
     std::vector<std::shared_ptr<const Spline>> splines;   // Spline operands
+    std::vector<drt::Transform> transforms;               // Transform operands
     int stackSize = 0;  // the deepest the stack gets, callees excluded
     int totalStack = 0; // stackSize plus the largest totalStack of the callees
     // `function { pigment { ... } }`: a colour function, whose value is a
     // colour; a call picks its channel (`F(x, y, z).red`), red by default.
     bool colour = false;
     // `function { spline { ... } }`: a vector function of one parameter; a
-    // call picks its component (`F(t).y`), x by default.
+    // call picks its component (`F(t).y`), x by default. Also
+    // `function { transform { ... } }`, of x, y, z (its value has 3 components).
     bool vector = false;
     // An internal function drt lacks: it takes any arguments and gives 0.
     bool anyArity = false;

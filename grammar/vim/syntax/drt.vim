@@ -21,7 +21,8 @@ syn keyword drtBlock light_group light_source material_map media mesh mesh2 moti
 syn keyword drtBlock normal_indices normal_vectors object pattern pigment pigment_map pigment_pattern plane
 syn keyword drtBlock poly prism quadric quartic radiosity render scattering sky_sphere
 syn keyword drtBlock slope_map smooth_triangle sor sphere spline superellipsoid text texture
-syn keyword drtBlock texture_list texture_map tiles torus triangle uv_indices uv_vectors vertex_vectors
+syn keyword drtBlock texture_list texture_map tiles torus transform triangle uv_indices uv_vectors
+syn keyword drtBlock vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections always_sample
 syn keyword drtKeyword ambient ambient_light angle aperture append area_illumination area_light area_sampling
 syn keyword drtKeyword array assumed_gamma at average bezier_spline blue boxed bozo
