@@ -196,9 +196,10 @@ TEST(Sampler, CameraDimensionsOfAPacketAreThoseOfEachSample) {
                         for (int j = 0; j < count; ++j) {
                             single->startPixelSample(x, y, first + j);
                             const Vec2 p = single->get2D(kDimPixel);
+                            const int px = x, py = y; // clang 14 cannot capture structured bindings
                             const auto where = [&] {
                                 return name + " spp " + std::to_string(spp) + " effects " + std::to_string(effects) +
-                                       " pixel " + std::to_string(x) + "," + std::to_string(y) + " sample " +
+                                       " pixel " + std::to_string(px) + "," + std::to_string(py) + " sample " +
                                        std::to_string(first + j);
                             };
                             ASSERT_TRUE(same(pixel[j].x, p.x) && same(pixel[j].y, p.y)) << where();
