@@ -529,6 +529,12 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
     for (int i = 0; i < count; ++i) blocked[i] = packet.tfar[i] < 0;
 }
 
+void Accelerator::installThreadBuffers(InstalledScratchSet& into) {
+    for (auto install : {installShapeScratch, installAlgebraicScratch, installBlobScratch, installJuliaScratch,
+                         installCrossingScratch})
+        into.push_back(install());
+}
+
 bool Accelerator::hasMotion() const { return impl_->anyMotion; }
 
 Accelerator::MeshStats Accelerator::meshStats() const {

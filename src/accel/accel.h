@@ -36,6 +36,7 @@
 // bounds beyond ~1.8e18).
 #pragma once
 
+#include "accel/thread_scratch.h"
 #include "core/ray.h"
 #include "core/vec.h"
 #include "scene/scene.h"
@@ -135,6 +136,12 @@ public:
         size_t placements = 0;
     };
     MeshStats meshStats() const;
+
+    // Installs the calling thread's scratch buffers of ray queries into
+    // `into`, for as long as it holds them (accel/thread_scratch.h: without
+    // them a thread's first CSG or listed-crossing query registers
+    // thread_local destructors, which waits for any dlopen in progress).
+    static void installThreadBuffers(InstalledScratchSet& into);
 
     // True if some object has Motion (the scene was built with time steps).
     bool hasMotion() const;

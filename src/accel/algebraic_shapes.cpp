@@ -112,14 +112,21 @@ double integerPower(double v, int e) {
     return r;
 }
 
+// expandAlongLine's rows past kStackOrder, kept per thread (accel/thread_scratch.h).
+struct AlgebraicScratch {
+    std::vector<double> heap;
+};
+
 } // namespace
+
+std::unique_ptr<InstalledScratch> installAlgebraicScratch() { return ThreadScratch<AlgebraicScratch>::install(); }
 
 void expandAlongLine(const PolynomialSurface& surface, const Vec3& p, const Vec3& u, double* out) {
     const int order = surface.order, width = order + 1;
     const size_t size = size_t(width * width * 3 + width * 2);
     constexpr int kStackOrder = 8;
     double stack[(kStackOrder + 1) * (kStackOrder + 1) * 3 + (kStackOrder + 1) * 2];
-    thread_local std::vector<double> heap;
+    std::vector<double>& heap = ThreadScratch<AlgebraicScratch>::get().heap;
     if (order > kStackOrder && heap.size() < size) heap.resize(size);
     double* xs = order > kStackOrder ? heap.data() : stack;
     double* ys = xs + width * width;

@@ -101,10 +101,23 @@ Vec3 BlobGeometry::gradient(const Vec3& p) const {
     return sum;
 }
 
+namespace {
+
+// intersect's working lists, kept per thread (accel/thread_scratch.h).
+struct BlobScratch {
+    std::vector<Piece> pieces;
+    std::vector<double> cuts;
+};
+
+} // namespace
+
+std::unique_ptr<InstalledScratch> installBlobScratch() { return ThreadScratch<BlobScratch>::install(); }
+
 void BlobGeometry::intersect(const Vec3& o, const Vec3& d, std::vector<Crossing>& out) const {
     out.clear();
-    thread_local std::vector<Piece> pieces;
-    thread_local std::vector<double> cuts;
+    BlobScratch& scratch = ThreadScratch<BlobScratch>::get();
+    std::vector<Piece>& pieces = scratch.pieces;
+    std::vector<double>& cuts = scratch.cuts;
     pieces.clear();
     const double inf = HUGE_VAL;
     for (const Component& c : components_) {

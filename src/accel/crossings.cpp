@@ -21,6 +21,18 @@ struct LeafEvent {
     Vec3 normal; // object space
 };
 
+// Scratch space kept per thread (no allocation per ray once warm:
+// accel/thread_scratch.h), one list per use.
+struct CrossingScratch {
+    std::vector<const CsgNode*> leaves;
+    std::vector<char> silent;
+    std::vector<LeafEvent> events;
+    std::vector<char> state;
+    std::vector<Crossing> leafMany, closestMany;
+    std::vector<SurfaceCrossing> nearestAll, closestAll;
+};
+CrossingScratch& crossingScratch() { return ThreadScratch<CrossingScratch>::get(); }
+
 // Leaves in DFS order (children, then clips); a leaf under a clip is silent:
 // its crossings change the state but are not surfaces.
 void collectLeaves(const CsgNode& node, bool silent, std::vector<const CsgNode*>& leaves,
@@ -85,13 +97,15 @@ bool insideNode(const CsgNode& node, const Vec3& p) {
     return inside;
 }
 
+std::unique_ptr<InstalledScratch> installCrossingScratch() { return ThreadScratch<CrossingScratch>::install(); }
+
 void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out) {
     out.clear();
-    // Scratch space kept per thread: no allocation per ray once warm.
-    thread_local std::vector<const CsgNode*> leaves;
-    thread_local std::vector<char> silent;
-    thread_local std::vector<LeafEvent> events;
-    thread_local std::vector<char> state;
+    CrossingScratch& scratch = crossingScratch();
+    std::vector<const CsgNode*>& leaves = scratch.leaves;
+    std::vector<char>& silent = scratch.silent;
+    std::vector<LeafEvent>& events = scratch.events;
+    std::vector<char>& state = scratch.state;
     leaves.clear();
     silent.clear();
     events.clear();
@@ -101,7 +115,7 @@ void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector
         const CsgNode& leaf = *leaves[i];
         const Vec3 lo = leaf.toLevel.inversePoint(o), ld = leaf.toLevel.inverseVector(d);
         thread_local Crossing fixed[kMaxCrossings]; // not zero-initialised per leaf
-        thread_local std::vector<Crossing> many;
+        std::vector<Crossing>& many = scratch.leafMany;
         const Crossing* c = nullptr;
         const int n = allCrossings(leaf.shape, lo, ld, fixed, many, c);
         const bool solid = isSolidShape(leaf.shape);
@@ -229,7 +243,7 @@ void primitiveCrossings(const Primitive& p, const Vec3& o, const Vec3& d, std::v
 bool nearestCrossing(const Primitive& p, const Vec3& o, const Vec3& d, double tMin, double tMax,
                      SurfaceCrossing& out) {
     if (p.csg || !p.clips.empty()) {
-        thread_local std::vector<SurfaceCrossing> all;
+        std::vector<SurfaceCrossing>& all = crossingScratch().nearestAll;
         primitiveCrossings(p, o, d, all);
         for (const SurfaceCrossing& c : all)
             if (c.t > tMin && c.t < tMax) {
@@ -248,7 +262,7 @@ bool closestCrossingTo(const Primitive& p, const Vec3& o, const Vec3& d, double 
     bool found = false;
     double best = INFINITY;
     if (p.csg || !p.clips.empty()) {
-        thread_local std::vector<SurfaceCrossing> all;
+        std::vector<SurfaceCrossing>& all = crossingScratch().closestAll;
         primitiveCrossings(p, o, d, all);
         for (const SurfaceCrossing& c : all)
             if (std::fabs(c.t - tGuess) < best) {
@@ -259,7 +273,7 @@ bool closestCrossingTo(const Primitive& p, const Vec3& o, const Vec3& d, double 
         return found;
     }
     thread_local Crossing fixed[kMaxCrossings]; // not zero-initialised per call
-    thread_local std::vector<Crossing> many;
+    std::vector<Crossing>& many = crossingScratch().closestMany;
     const Crossing* c = nullptr;
     const int n = allCrossings(p.shape, p.toLevel.inversePoint(o), p.toLevel.inverseVector(d), fixed, many, c);
     for (int i = 0; i < n; ++i)

@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 namespace drt::accel {
 
@@ -111,6 +112,8 @@ static const Transform& cachedToWorld(const AcceleratorState& state, unsigned in
         Transform toWorld;
     };
     constexpr int kSlotBits = 5;
+    // Trivially destructible: no destructor to register (Accelerator::prepareThread).
+    static_assert(std::is_trivially_destructible_v<Entry>);
     thread_local std::array<Entry, size_t(1) << kSlotBits> cache;
     const uint64_t key = (uint64_t(index) * 0x9e3779b97f4a7c15ULL) ^ (std::bit_cast<uint64_t>(time) * 0xff51afd7ed558ccdULL);
     Entry& e = cache[size_t(key >> (64 - kSlotBits))];

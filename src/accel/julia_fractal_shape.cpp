@@ -304,8 +304,19 @@ bool JuliaFractalGeometry::stepFrom(const Vec3& p, const Vec3& direction, double
     return true;
 }
 
+namespace {
+
+// The orbits of inside and intersect, kept per thread (accel/thread_scratch.h).
+struct JuliaScratch {
+    std::vector<JuliaFractalGeometry::Quad> insideOrbit, marchOrbit;
+};
+
+} // namespace
+
+std::unique_ptr<InstalledScratch> installJuliaScratch() { return ThreadScratch<JuliaScratch>::install(); }
+
 bool JuliaFractalGeometry::inside(const Vec3& p) const {
-    thread_local std::vector<Quad> orbit;
+    std::vector<Quad>& orbit = ThreadScratch<JuliaScratch>::get().insideOrbit;
     int escapedAt = 0;
     return iterate(p, orbit, escapedAt);
 }
@@ -324,7 +335,7 @@ void JuliaFractalGeometry::intersect(const Vec3& o, const Vec3& d, double tMin, 
     const double lo = std::max(-b - root, tMin * speed), hi = std::min(-b + root, tMax * speed);
     if (!(lo < hi)) return;
 
-    thread_local std::vector<Quad> orbit;
+    std::vector<Quad>& orbit = ThreadScratch<JuliaScratch>::get().marchOrbit;
     double depth = lo, step = 0;
     Vec3 point = o + depth * direction;
     bool inside = stepFrom(point, direction, step, orbit);

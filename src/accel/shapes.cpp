@@ -256,6 +256,19 @@ std::optional<AnalyticShape> prepareShape(const Shape& shape) {
     return s;
 }
 
+namespace {
+
+// The crossings of the shapes listed by their own code, one buffer per use,
+// kept per thread (no allocation per ray once warm: accel/thread_scratch.h).
+struct ShapeScratch {
+    std::vector<Crossing> extrusion, revolution, blob, isosurface, julia, firstListed;
+};
+ShapeScratch& shapeScratch() { return ThreadScratch<ShapeScratch>::get(); }
+
+} // namespace
+
+std::unique_ptr<InstalledScratch> installShapeScratch() { return ThreadScratch<ShapeScratch>::install(); }
+
 int intersectShape(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossing out[kMaxCrossings]) {
     CrossingList list{out};
     switch (s.kind) {
@@ -268,31 +281,31 @@ int intersectShape(const AnalyticShape& s, const Vec3& o, const Vec3& d, Crossin
     case ShapeKind::Polynomial: return intersectPolynomial(*s.polynomial, o, d, out, kMaxCrossings);
     case ShapeKind::Superellipsoid: return intersectSuperellipsoid(s.exponentE, s.exponentN, o, d, out, kMaxCrossings);
     case ShapeKind::Extrusion: {
-        thread_local std::vector<Crossing> many;
+        std::vector<Crossing>& many = shapeScratch().extrusion;
         s.extrusion->intersect(o, d, many);
         for (const Crossing& c : many) list.add(c.t, c.normal);
         return list.count;
     }
     case ShapeKind::Revolution: {
-        thread_local std::vector<Crossing> many;
+        std::vector<Crossing>& many = shapeScratch().revolution;
         s.revolution->intersect(o, d, many);
         for (const Crossing& c : many) list.add(c.t, c.normal);
         return list.count;
     }
     case ShapeKind::Blob: {
-        thread_local std::vector<Crossing> many;
+        std::vector<Crossing>& many = shapeScratch().blob;
         s.blob->intersect(o, d, many);
         for (const Crossing& c : many) list.add(c.t, c.normal);
         return list.count;
     }
     case ShapeKind::Isosurface: {
-        thread_local std::vector<Crossing> many;
+        std::vector<Crossing>& many = shapeScratch().isosurface;
         s.isosurface->intersect(o, d, -INFINITY, INFINITY, kMaxCrossings, many);
         for (const Crossing& c : many) list.add(c.t, c.normal);
         return list.count;
     }
     case ShapeKind::JuliaFractal: {
-        thread_local std::vector<Crossing> many;
+        std::vector<Crossing>& many = shapeScratch().julia;
         s.julia->intersect(o, d, -INFINITY, INFINITY, kMaxCrossings, many);
         for (const Crossing& c : many) list.add(c.t, c.normal);
         return list.count;
@@ -336,7 +349,7 @@ bool firstCrossingListed(const AnalyticShape& s, const Vec3& o, const Vec3& d, d
                          Crossing& out) {
     // Not zero-initialised per call: kMaxCrossings entries are a kilobyte.
     thread_local Crossing fixed[kMaxCrossings];
-    thread_local std::vector<Crossing> many;
+    std::vector<Crossing>& many = shapeScratch().firstListed;
     if (s.kind == ShapeKind::Isosurface) { // marches only as far as the first crossing
         s.isosurface->intersect(o, d, tMin, tMax, 1, many);
         if (many.empty()) return false;

@@ -5,6 +5,7 @@
 // first one inside the ray's interval.
 #pragma once
 
+#include "accel/thread_scratch.h"
 #include "core/vec.h"
 #include "scene/scene.h"
 
@@ -137,5 +138,13 @@ bool insideShape(const AnalyticShape& shape, const Vec3& p);
 // Object-space bounds; false when the shape is unbounded (planes, polynomials
 // other than ellipsoids).
 bool shapeBounds(const AnalyticShape& shape, Vec3& lower, Vec3& upper);
+
+// Each installs its file's per-thread buffers for the calling thread
+// (accel/thread_scratch.h; Accelerator::ThreadBuffers).
+std::unique_ptr<InstalledScratch> installShapeScratch();     // shapes.cpp
+std::unique_ptr<InstalledScratch> installAlgebraicScratch(); // algebraic_shapes.cpp
+std::unique_ptr<InstalledScratch> installBlobScratch();      // blob_shape.cpp
+std::unique_ptr<InstalledScratch> installJuliaScratch();     // julia_fractal_shape.cpp
+std::unique_ptr<InstalledScratch> installCrossingScratch();  // crossings.cpp
 
 } // namespace drt::accel

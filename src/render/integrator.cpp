@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace drt {
 
@@ -24,9 +25,26 @@ Integrator::Integrator(const Scene& scene, const Accelerator& accel)
     if (hasMedia_) mediaBounds(scene, accel, mediaLower_, mediaUpper_);
 }
 
+struct Integrator::Scratch {
+    std::vector<PendingRay> stack;
+    MediaList media;
+    PointLightSamples lights;
+};
+
+Integrator::Scratch& Integrator::scratch() { return ThreadScratch<Scratch>::get(); }
+
+InstalledScratchSet Integrator::installThreadBuffers() {
+    InstalledScratchSet installed;
+    for (auto install : {ThreadScratch<Scratch>::install, installLightingScratch, installMediaScratch,
+                         installTextureScratch})
+        installed.push_back(install());
+    Accelerator::installThreadBuffers(installed);
+    return installed;
+}
+
 Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraFound, Sampler& sampler,
                         RayCounts& counts, const CameraShadows* cameraShadows) const {
-    thread_local std::vector<PendingRay> stack;
+    std::vector<PendingRay>& stack = scratch().stack;
     stack.clear();
     // The camera ray is traced first without going through the stack.
     PendingRay pending{cameraRay, Color(1), 0};
@@ -46,6 +64,7 @@ Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraF
         // per thread, not one per loop pass: a Hit is about 230 bytes of
         // initialised members, and Accelerator::intersect writes every field
         // a found hit is read by.
+        static_assert(std::is_trivially_destructible_v<Hit>, "no destructor to register (prepareThread)");
         thread_local Hit traced;
         const bool found = first ? cameraFound : accel_.intersect(pending.ray, traced);
         const Hit& hit = first ? cameraHit : traced;
@@ -58,7 +77,7 @@ Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraF
             seen = pending.weight * fog.scale;
         }
         if (hasMedia_) { // the media in front of what the ray sees
-            thread_local MediaList media;
+            MediaList& media = scratch().media;
             media.clear();
             segmentMedia(scene_, pending.medium, found ? &hit : nullptr, pending.ray.direction, media);
             const double speed = length(pending.ray.direction);
@@ -130,7 +149,7 @@ void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const
                        RayCounts& counts, Color& result, std::vector<PendingRay>& stack,
                        const CameraShadows* cameraShadows) const {
     const Object& object = *hit.object;
-    thread_local PointLightSamples lights;
+    PointLightSamples& lights = scratch().lights;
     lights.clear();
     SurfaceHit surface{pending, hit, Vec3(), true, Vec3(), 1.0, &lights, cameraShadows};
     surface.incoming = normalize(pending.ray.direction);

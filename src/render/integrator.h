@@ -55,6 +55,12 @@ public:
 
     int maxTraceLevel() const { return maxTraceLevel_; }
 
+    // The calling thread's scratch buffers of tracing and shading (the
+    // integrator's, the lights', media's, textures' and the accelerator's),
+    // installed for as long as the result is held. A render thread holds them
+    // from before its first tile: accel/thread_scratch.h says why.
+    static InstalledScratchSet installThreadBuffers();
+
 private:
     struct PendingRay {
         Ray ray;
@@ -85,6 +91,10 @@ private:
     void shadeLayers(const SurfaceHit& surface, const Texture* const* layers, size_t count, const Color& weight,
                      Sampler& sampler, RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
     Vec3 bumpNormal(const Normal& bumps, const Hit& hit, double time, const Vec3& normal) const;
+
+    // The per-thread buffers of trace and shade (integrator.cpp).
+    struct Scratch;
+    static Scratch& scratch();
 
     const Scene& scene_;
     const Accelerator& accel_;

@@ -28,13 +28,18 @@ Ray shadowRay(const Hit& from, const Vec3& target, double time) {
 
 namespace {
 
+// The media of a shadow ray's segments, kept per thread (accel/thread_scratch.h).
+struct ShadowScratch {
+    MediaList media;
+};
+
 // shadowTransmittance without the fog.
 Color surfaceAndMediaTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
                                    RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {
     Ray ray = shadowRay(from, target, time);
     ++counts.shadow;
     // Media between ray.origin and the end of the segment (hit == nullptr: the light).
-    thread_local MediaList media;
+    MediaList& media = ThreadScratch<ShadowScratch>::get().media;
     const auto throughMedia = [&](const Hit* hit, double t) {
         media.clear();
         if (mediaScene) segmentMedia(*mediaScene, nullptr, hit, ray.direction, media);
@@ -72,6 +77,8 @@ Color surfaceAndMediaTransmittance(const Accelerator& accel, const Hit& from, co
 }
 
 } // namespace
+
+std::unique_ptr<InstalledScratch> installLightingScratch() { return ThreadScratch<ShadowScratch>::install(); }
 
 Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
                           RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {

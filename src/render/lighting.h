@@ -89,6 +89,9 @@ inline constexpr int kMaxShadowBlockers = 64;
 Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
                           RayCounts& counts, const Scene* mediaScene = nullptr, bool opaqueCasters = false);
 
+// Installs the calling thread's buffer of shadowTransmittance (accel/thread_scratch.h).
+std::unique_ptr<InstalledScratch> installLightingScratch();
+
 // True if no shadow-casting object of the scene has a pigment that can let
 // light through (filter or transmit anywhere, image maps counted as able to).
 bool shadowsAreOpaque(const Scene& scene);

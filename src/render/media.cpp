@@ -169,13 +169,24 @@ bool sceneHasMedia(const Scene& scene) {
     return !scene.media.empty() || std::any_of(scene.objects.begin(), scene.objects.end(), hasMediaInside);
 }
 
+namespace {
+
+// integrateMedia's densities, kept per thread (accel/thread_scratch.h).
+struct MediaScratch {
+    std::vector<Color> densities;
+};
+
+} // namespace
+
+std::unique_ptr<InstalledScratch> installMediaScratch() { return ThreadScratch<MediaScratch>::install(); }
+
 MediaEffect integrateMedia(const MediaList& media, const Vec3& origin, const Vec3& direction, double length,
                            const MediaLighting& lighting, Sampler& sampler, int dimension, RayCounts& counts) {
     MediaEffect effect;
     if (media.empty() || !(length > 0) || !std::isfinite(length)) return effect;
     const int n = strataCount(media);
     const double h = length / n;
-    thread_local std::vector<Color> densities;
+    std::vector<Color>& densities = ThreadScratch<MediaScratch>::get().densities;
     for (int j = 0; j < n; ++j) {
         const double u = sampler.get2DStratified(dimension, j, n).x;
         const Vec3 p = origin + direction * ((j + u) * h);

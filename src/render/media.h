@@ -64,6 +64,9 @@ Color mediaDensity(const Media& media, const Vec3& point);
 // The media of one ray segment.
 using MediaList = std::vector<const Media*>;
 
+// Installs the calling thread's buffer of integrateMedia (accel/thread_scratch.h).
+std::unique_ptr<InstalledScratch> installMediaScratch();
+
 // The media along the part of a ray that ends at `hit` travelling along
 // `direction` (hit == nullptr: a ray that hits nothing), for a ray known to be
 // inside the media-holding object `inside` (nullptr: none known). The segment

@@ -380,6 +380,11 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
         // them out over rounds (with waits between them) and other processes.
         tbb::parallel_for(0, arena.max_concurrency(), [&](int) {
             const IeeeDenormals ieee;
+            // Installed before the first tile: the image module starts
+            // loading once a tile is done, and a thread that made thread_local
+            // buffers during that load would wait for all of it
+            // (accel/thread_scratch.h).
+            const InstalledScratchSet buffers = Integrator::installThreadBuffers();
             while (const std::optional<TileTask> task = scheduler.next())
                 scheduler.done(renderTile(*task));
         });

@@ -20,12 +20,13 @@ struct LayerBuffers {
     std::vector<std::unique_ptr<std::vector<const Texture*>>> buffers;
     size_t inUse = 0;
 };
-thread_local LayerBuffers layerBuffers;
 
 } // namespace
 
+std::unique_ptr<InstalledScratch> installTextureScratch() { return ThreadScratch<LayerBuffers>::install(); }
+
 TextureLayers::TextureLayers(const Texture& texture) {
-    LayerBuffers& b = layerBuffers;
+    LayerBuffers& b = ThreadScratch<LayerBuffers>::get();
     if (b.inUse == b.buffers.size()) b.buffers.push_back(std::make_unique<std::vector<const Texture*>>());
     layers_ = b.buffers[b.inUse].get();
     ++b.inUse;
@@ -33,7 +34,7 @@ TextureLayers::TextureLayers(const Texture& texture) {
     layersTopFirst(texture, *layers_);
 }
 
-TextureLayers::~TextureLayers() { --layerBuffers.inUse; }
+TextureLayers::~TextureLayers() { --ThreadScratch<LayerBuffers>::get().inUse; }
 
 void layersTopFirst(const Texture& texture, std::vector<const Texture*>& out) {
     const size_t start = out.size();

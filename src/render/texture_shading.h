@@ -107,6 +107,9 @@ private:
     std::vector<const Texture*>* layers_;
 };
 
+// Installs the calling thread's TextureLayers buffers (accel/thread_scratch.h).
+std::unique_ptr<InstalledScratch> installTextureScratch();
+
 // What a shadow ray keeps after crossing the surface at worldPoint.
 Color textureFilter(const Texture& texture, const Vec3& worldPoint, const Vec3* uv = nullptr);
 
