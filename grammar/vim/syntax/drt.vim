@@ -17,12 +17,12 @@ syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background bicubic_patch blob box camera clipped_by cone contained_by
 syn keyword drtBlock cubic cylinder density density_map disc face_indices finish fog
 syn keyword drtBlock global_settings height_field image_map image_pattern interior isosurface julia_fractal lathe
-syn keyword drtBlock light_group light_source material_map media mesh mesh2 motion normal
-syn keyword drtBlock normal_indices normal_vectors object pattern pigment pigment_map pigment_pattern plane
-syn keyword drtBlock poly prism quadric quartic radiosity render scattering sky_sphere
-syn keyword drtBlock slope_map smooth_triangle sor sphere spline superellipsoid text texture
-syn keyword drtBlock texture_list texture_map tiles torus transform triangle uv_indices uv_vectors
-syn keyword drtBlock vertex_vectors
+syn keyword drtBlock light_group light_source looks_like material_map media mesh mesh2 motion
+syn keyword drtBlock normal normal_indices normal_vectors object pattern pigment pigment_map pigment_pattern
+syn keyword drtBlock plane poly prism projected_through quadric quartic radiosity render
+syn keyword drtBlock scattering sky_sphere slope_map smooth_triangle sor sphere spline superellipsoid
+syn keyword drtBlock text texture texture_list texture_map tiles torus transform triangle
+syn keyword drtBlock uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections always_sample
 syn keyword drtKeyword ambient ambient_light angle aperture append area_illumination area_light area_sampling
 syn keyword drtKeyword array assumed_gamma at average bezier_spline blue boxed bozo
