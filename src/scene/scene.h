@@ -556,7 +556,9 @@ struct LightMotion {
 
 // How image positions map to ray directions: Planar is the perspective (or,
 // with CameraSpec::orthographic, the orthographic) camera.
-enum class CameraMapping { Planar, Fisheye, UltraWideAngle, Panoramic, Cylinder1, Cylinder2, Cylinder3, Cylinder4, Spherical };
+enum class CameraMapping {
+    Planar, Fisheye, UltraWideAngle, Panoramic, Cylinder1, Cylinder2, Cylinder3, Cylinder4, Spherical, Omnimax
+};
 
 // The camera as written; resolveCamera() (render/camera.h) turns it into
 // vectors once the image size is known.
