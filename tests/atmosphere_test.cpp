@@ -4,6 +4,7 @@
 #include "render/atmosphere.h"
 #include "lang/load.h"
 #include "render/render.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -74,16 +75,6 @@ TEST(Fog, TurbulenceThinsTheFogWithinItsBound) {
     EXPECT_TRUE(thinner);
 }
 
-RenderOptions tinyOptions() {
-    RenderOptions o;
-    o.width = 5;
-    o.height = 5;
-    o.samplesPerPixel = 1;
-    o.seed = 3;
-    o.threads = 1;
-    return o;
-}
-
 // A self-lit wall at z = 10 in front of a camera with a narrow view, so every
 // ray travels 10 within 1e-4.
 Scene wallScene() {
@@ -104,7 +95,7 @@ TEST(Fog, RenderedWallIsFoggedByItsDistance) {
     fog.distance = 8;
     fog.color.rgb = {0.1, 0.2, 0.9};
     scene.fogs.push_back(fog);
-    const Image image = render(scene, tinyOptions()).color;
+    const Image image = render(scene, test::tinyRenderOptions()).color;
     const double t = std::exp(-10.0 / 8.0);
     EXPECT_NEAR(image.at(2, 2, 0), t * 0.9 + (1 - t) * 0.1, 1e-4);
     EXPECT_NEAR(image.at(2, 2, 2), t * 0.1 + (1 - t) * 0.9, 1e-4);
@@ -134,7 +125,7 @@ TEST(Fog, ALightWithMediaAttenuationIsDimmedByTheFogOnItsWay) {
         Diagnostics diags;
         const auto s = loadSceneText(scene + c.light, c.name, diags);
         ASSERT_TRUE(s) << diags.formatAll();
-        const Image image = render(*s, tinyOptions()).color;
+        const Image image = render(*s, test::tinyRenderOptions()).color;
         for (int channel = 0; channel < 3; ++channel)
             EXPECT_NEAR(image.at(2, 2, channel), c.expected, 1e-4) << c.name << " " << c.light;
     }
@@ -147,7 +138,7 @@ TEST(Fog, BackgroundTakesTheFullFogColour) {
     fog.distance = 100;
     fog.color.rgb = {0.3, 0.6, 0.2};
     scene.fogs.push_back(fog);
-    const Image image = render(scene, tinyOptions()).color;
+    const Image image = render(scene, test::tinyRenderOptions()).color;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(image.at(4, 0, c), fog.color.rgb[c], 1e-6); // the image is float
 }
 
@@ -160,7 +151,7 @@ TEST(SkySphere, GradientIsEvaluatedOnTheRayDirection) {
     scene.camera.location = {0, 0, 0};
     scene.camera.lookAt = Vec3(0, 1, 1); // 45 degrees up: direction y = 0.7071 at the centre
     scene.camera.angle = 0.5;
-    const Image image = render(scene, tinyOptions()).color;
+    const Image image = render(scene, test::tinyRenderOptions()).color;
     EXPECT_NEAR(image.at(2, 2, 0), std::sqrt(0.5), 5e-3);
     // Direct: the colour map at the direction's y.
     EXPECT_NEAR(skyColor(scene, normalize(Vec3{0, 1, 3})).g, 1 / std::sqrt(10.0), 1e-9);

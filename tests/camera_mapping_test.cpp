@@ -187,6 +187,79 @@ TEST(CameraMapping, FisheyeRendersBlackOutsideItsCircle) {
     EXPECT_FLOAT_EQ(r.color.at(19, 19, 1), 0.0f);
 }
 
+std::optional<Scene> loadPov(const std::string& text, Diagnostics& diags);
+
+// POV-Ray's omnimax (render/camera.h): theta(rho) = 1.411269 rho - 0.09439 rho^3 + 0.25674 rho^5.
+double omnimaxTheta(double rho) { return 1.411269 * rho - 0.09439 * std::pow(rho, 3) + 0.25674 * std::pow(rho, 5); }
+
+// An omnimax camera along z with right = x * width / height (the aspect it fits to its dome) and up = y.
+ResolvedCamera omnimaxCamera(int width, int height) {
+    CameraSpec spec;
+    spec.mapping = CameraMapping::Omnimax;
+    spec.right = Vec3(double(width) / height, 0, 0);
+    return resolveCamera(spec, width, height);
+}
+
+TEST(CameraMapping, OmnimaxOnASquareImage) {
+    const ResolvedCamera cam = omnimaxCamera(100, 100);
+    // The centre looks along the axis.
+    EXPECT_LT(degreesBetween(cam.generateRay(50, 50, {}, 0).direction, Vec3(0, 0, 1)), 1e-9);
+    // Halfway to the right edge: rho = 0.5, towards +x.
+    const Vec3 half = cam.generateRay(75, 50, {}, 0).direction;
+    EXPECT_NEAR(degreesBetween(half, Vec3(0, 0, 1)), omnimaxTheta(0.5) / kDeg, 1e-9);
+    EXPECT_NEAR(half.y, 0, 1e-12);
+    EXPECT_GT(half.x, 0);
+    // Up and left: the polar angle of (X, Y) = (-0.4, 0.3).
+    const Vec3 d = normalize(cam.generateRay(30, 35, {}, 0).direction);
+    const double theta = omnimaxTheta(0.5), phi = kPi - std::asin(0.6);
+    EXPECT_NEAR(d.x, std::sin(theta) * std::cos(phi), 1e-12);
+    EXPECT_NEAR(d.y, std::sin(theta) * std::sin(phi), 1e-12);
+    EXPECT_NEAR(d.z, std::cos(theta), 1e-12);
+    // No ray outside the circle (the corners), nor more than 45 degrees below the axis: straight down at
+    // rho = 0.9 theta is 77 degrees; at rho = 0.5 (40 degrees) there is one.
+    EXPECT_FALSE(cam.covers(2, 2));
+    EXPECT_FALSE(cam.covers(50, 95));
+    EXPECT_TRUE(cam.covers(50, 75));
+    EXPECT_TRUE(cam.covers(50, 5)); // the same distance up
+}
+
+TEST(CameraMapping, OmnimaxFitsAWideImageToItsDome) {
+    // 4:3, wider than the dome's 1.283458: X is stretched by (4/3) / 1.283458 and the centre row moves down
+    // the dome, so the image centre looks up by theta(1 - 1 / 1.283458).
+    const ResolvedCamera wide = omnimaxCamera(120, 90);
+    const Vec3 centre = normalize(wide.generateRay(60, 45, {}, 0).direction);
+    const double theta = omnimaxTheta(1 - 1 / 1.283458);
+    EXPECT_NEAR(centre.x, 0, 1e-12);
+    EXPECT_NEAR(centre.y, std::sin(theta), 1e-12);
+    EXPECT_NEAR(centre.z, std::cos(theta), 1e-12);
+    // 1.2:1, narrower than the dome: Y = (Y - 1) / 1.2 + 1.
+    const ResolvedCamera mid = omnimaxCamera(120, 100);
+    const Vec3 c2 = normalize(mid.generateRay(60, 50, {}, 0).direction);
+    EXPECT_NEAR(std::asin(c2.y), omnimaxTheta(1 - 1 / 1.2), 1e-12);
+    // Tall (1:2): Y / A = 2 Y0 * 2: the top edge's midpoint is off the circle.
+    const ResolvedCamera tall = omnimaxCamera(50, 100);
+    EXPECT_FALSE(tall.covers(25, 10));
+    EXPECT_TRUE(tall.covers(25, 30));
+}
+
+TEST(CameraMapping, OmnimaxInBothDialectsAndTheWriter) {
+    for (const bool pov : {true, false}) {
+        Diagnostics diags;
+        const std::string text = "camera { omnimax location <0, 1, -5> look_at <0, 1, 0> }\n"
+                                 "sphere { 0, 1 pigment { rgb 1 } }";
+        const auto scene = pov ? loadPov(text, diags) : loadSceneText(text, "o.drt", diags);
+        ASSERT_TRUE(scene) << diags.formatAll();
+        EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
+        EXPECT_EQ(scene->camera.mapping, CameraMapping::Omnimax);
+        const std::string written = writeDrtScene(*scene);
+        EXPECT_NE(written.find("omnimax"), std::string::npos) << written;
+        Diagnostics again;
+        const auto back = loadSceneText(written, "back.drt", again);
+        ASSERT_TRUE(back) << again.formatAll() << written;
+        EXPECT_EQ(back->camera.mapping, CameraMapping::Omnimax);
+    }
+}
+
 struct KeywordCase {
     const char* text;
     CameraMapping mapping;
@@ -269,10 +342,12 @@ TEST(CameraMapping, PovFrontEndErrorsAndIgnoredBlur) {
     ASSERT_TRUE(s) << blur.formatAll();
     EXPECT_EQ(blur.warningCount(), 1) << blur.formatAll();
     EXPECT_EQ(s->camera.aperture, 0.0);
-    // Omnimax stays unsupported: a warning.
-    Diagnostics omni;
-    ASSERT_TRUE(loadPov("camera { omnimax }", omni)) << omni.formatAll();
-    EXPECT_EQ(omni.warningCount(), 1);
+    // mesh_camera stays unsupported: a warning, and a perspective camera.
+    Diagnostics meshCamera;
+    const auto m = loadPov("camera { mesh_camera { 1, 0 } }", meshCamera);
+    ASSERT_TRUE(m) << meshCamera.formatAll();
+    EXPECT_EQ(meshCamera.warningCount(), 1);
+    EXPECT_EQ(m->camera.mapping, CameraMapping::Planar);
 }
 
 } // namespace

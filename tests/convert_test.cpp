@@ -68,6 +68,36 @@ TEST(Convert, WritesADrtFileThatRendersTheSameImage) {
     EXPECT_TRUE(renderSmall(*original).pixels == renderSmall(*converted).pixels);
 }
 
+// trace() and inside() are answered while the scene is read, as for a render,
+// and the converted scene holds what they gave (before: an error, "this
+// loader gives none", for 11 of POV-Ray's sample scenes).
+TEST(Convert, TraceAndInsideAtParseTimeAreEvaluatedAndWrittenAsValues) {
+    const std::string dir = test::tempDir();
+    const std::string pov = test::writeFile(dir + "/traced.pov", R"(#version 3.7;
+global_settings { assumed_gamma 1.0 }
+camera { location <0, 2, -6> look_at <0, 1, 0> }
+light_source { <-5, 8, -6>, color rgb 1 }
+#declare Ground = plane { y, 0.25 }
+#declare Hit = trace(Ground, <0.5, 10, 0>, -y);
+#declare Inside = inside(sphere { 0, 1 }, <0, 0.5, 0>);
+sphere { Hit, 0.5 + 0.25 * Inside pigment { rgb 1 } }
+)");
+    const std::string text = convertCleanly(pov, dir + "/traced.drt");
+    EXPECT_NE(text.find("sphere {"), std::string::npos) << text;
+    Diagnostics diags;
+    const std::optional<Scene> converted = loadSceneFile(dir + "/traced.drt", diags);
+    ASSERT_TRUE(converted && !diags.hasErrors()) << diags.formatAll() << text;
+    ASSERT_EQ(converted->objects.size(), 1u);
+    const Sphere* ball = std::get_if<Sphere>(&converted->objects[0].shape);
+    ASSERT_NE(ball, nullptr);
+    // The sphere's centre in the world is the traced point <0.5, 0.25, 0>; its radius 0.75.
+    const Vec3 centre = converted->objects[0].transform.point(ball->center);
+    EXPECT_NEAR(centre.x, 0.5, 1e-9);
+    EXPECT_NEAR(centre.y, 0.25, 1e-6);
+    EXPECT_NEAR(centre.z, 0, 1e-9);
+    EXPECT_NEAR(length(converted->objects[0].transform.vector(Vec3(ball->radius, 0, 0))), 0.75, 1e-9);
+}
+
 TEST(Convert, LayeredAndMappedTexturesConvertWithoutWarningsAndRenderTheSame) {
     const std::string dir = test::tempDir();
     const std::string pov = test::writeFile(dir + "/layers.pov", R"(

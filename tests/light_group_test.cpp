@@ -17,16 +17,6 @@
 namespace drt {
 namespace {
 
-RenderOptions tinyOptions() {
-    RenderOptions o;
-    o.width = 5;
-    o.height = 5;
-    o.samplesPerPixel = 1;
-    o.seed = 3;
-    o.threads = 1;
-    return o;
-}
-
 // A white wall at z = 10 facing the camera (ambient 0, diffuse 1) seen through
 // a narrow view; `lights` and `wall` are spliced in. A light at the origin
 // lights the wall's centre head-on: the pixel is the light's colour.
@@ -44,7 +34,7 @@ Color centre(const std::string& text, bool pov = true) {
         pov ? loadPovSceneText(text, "g.pov", diags) : loadSceneText(text, "g.drt", diags, ".");
     EXPECT_TRUE(scene) << diags.formatAll();
     if (!scene) return Color(-1);
-    const Image image = render(*scene, tinyOptions()).color;
+    const Image image = render(*scene, test::tinyRenderOptions()).color;
     return {image.at(2, 2, 0), image.at(2, 2, 1), image.at(2, 2, 2)};
 }
 

@@ -9,6 +9,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -177,6 +180,35 @@ TEST(TemporaryFiles, RegisteredFilesAreRemovedAndUnregisteredOnesKept) {
     }
     EXPECT_TRUE(fs::exists(kept));
     EXPECT_TRUE(fs::exists(dir + "/done"));
+    fs::remove_all(dir);
+}
+
+// A signal handled on one thread while another writes an output: the writer may
+// make its temporary file after the handler's first unlink. The removal waits
+// for the writer to finish (rename or give up) before it returns, so nothing
+// is left behind. With no wait, the file made after the unlink stays.
+TEST(TemporaryFiles, RemovalWaitsForAWriterOnAnotherThread) {
+    const std::string dir = test::tempDir();
+    const std::string temporary = dir + "/.out.png.tmp", final = dir + "/out.png";
+    std::atomic<bool> registered{false}, removalStarted{false}, writerDone{false};
+    std::thread writer([&] {
+        {
+            const TemporaryFile file(temporary);
+            registered.store(true);
+            while (!removalStarted.load()) std::this_thread::yield();
+            std::this_thread::sleep_for(std::chrono::milliseconds(100)); // the handler's unlink comes first
+            test::writeFile(temporary, "whole image");
+            fs::rename(temporary, final);
+        }
+        writerDone.store(true);
+    });
+    while (!registered.load()) std::this_thread::yield();
+    removalStarted.store(true);
+    removeRegisteredTemporaryFiles();
+    EXPECT_TRUE(writerDone.load()) << "the removal returned while another thread was still writing";
+    writer.join();
+    EXPECT_FALSE(fs::exists(temporary));
+    EXPECT_TRUE(fs::exists(final));
     fs::remove_all(dir);
 }
 

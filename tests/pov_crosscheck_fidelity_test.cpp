@@ -45,6 +45,7 @@ struct FidelityScene {
 //   normal_gradient  0.077 (gradient normals were ignored)
 //   parallel_light   0.108 (parallel lights were point lights)
 //   place_patterns   0.126 (planar, cylindrical and boxed were the average colour of their maps)
+//   projected_through 0.370 (projected_through was ignored: an ordinary light, shadowed by the placed shape)
 //   quilted          0.054 (quilted was the average colour of its map; its normal was left out)
 //   radiosity        0.167 (radiosity was left out)
 //   slope_map        0.061 (a normal with a slope_map was left out; 0.039 with slopes per unit of
@@ -63,6 +64,7 @@ const FidelityScene kScenes[] = {
     {"normal_gradient", 0.02},
     {"parallel_light", 0.01},
     {"place_patterns", 0.005},
+    {"projected_through", 0.005},
     {"quilted", 0.012},
     {"radiosity", 0.015},
     {"slope_map", 0.02},

@@ -4,6 +4,7 @@
 #include "accel/accel.h"
 #include "core/diagnostics.h"
 #include "pov/load.h"
+#include "render/render.h"
 #include "scene/scene.h"
 
 #include <memory>
@@ -23,6 +24,18 @@ std::string tempDir();
 // Writes text to a file, creating folders as needed; returns the path.
 std::string writeFile(const std::string& path, const std::string& text);
 std::string readFile(const std::string& path);
+
+// A 5x5 render at 1 sample per pixel, seed 3, one thread: for tests that read
+// a closed-form value off the centre pixel.
+inline RenderOptions tinyRenderOptions() {
+    RenderOptions o;
+    o.width = 5;
+    o.height = 5;
+    o.samplesPerPixel = 1;
+    o.seed = 3;
+    o.threads = 1;
+    return o;
+}
 
 struct CommandResult {
     int exitCode = -1;

@@ -7,6 +7,7 @@
 // front end is reported as such and the report carries on. A scene counts as
 // clean when it loads without an unsupported-feature warning, the .drt text
 // expresses all of it and loads back, and the result renders (small, 1 spp).
+#include "accel/geometry_query.h"
 #include "cli/commands.h"
 #include "cli/paths.h"
 #include "core/temporary_files.h"
@@ -38,10 +39,13 @@ namespace drt::cli {
 
 namespace {
 
-PovOptions povOptions(const PovCliOptions& cli) {
+// `geometry` answers trace() and inside() while the scene is read, as for a
+// render: the converted scene holds the values they gave.
+PovOptions povOptions(const PovCliOptions& cli, SceneGeometryQuery* geometry) {
     PovOptions options;
     options.includePaths = cli.includePaths;
     options.strict = cli.strict;
+    options.geometry = geometry;
     return options;
 }
 
@@ -118,7 +122,8 @@ int convertOne(const ConvertCommand& command, std::ostream& out, std::ostream& e
         return kUsageError;
     }
     Diagnostics diags;
-    std::optional<Scene> scene = loadPovSceneFile(command.scene, diags, povOptions(command.pov));
+    const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+    std::optional<Scene> scene = loadPovSceneFile(command.scene, diags, povOptions(command.pov, geometry.get()));
     if (scene && !diags.hasErrors()) resolveAssets(*scene, diags);
     err << diags.formatAll();
     if (diags.hasErrors() || !scene) {
@@ -160,7 +165,8 @@ ConversionCheck checkConversion(const std::string& povPath, const PovCliOptions&
     ConversionCheck check;
     try {
         Diagnostics diags;
-        std::optional<Scene> scene = loadPovSceneFile(povPath, diags, povOptions(pov));
+        const std::unique_ptr<SceneGeometryQuery> geometry = makeGeometryQuery();
+        std::optional<Scene> scene = loadPovSceneFile(povPath, diags, povOptions(pov, geometry.get()));
         if (scene && !diags.hasErrors()) resolveAssets(*scene, diags);
         for (const Diagnostic& d : diags.all()) {
             if (d.severity != Severity::Warning)

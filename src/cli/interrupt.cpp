@@ -23,6 +23,7 @@ void writeMessage(const char* text) {
 // Only async-signal-safe calls here: atomics, write, unlink, _exit.
 extern "C" void onSignal(int number) {
     if (quitAtOnce.load()) {
+        makeNoMoreTemporaryFiles();
         removeRegisteredTemporaryFiles();
         writeMessage("\ndrt: interrupted before the render started: quitting, nothing to save\n");
         ::_exit(128 + number);
@@ -34,6 +35,7 @@ extern "C" void onSignal(int number) {
                      "checkpoint (interrupt again to quit at once)\n");
         return;
     }
+    makeNoMoreTemporaryFiles();
     removeRegisteredTemporaryFiles();
     writeMessage("drt: interrupted twice: quitting at once, nothing saved\n");
     ::_exit(128 + firstSignal.load());

@@ -28,7 +28,14 @@ private:
 // signal ended the process.
 void removeTemporaryFilesOnSignal();
 
-// What the handler does first: unlinks every registered path. Async-signal-safe.
+// What the handler does first: unlinks every registered path, and waits (at
+// most 2 s) for writers on other threads to finish the file they are writing,
+// unlinking again after. Async-signal-safe.
 void removeRegisteredTemporaryFiles() noexcept;
+
+// What a handler that ends the process calls before that: from then on a
+// TemporaryFile being made waits for the process to end instead of letting its
+// thread make a file that the removal could miss. Async-signal-safe.
+void makeNoMoreTemporaryFiles() noexcept;
 
 } // namespace drt

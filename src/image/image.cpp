@@ -161,6 +161,7 @@ std::string checkWritable(const std::string& path) {
     // access() is not enough (root passes it everywhere, read-only mounts do
     // not show in the mode bits): create and remove a probe file instead.
     const fs::path probe = temporaryPath(fs::path(path));
+    const TemporaryFile registered(probe.string()); // removed if a signal ends the process
     {
         std::ofstream out(probe, std::ios::binary);
         if (!out) {

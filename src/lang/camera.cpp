@@ -146,10 +146,10 @@ CameraSpec Evaluator::camera(const CameraSpec& base, SourceLoc loc) {
                 // POV-Ray truncates the type number.
                 c.mapping = static_cast<CameraMapping>(static_cast<int>(CameraMapping::Cylinder1) + int(n) - 1);
             }
-        } else if (w == "omnimax" || w == "mesh_camera") {
+        } else if (w == "mesh_camera") {
             unsupported("camera-" + w, t.loc, "'" + w + "' camera is not supported; a perspective camera is used");
             nonPerspective = true;
-            if (w == "mesh_camera") expectSymbol("{", "after 'mesh_camera'"), skipBlock();
+            expectSymbol("{", "after 'mesh_camera'"), skipBlock();
         } else if (w == "location") {
             c.location = vectorExpr();
         } else if (w == "look_at") {

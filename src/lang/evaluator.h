@@ -37,6 +37,9 @@ inline constexpr long kMemoryCheckInterval = 1024;
 // which skips to the next statement (or stops, as POV-Ray does).
 struct Abort {};
 
+// Moves a light's projected_through objects (Light::projectedThrough) by `t`.
+void transformProjectedThrough(Light& l, const Transform& t);
+
 class Evaluator {
 public:
     Evaluator(Diagnostics& diags, const LoadOptions& options, DialectKind dialect);

@@ -236,7 +236,7 @@ const std::vector<CameraWord>& cameraWords() {
         {"perspective", CameraMapping::Planar, false},     {"orthographic", CameraMapping::Planar, true},
         {"fisheye", CameraMapping::Fisheye, false},        {"ultra_wide_angle", CameraMapping::UltraWideAngle, false},
         {"panoramic", CameraMapping::Panoramic, false},    {"cylinder", CameraMapping::Cylinder1, false},
-        {"spherical", CameraMapping::Spherical, false},
+        {"spherical", CameraMapping::Spherical, false},    {"omnimax", CameraMapping::Omnimax, false},
     };
     return words;
 }

@@ -26,6 +26,8 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
     bool hasArea = false;
     SourceLoc pointAtLoc;
     MotionChain motion; // the light's motions and the transforms after them
+    std::optional<ObjectValue> projected; // projected_through's object
+    SourceLoc projectedLoc;
     const Token first = peek();
     const Cell id = first.kind == TokenKind::Word ? use(first.text) : nullptr;
     if (id && id->kind == Kind::Object && id->object->lights.size() == 1 && (id->object->lightOnly || looksLike)) {
@@ -52,6 +54,8 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
         // moves it at each ray's time (render/light_path.h).
         // A looks_like object moves with the light.
         if (t.isWord("motion")) {
+            if (projected || l.projectedThrough)
+                fail(t.loc, "'motion' in a light with 'projected_through': a moving light cannot shine through an object");
             next();
             motion.push_back(MotionStage{motionBlock(), Transform()});
             if (looksLike && *looksLike) (*looksLike)->object.motion.push_back(motion.back());
@@ -63,6 +67,8 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
             continue;
         } else if (tr) {
             if (looksLike && *looksLike) applyTransform(**looksLike, *tr, t.loc);
+            if (projected) applyTransform(*projected, *tr, t.loc);
+            transformProjectedThrough(l, *tr); // a declared light's
             l.position = tr->point(l.position);
             l.pointAt = tr->point(l.pointAt);
             area.axis1 = tr->vector(area.axis1);
@@ -152,7 +158,15 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
             applyTransform(shape, Transform::translate(l.position), t.loc);
             shape.object.noShadow = true;
             *looksLike = std::move(shape);
-        } else if (w == "looks_like" || w == "projected_through" || w == "photons") {
+        } else if (w == "projected_through") {
+            // POV-Ray: the light shines only through the object, which is
+            // never drawn and moves with the light's later transforms.
+            if (projected || l.projectedThrough) fail(t.loc, "only one projected_through is allowed per light_source");
+            if (!motion.empty())
+                fail(t.loc, "'projected_through' after 'motion': a moving light cannot shine through an object");
+            projected = object(Token{TokenKind::Word, "object", 0, t.loc}); // reads `{ object modifiers }`
+            projectedLoc = t.loc;
+        } else if (w == "looks_like" || w == "photons") {
             unsupported("light-" + w, t.loc, "light_source '" + w + "' is not supported and is ignored");
             expectSymbol("{", "after '" + w + "'");
             skipBlock();
@@ -167,6 +181,12 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
     if (l.spotlight && l.pointAt == l.position)
         refuse(pointAtLoc.valid() ? pointAtLoc : loc, "'point_at' is the same point as the light position");
     if (hasArea) l.area = area;
+    if (projected) {
+        if (projected->lightOnly) fail(projectedLoc, "'projected_through' needs an object with a shape");
+        auto through = std::make_shared<Scene>();
+        through->objects.push_back(placed(std::move(*projected)));
+        l.projectedThrough = std::move(through);
+    }
     if (!motion.empty()) l.motion = std::make_shared<LightMotion>(LightMotion{{}, std::move(motion)});
     return l;
 }

@@ -81,9 +81,20 @@ std::string shapeHead(const Shape& shape, ShapeText& text) {
 
 // ------------------------------------------------------------ helpers
 
+void transformProjectedThrough(Light& l, const Transform& t) {
+    if (!l.projectedThrough) return;
+    auto moved = std::make_shared<Scene>(*l.projectedThrough);
+    for (Object& o : moved->objects) {
+        for (Object& clip : o.clippedBy) clip.transform = clip.transform.then(t);
+        o.transform = o.transform.then(t); // never moving: 'motion' and projected_through exclude each other
+    }
+    l.projectedThrough = std::move(moved);
+}
+
 namespace {
 
 void transformLight(Light& l, const Transform& t) {
+    transformProjectedThrough(l, t);
     if (l.motion && !l.motion->chain.empty()) { // after the light's motion (render/light_path.h)
         auto moved = std::make_shared<LightMotion>(*l.motion);
         moved->chain.back().after = moved->chain.back().after.then(t);

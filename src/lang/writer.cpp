@@ -284,6 +284,18 @@ void SceneWriter::light(const Light& l) {
         line(1, std::string("area_sampling ") + lang::areaSamplingWord(l.area->sampling));
     if (l.inverseSquare)
         line(1, "inverse_square");
+    if (l.projectedThrough) { // its objects are in world space, as the light is written
+        line(1, "projected_through {");
+        if (l.projectedThrough->objects.size() == 1) {
+            object(l.projectedThrough->objects.front(), 2);
+        } else {
+            line(2, "union {");
+            for (const Object& o : l.projectedThrough->objects)
+                object(o, 3);
+            line(2, "}");
+        }
+        line(1, "}");
+    }
     if (l.motion)
         motionLines(l.motion->chain, 1);
     line(0, "}");

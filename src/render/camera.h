@@ -27,6 +27,12 @@
 //     cylinder 4       origin location + x0 |r| r, D = sin(y0 a) u + cos(y0 a) d.
 //     spherical        h, v the horizontal, vertical angles: direction turned by y0 v towards up, then by
 //                      x0 h about up towards right (longitude/latitude).
+//     omnimax          X = 2 x0, Y = 2 y0, squeezed to the dome with the aspect A = |r|/|u|: for
+//                      A > 1.283458, X *= A/1.283458 and Y = (Y - 1)/1.283458 + 1; for 1 < A <= 1.283458,
+//                      Y = (Y - 1)/A + 1; else Y /= A. rho = hypot(X, Y) <= 1 (else no ray), phi the polar
+//                      angle of (X, Y), theta = 1.411269 rho - 0.09439 rho^3 + 0.25674 rho^5 (the angle is not
+//                      used): D = sin theta (cos phi r + sin phi u) + cos theta d, and no ray where D points
+//                      more than 45 degrees below the axis (sin phi sin theta < -cos theta).
 //                      No lens: aperture must be 0.
 //   shutter_open / shutter_close    ray time = lerp(open, close, u), clamped to Motion's [0, 1] (objects hold
 //                                   their end poses outside it); equal values draw no time sample.
@@ -69,7 +75,7 @@ struct ResolvedCamera {
     // without a lens) at `time`: D = direction + x0 right + y0 up with
     // x0 = px/width - 0.5, y0 = 0.5 - py/height.
     Ray generateRay(double px, double py, Vec2 lens, double time) const;
-    // False where the camera traces no ray (outside a fisheye's circle): the
+    // False where the camera traces no ray (outside a fisheye's or omnimax's circle): the
     // pixel there is black, as in POV-Ray.
     bool covers(double px, double py) const;
 

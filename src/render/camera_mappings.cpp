@@ -1,10 +1,11 @@
 // POV-Ray's non-planar cameras (formulas in render/camera.h, after POV-Ray
-// 3.7's tracepixel.cpp): fisheye, ultra_wide_angle, panoramic, cylinder 1-4
-// and spherical.
+// 3.7's tracepixel.cpp): fisheye, ultra_wide_angle, panoramic, cylinder 1-4,
+// spherical and omnimax.
 #include "render/camera.h"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace drt {
 
@@ -27,9 +28,39 @@ Vec2 fisheyePoint(const ResolvedCamera& c, double x0, double y0) {
     return {2 * x0 * length(c.right), 2 * y0 * length(c.up)};
 }
 
+// POV-Ray's omnimax, a projection for a tilted dome (render/camera.h): the
+// unit direction of image point (x0, y0), or none where it traces no ray.
+std::optional<Vec3> omnimaxDirection(const ResolvedCamera& c, double x0, double y0) {
+    // POV-Ray's constants: the image aspect its dome fills, and the polynomial
+    // from the distance off the circle's centre to the angle off the axis.
+    constexpr double kDomeAspect = 1.283458;
+    double x = 2 * x0, y = 2 * y0;
+    const double aspect = length(c.right) / length(c.up);
+    if (aspect > kDomeAspect) {
+        x *= aspect / kDomeAspect;
+        y = (y - 1) / kDomeAspect + 1;
+    } else if (aspect > 1) {
+        y = (y - 1) / aspect + 1;
+    } else {
+        y /= aspect;
+    }
+    const double rad = std::hypot(x, y);
+    if (!(rad <= 1)) return std::nullopt;
+    const double s = rad > 0 ? std::asin(std::clamp(y / rad, -1.0, 1.0)) : 0.0;
+    const double phi = x < 0 ? kPi - s : s;
+    const double r2 = rad * rad;
+    const double theta = rad * (1.411269 + r2 * (-0.09439 + r2 * 0.25674));
+    const double sinTheta = std::sin(theta), cosTheta = std::cos(theta);
+    // Nothing more than 45 degrees below the axis: sin(phi) sin(theta) < tan(135 deg) cos(theta).
+    if (std::sin(phi) * sinTheta < -cosTheta) return std::nullopt;
+    const Basis b = basisOf(c);
+    return sinTheta * (std::cos(phi) * b.r + std::sin(phi) * b.u) + cosTheta * b.d;
+}
+
 } // namespace
 
 bool ResolvedCamera::covers(double px, double py) const {
+    if (mapping == CameraMapping::Omnimax) return omnimaxDirection(*this, px / width - 0.5, 0.5 - py / height).has_value();
     if (mapping != CameraMapping::Fisheye) return true;
     const Vec2 p = fisheyePoint(*this, px / width - 0.5, 0.5 - py / height);
     return std::hypot(p.x, p.y) <= 1.0;
@@ -85,6 +116,9 @@ Ray ResolvedCamera::mappedRay(double px, double py) const {
                                              std::sin(lat) * b.u);
         break;
     }
+    case CameraMapping::Omnimax: // covers() excludes the points without a ray
+        ray.direction = omnimaxDirection(*this, x0, y0).value_or(b.d);
+        break;
     case CameraMapping::Planar:
         break;
     }

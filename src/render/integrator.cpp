@@ -85,7 +85,7 @@ Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraF
             const double distance =
                 found ? hit.t * speed : mediaMissDistance(mediaLower_, mediaUpper_, pending.ray.origin, unit);
             const MediaEffect effect = integrateMedia(media, pending.ray.origin, unit, distance,
-                                                      {&scene_, &accel_, pending.ray.time}, sampler,
+                                                      {&scene_, &accel_, pending.ray.time, &lighting_.projectedThrough()}, sampler,
                                                       mediaDimension(pending.depth), counts);
             result += seen * effect.add;
             seen *= effect.scale;

@@ -94,6 +94,36 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
     return transmittance;
 }
 
+ProjectedThrough::ProjectedThrough(const Scene& scene) {
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = scene.lights[i];
+        if (!light.projectedThrough) continue;
+        byLight_.resize(scene.lights.size());
+        byLight_[i] = std::make_unique<Accelerator>(*light.projectedThrough);
+    }
+}
+
+ProjectedThrough::~ProjectedThrough() = default;
+
+Color lightTransmittance(const Accelerator& accel, const Accelerator* projected, bool shadowless, const Hit& from,
+                         const Vec3& target, double time, RayCounts& counts, const Scene* mediaScene,
+                         bool opaqueCasters) {
+    if (!projected)
+        return shadowless ? Color(1) : shadowTransmittance(accel, from, target, time, counts, mediaScene, opaqueCasters);
+    const Ray ray = shadowRay(from, target, time);
+    Hit crossing;
+    ++counts.shadow;
+    if (!projected->intersect(ray, crossing)) return Color(0); // the light does not shine this way
+    if (shadowless) return Color(1);
+    // Only what lies before the first crossing casts a shadow. The segment
+    // stops short of it, so that a placed copy of the object, whose surface is
+    // there, does not shadow the light it shapes.
+    const double speed = length(ray.direction);
+    const double cut = crossing.t - std::max(1e-4, 1e-5 * crossing.t * speed) / speed;
+    if (!(cut > 0)) return Color(1);
+    return shadowTransmittance(accel, from, ray.origin + ray.direction * cut, time, counts, mediaScene, opaqueCasters);
+}
+
 namespace {
 
 bool mayLetLightThrough(const ColorFT& c) { return c.filter != 0 || c.transmit != 0; }
@@ -316,7 +346,7 @@ private:
 DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel)
     : scene_(scene), accel_(accel), opaqueCasters_(shadowsAreOpaque(scene)),
       hasMedia_(sceneHasMedia(scene) || !scene.fogs.empty()),
-      anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)) {
+      anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)), projected_(scene) {
     cones_.reserve(scene.lights.size());
     for (const Light& light : scene.lights) cones_.push_back(spotCones(light));
     // One occlusion query answers these lights' shadow rays (shadowTransmittance
@@ -326,7 +356,7 @@ DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel)
             const Light& light = scene.lights[i];
             const bool media = hasMedia_ && light.mediaAttenuation && light.mediaInteraction;
             if (!light.area && !light.spotlight && !light.parallel && !light.shadowless && !lightMoves(light) && !media &&
-                !isBlack(light.color))
+                !light.projectedThrough && !isBlack(light.color))
                 packetLights_.push_back(static_cast<int>(i));
         }
 }
@@ -439,9 +469,8 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                     ++counts.shadow;
                     s.visibility = Color(answer == 1 ? 1.0 : 0.0);
                 } else {
-                    s.visibility = light->shadowless ? Color(1)
-                                                    : shadowTransmittance(accel_, *sp.hit, s.position, sp.time,
-                                                                          counts, media, opaqueCasters_);
+                    s.visibility = lightTransmittance(accel_, projected_.of(i), light->shadowless, *sp.hit,
+                                                      s.position, sp.time, counts, media, opaqueCasters_);
                 }
                 s.tested = true;
             }

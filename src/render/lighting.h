@@ -66,6 +66,7 @@
 #include "scene/scene.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace drt {
@@ -91,6 +92,31 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
 
 // Installs the calling thread's buffer of shadowTransmittance (accel/thread_scratch.h).
 std::unique_ptr<InstalledScratch> installLightingScratch();
+
+// The accelerators of the scene's projected_through objects
+// (Light::projectedThrough), by light; built once per render.
+class ProjectedThrough {
+public:
+    explicit ProjectedThrough(const Scene& scene);
+    ~ProjectedThrough();
+    // The light's projected_through objects, or null for an ordinary light.
+    const Accelerator* of(size_t light) const { return light < byLight_.size() ? byLight_[light].get() : nullptr; }
+    bool any() const { return !byLight_.empty(); }
+
+private:
+    std::vector<std::unique_ptr<Accelerator>> byLight_; // empty if no light has any
+};
+
+// shadowTransmittance for a light at `target` that shines through the objects
+// of `projected` (POV-Ray's projected_through): black if the segment from
+// `from` to the light does not cross them; else what shadowTransmittance gives
+// up to the first crossing (nothing beyond it casts a shadow, the placed copy
+// of the object among them). Null `projected`: shadowTransmittance. A
+// `shadowless` light casts no shadow: 1, or through `projected` 1 where the
+// segment crosses it and 0 elsewhere (POV-Ray's rule).
+Color lightTransmittance(const Accelerator& accel, const Accelerator* projected, bool shadowless, const Hit& from,
+                         const Vec3& target, double time, RayCounts& counts, const Scene* mediaScene = nullptr,
+                         bool opaqueCasters = false);
 
 // True if no shadow-casting object of the scene has a pigment that can let
 // light through (filter or transmit anywhere, image maps counted as able to).
@@ -185,12 +211,15 @@ public:
     void traceCameraShadows(const Ray* rays, const Hit* hits, const bool* found, int count,
                             CameraShadows& out) const;
 
+    const ProjectedThrough& projectedThrough() const { return projected_; }
+
 private:
     const Scene& scene_;
     const Accelerator& accel_;
     bool opaqueCasters_;
     bool hasMedia_; // media or fog anywhere: shadow rays of lights that interact with them look for them
     bool anyLightMoves_; // some light moves over the shutter (render/light_path.h)
+    ProjectedThrough projected_;
     std::vector<SpotCones> cones_; // by light, as written (a moving light's are taken at each point)
     std::vector<int> packetLights_; // the lights whose camera shadow rays go in packets (CameraShadows)
 };

@@ -100,7 +100,7 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
     Color sum(0);
     Hit from;
     from.point = p;
-    const auto scatterFrom = [&](const Light& light) {
+    const auto scatterFrom = [&](const Light& light, size_t index) {
         if (!light.mediaInteraction || isBlack(light.color)) return;
         const Vec3 toLight = light.position - p;
         const double distance = length(toLight);
@@ -108,9 +108,11 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
         Color intensity = light.color * (spotlightAttenuation(light, light.position, p) * fadeAttenuation(light, distance));
         if (light.inverseSquare) intensity = intensity / (distance * distance);
         if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
-        if (!light.shadowless && lighting.accel) {
-            intensity *= shadowTransmittance(*lighting.accel, from, light.position, lighting.time, counts,
-                                             light.mediaAttenuation ? lighting.scene : nullptr); // interaction is on here
+        const Accelerator* projected = lighting.projected ? lighting.projected->of(index) : nullptr;
+        if ((!light.shadowless || projected) && lighting.accel) {
+            intensity *= lightTransmittance(*lighting.accel, projected, light.shadowless, from, light.position,
+                                            lighting.time, counts,
+                                            light.mediaAttenuation ? lighting.scene : nullptr); // interaction is on here
             if (isBlack(intensity)) return;
         }
         const double cosTheta = dot(toLight / distance, direction);
@@ -121,16 +123,17 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
                    (4 * kPi * phaseFunction(m.scatteringType, m.eccentricity, cosTheta));
         }
     };
-    for (const Light& light : lighting.scene->lights) {
+    for (size_t index = 0; index < lighting.scene->lights.size(); ++index) {
+        const Light& light = lighting.scene->lights[index];
         // A moving light as it is at the ray's time (render/light_path.h); a still one as written, with no copy.
         // A parallel light stands where p's ray from it starts (scene.h).
         const bool moves = lightMoves(light);
         if (moves || light.parallel) {
             Light placed = moves ? lightAt(light, lighting.time) : light;
             if (placed.parallel) placed.position = parallelLightPosition(placed, p);
-            scatterFrom(placed);
+            scatterFrom(placed, index);
         } else {
-            scatterFrom(light);
+            scatterFrom(light, index);
         }
     }
     return sum;

@@ -97,6 +97,7 @@ struct MediaLighting {
     const Scene* scene = nullptr;
     const Accelerator* accel = nullptr;
     double time = 0;
+    const ProjectedThrough* projected = nullptr; // the lights' projected_through objects (render/lighting.h)
 };
 
 // The single-scattering estimate over the segment from `origin` along the unit

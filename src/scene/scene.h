@@ -481,6 +481,8 @@ struct AreaLight {
 
 struct LightMotion;
 
+struct Scene;
+
 struct Light {
     Vec3 position;
     Color color{1};
@@ -517,6 +519,11 @@ struct Light {
     // The light_group the light belongs to (Object::lightGroup); 0: none, it
     // lights every object outside the groups and those with globalLights.
     int group = 0;
+    // POV-Ray's projected_through: the light reaches a point only along a ray
+    // that crosses these objects (a scene of their own, in world space, never
+    // drawn), and only what lies between the point and the ray's first
+    // crossing casts a shadow. Null: an ordinary light.
+    std::shared_ptr<const Scene> projectedThrough;
     SourceLoc loc;
 };
 
@@ -549,7 +556,9 @@ struct LightMotion {
 
 // How image positions map to ray directions: Planar is the perspective (or,
 // with CameraSpec::orthographic, the orthographic) camera.
-enum class CameraMapping { Planar, Fisheye, UltraWideAngle, Panoramic, Cylinder1, Cylinder2, Cylinder3, Cylinder4, Spherical };
+enum class CameraMapping {
+    Planar, Fisheye, UltraWideAngle, Panoramic, Cylinder1, Cylinder2, Cylinder3, Cylinder4, Spherical, Omnimax
+};
 
 // The camera as written; resolveCamera() (render/camera.h) turns it into
 // vectors once the image size is known.

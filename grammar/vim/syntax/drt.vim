@@ -17,12 +17,12 @@ syn keyword drtConstant image_height image_width pi tau x y z
 syn keyword drtBlock background bicubic_patch blob box camera clipped_by cone contained_by
 syn keyword drtBlock cubic cylinder density density_map disc face_indices finish fog
 syn keyword drtBlock global_settings height_field image_map image_pattern interior isosurface julia_fractal lathe
-syn keyword drtBlock light_group light_source material_map media mesh mesh2 motion normal
-syn keyword drtBlock normal_indices normal_vectors object pattern pigment pigment_map pigment_pattern plane
-syn keyword drtBlock poly prism quadric quartic radiosity render scattering sky_sphere
-syn keyword drtBlock slope_map smooth_triangle sor sphere spline superellipsoid text texture
-syn keyword drtBlock texture_list texture_map tiles torus transform triangle uv_indices uv_vectors
-syn keyword drtBlock vertex_vectors
+syn keyword drtBlock light_group light_source looks_like material_map media mesh mesh2 motion
+syn keyword drtBlock normal normal_indices normal_vectors object pattern pigment pigment_map pigment_pattern
+syn keyword drtBlock plane poly prism projected_through quadric quartic radiosity render
+syn keyword drtBlock scattering sky_sphere slope_map smooth_triangle sor sphere spline superellipsoid
+syn keyword drtBlock text texture texture_list texture_map tiles torus transform triangle
+syn keyword drtBlock uv_indices uv_vectors vertex_vectors
 syn keyword drtKeyword absorption accuracy adaptive adc_bailout agate all all_intersections always_sample
 syn keyword drtKeyword ambient ambient_light angle aperture append area_illumination area_light area_sampling
 syn keyword drtKeyword array assumed_gamma at average bezier_spline blue boxed bozo
@@ -42,18 +42,18 @@ syn keyword drtKeyword linear_spline linear_sweep load_file location look_at low
 syn keyword drtKeyword map_type marble matrix max_gradient max_iteration max_sample max_samples max_trace
 syn keyword drtKeyword max_trace_level maximum_reuse media_attenuation media_interaction merge metallic method min_samples
 syn keyword drtKeyword minimum_reuse mortar natural_spline nearest_count no_shadow octaves offset omega
-syn keyword drtKeyword once onion open orient orthographic panoramic parallel perspective
-syn keyword drtKeyword phase phong phong_size planar point_at poly_wave pov_grid precision
-syn keyword drtKeyword pretrace_end pretrace_start pwr quadratic_spline quaternion quilted radial radius
-syn keyword drtKeyword ramp_wave ratio read reciprocal recursion_limit red reflection reflection_blur
-syn keyword drtKeyword refraction_blur rgb rgbf rgbft rgbt right ripples rotate
-syn keyword drtKeyword roughness sampler samples save_file scale scallop_wave shadowless shutter_close
-syn keyword drtKeyword shutter_open sine_wave sky slice smooth solid_angle specular spherical
-syn keyword drtKeyword spotlight srgb srgbf srgbft srgbt stratified strength string
-syn keyword drtKeyword sturm subsurface t thickness threshold tightness tile2 translate
-syn keyword drtKeyword transmit triangle_wave turb_depth turbulence type u u_steps ultra_wide_angle
-syn keyword drtKeyword union up uv_mapping v v_steps variance water_level waves
-syn keyword drtKeyword width wood wrinkles write
+syn keyword drtKeyword omnimax once onion open orient orthographic panoramic parallel
+syn keyword drtKeyword perspective phase phong phong_size planar point_at poly_wave pov_grid
+syn keyword drtKeyword precision pretrace_end pretrace_start pwr quadratic_spline quaternion quilted radial
+syn keyword drtKeyword radius ramp_wave ratio read reciprocal recursion_limit red reflection
+syn keyword drtKeyword reflection_blur refraction_blur rgb rgbf rgbft rgbt right ripples
+syn keyword drtKeyword rotate roughness sampler samples save_file scale scallop_wave shadowless
+syn keyword drtKeyword shutter_close shutter_open sine_wave sky slice smooth solid_angle specular
+syn keyword drtKeyword spherical spotlight srgb srgbf srgbft srgbt stratified strength
+syn keyword drtKeyword string sturm subsurface t thickness threshold tightness tile2
+syn keyword drtKeyword translate transmit triangle_wave turb_depth turbulence type u u_steps
+syn keyword drtKeyword ultra_wide_angle union up uv_mapping v v_steps variance water_level
+syn keyword drtKeyword waves width wood wrinkles write
 syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|fclose\|fopen\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|read\|switch\|undef\|version\|warning\|while\|write\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape
