@@ -112,10 +112,10 @@ std::vector<std::string> renderArgs(const std::string& output, bool adaptive) {
                                      "--threads", "1",
                                      "-q"};
     if (adaptive) {
-        for (const char* a : {"--adaptive", "--min-spp", "16", "--max-spp", "512", "--adaptive-error", "0.005"})
+        for (const char* a : {"--adaptive", "--min-spp", "16", "--max-spp", "2048", "--adaptive-error", "0.0025"})
             args.push_back(a);
     } else {
-        args.insert(args.end(), {"--spp", "160"}); // long enough for several checkpoints
+        args.insert(args.end(), {"--spp", "640"}); // long enough for several checkpoints
     }
     return args;
 }
@@ -229,7 +229,7 @@ TEST(Interrupt, ResumeRefusesAMissingCheckpointOrOneOfAnotherRender) {
     const std::pair<std::vector<std::string>, std::string> refusals[] = {
         {{"--seed", "6"}, "has other settings: seed=5 there, seed=6 here"},
         {{"--width", "97"}, "size=96x72 there, size=97x72 here"},
-        {{"--spp", "161"}, "spp=160 there, spp=161 here"},
+        {{"--spp", "641"}, "spp=640 there, spp=641 here"},
         {{"--crop", "0,8,0,8"}, "is of the whole image, this render is of the crop 0,8,0,8"},
     };
     for (const auto& [extra, message] : refusals) {
