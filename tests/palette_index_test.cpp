@@ -65,12 +65,10 @@ std::string stripPng(const std::string& dir, int bits = 4) {
 }
 
 RenderOptions stripOptions() {
-    RenderOptions o;
+    RenderOptions o = test::tinyRenderOptions();
     o.width = 4;
     o.height = 1;
-    o.samplesPerPixel = 1;
     o.seed = 1;
-    o.threads = 1;
     return o;
 }
 

@@ -64,7 +64,7 @@ Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraF
         // per thread, not one per loop pass: a Hit is about 230 bytes of
         // initialised members, and Accelerator::intersect writes every field
         // a found hit is read by.
-        static_assert(std::is_trivially_destructible_v<Hit>, "no destructor to register (prepareThread)");
+        static_assert(std::is_trivially_destructible_v<Hit>, "no destructor to register (accel/thread_scratch.h)");
         thread_local Hit traced;
         const bool found = first ? cameraFound : accel_.intersect(pending.ray, traced);
         const Hit& hit = first ? cameraHit : traced;
@@ -85,8 +85,8 @@ Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraF
             const double distance =
                 found ? hit.t * speed : mediaMissDistance(mediaLower_, mediaUpper_, pending.ray.origin, unit);
             const MediaEffect effect = integrateMedia(media, pending.ray.origin, unit, distance,
-                                                      {&scene_, &accel_, pending.ray.time, &lighting_.projectedThrough()}, sampler,
-                                                      mediaDimension(pending.depth), counts);
+                                                      {&scene_, &accel_, pending.ray.time, &lighting_.projectedThrough()},
+                                                      sampler, mediaDimension(pending.depth), counts);
             result += seen * effect.add;
             seen *= effect.scale;
         }

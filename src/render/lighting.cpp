@@ -96,10 +96,9 @@ Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3&
 
 ProjectedThrough::ProjectedThrough(const Scene& scene) {
     for (size_t i = 0; i < scene.lights.size(); ++i) {
-        const Light& light = scene.lights[i];
-        if (!light.projectedThrough) continue;
-        byLight_.resize(scene.lights.size());
-        byLight_[i] = std::make_unique<Accelerator>(*light.projectedThrough);
+        if (!scene.lights[i].projectedThrough) continue;
+        if (byLight_.empty()) byLight_.resize(scene.lights.size()); // the first such light
+        byLight_[i] = std::make_unique<Accelerator>(*scene.lights[i].projectedThrough);
     }
 }
 

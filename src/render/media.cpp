@@ -108,8 +108,8 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
         Color intensity = light.color * (spotlightAttenuation(light, light.position, p) * fadeAttenuation(light, distance));
         if (light.inverseSquare) intensity = intensity / (distance * distance);
         if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
-        const Accelerator* projected = lighting.projected ? lighting.projected->of(index) : nullptr;
-        if ((!light.shadowless || projected) && lighting.accel) {
+        if (lighting.accel) { // lightTransmittance knows shadowless lights and projected_through
+            const Accelerator* projected = lighting.projected ? lighting.projected->of(index) : nullptr;
             intensity *= lightTransmittance(*lighting.accel, projected, light.shadowless, from, light.position,
                                             lighting.time, counts,
                                             light.mediaAttenuation ? lighting.scene : nullptr); // interaction is on here
