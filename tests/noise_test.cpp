@@ -6,7 +6,13 @@
 #include "render/noise.h"
 #include "render/pigment.h"
 
+#include "core/hash.h"
+#include "core/limits.h"
+
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -37,6 +43,65 @@ TEST(Noise, RangeIsZeroToOneAndUsesMostOfIt) {
     EXPECT_LT(lo, 0.2); // a constant or squashed noise would fail these
     EXPECT_GT(hi, 0.8);
     EXPECT_DOUBLE_EQ(noise01(Vec3(3, -4, 5)), 0.5); // zero at lattice points (gradient noise)
+}
+
+// The noise as first defined, one hashValues({i, j, k, seed}) per corner and seed
+// (render/noise.cpp shares the hashes' common steps): the faster code must give
+// these values to the bit, or every noise pattern's image changes.
+double referenceSignedNoise(const Vec3& p, uint64_t seed) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return 0;
+    auto fade = [](double t) { return t * t * t * (t * (t * 6 - 15) + 10); };
+    auto lerp = [](double a, double b, double t) { return a + t * (b - a); };
+    const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
+    const long long i = saturatingInteger(fx), j = saturatingInteger(fy), k = saturatingInteger(fz);
+    const double x = p.x - fx, y = p.y - fy, z = p.z - fz;
+    auto g = [&](int a, int b, int c) {
+        const double dx = x - a, dy = y - b, dz = z - c;
+        switch (hashValues({uint64_t(i + a), uint64_t(j + b), uint64_t(k + c), seed}) % 12) {
+        case 0: return dx + dy;
+        case 1: return -dx + dy;
+        case 2: return dx - dy;
+        case 3: return -dx - dy;
+        case 4: return dx + dz;
+        case 5: return -dx + dz;
+        case 6: return dx - dz;
+        case 7: return -dx - dz;
+        case 8: return dy + dz;
+        case 9: return -dy + dz;
+        case 10: return dy - dz;
+        default: return -dy - dz;
+        }
+    };
+    const double u = fade(x), v = fade(y), w = fade(z);
+    const double x00 = lerp(g(0, 0, 0), g(1, 0, 0), u), x10 = lerp(g(0, 1, 0), g(1, 1, 0), u);
+    const double x01 = lerp(g(0, 0, 1), g(1, 0, 1), u), x11 = lerp(g(0, 1, 1), g(1, 1, 1), u);
+    return lerp(lerp(x00, x10, v), lerp(x01, x11, v), w);
+}
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+TEST(Noise, ValuesAreThoseOfOneHashPerCornerToTheBit) {
+    std::mt19937_64 rng(5);
+    std::vector<Vec3> points;
+    for (const double extent : {1.0, 50.0, 1e6, 1e17, 1e19, 1e300})
+        for (int n = 0; n < 3000; ++n) points.push_back(randomPoint(rng, extent));
+    // Lattice points, their neighbours a few ulps away, zeros of both signs, the
+    // saturated cells and non-finite coordinates.
+    const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+    for (const double a : {-3.0, -1.0, -0.0, 0.0, 1.0, 2.0, 0.5, std::nextafter(1.0, 0.0), std::nextafter(-2.0, 0.0),
+                           4611686018427387904.0, -4611686018427387904.0, 1e30, inf, -inf, nan})
+        for (const double b : {0.0, -0.0, 7.25, -7.75, std::nextafter(3.0, 4.0)})
+            points.push_back(Vec3(a, b, -b)), points.push_back(Vec3(b, a, b)), points.push_back(Vec3(-b, b, a));
+    for (const Vec3& p : points) {
+        const double n = noise01(p);
+        const double v = 0.5 + 0.5 * referenceSignedNoise(p, 0);
+        const double expected = std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.0;
+        ASSERT_TRUE(sameBits(n, expected)) << p.x << " " << p.y << " " << p.z << ": " << n << " " << expected;
+        const Vec3 d = vectorNoise(p);
+        ASSERT_TRUE(sameBits(d.x, std::clamp(referenceSignedNoise(p, 1), -1.0, 1.0)));
+        ASSERT_TRUE(sameBits(d.y, std::clamp(referenceSignedNoise(p, 2), -1.0, 1.0)));
+        ASSERT_TRUE(sameBits(d.z, std::clamp(referenceSignedNoise(p, 3), -1.0, 1.0)));
+    }
 }
 
 TEST(Noise, IsContinuousAndDeterministic) {
