@@ -313,6 +313,7 @@ struct Builder {
             // The tree's root carries the inherited inversion; leaves keep their own.
             p.csg = std::make_unique<CsgNode>(csgNode(object, parentToLevel, where));
             p.csg->inverse = inverse;
+            p.csgPlan = planCsg(*p.csg);
             p.bounded = csgBounds(*p.csg, p.lower, p.upper);
             p.clips = std::move(clips);
             p.bounded = clipBounds(p.clips, p.bounded, p.lower, p.upper);

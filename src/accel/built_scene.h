@@ -72,6 +72,27 @@ struct CsgNode {
     std::vector<CsgNode> clips;
 };
 
+// A CSG tree flattened for csgCrossings: its nodes in pre-order (children before
+// clips) with their parents, and its leaves in that order, so that a leaf's change
+// of state re-evaluates only the nodes above it, instead of the whole tree at each
+// crossing of each leaf.
+struct CsgPlan {
+    struct Node {
+        int parent = -1;           // -1 for the root
+        bool clipOfParent = false; // in the parent's clips, not its children
+        bool firstChild = false;   // the parent's first child (a difference's base)
+        bool leaf = true;
+        Csg::Op op = Csg::Op::Union;
+        bool inverse = false; // applied to operations only: a leaf's state includes its own
+        int children = 0, clips = 0;
+    };
+    std::vector<Node> nodes;
+    std::vector<const CsgNode*> leaves; // in pre-order
+    std::vector<int> leafNode;          // each leaf's index in `nodes`
+    std::vector<char> silent;           // a leaf under a clip: its crossings are not surfaces
+};
+CsgPlan planCsg(const CsgNode& root);
+
 // One analytic Embree user-geometry primitive: a single shape or a CSG tree.
 struct Primitive {
     AnalyticShape shape;
@@ -84,6 +105,7 @@ struct Primitive {
     bool inverse = false;  // normals flipped
     bool noShadow = false;
     std::unique_ptr<CsgNode> csg; // set for Merge, Difference, Intersection
+    CsgPlan csgPlan;              // planCsg(*csg), set with it
     // clipped_by on the primitive as a whole: a crossing counts only if its
     // point is inside every one of these (level space).
     std::vector<CsgNode> clips;
@@ -231,7 +253,7 @@ bool closestCrossingTo(const Primitive& primitive, const Vec3& o, const Vec3& d,
                        SurfaceCrossing& out);
 
 // Every surface crossing of a CSG tree along the whole line, sorted (csg.cpp).
-void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out);
+void csgCrossings(const CsgPlan& plan, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out);
 // Level-space bounds of a CSG tree; false if unbounded.
 bool csgBounds(const CsgNode& node, Vec3& lower, Vec3& upper);
 // Narrows [lower, upper] to the bounds of the clips; returns whether the

@@ -21,57 +21,103 @@ struct LeafEvent {
     Vec3 normal; // object space
 };
 
+// The state of a CsgPlan's nodes along the line: each node's value (inside or
+// not) and how many of its children and clips are inside.
+struct NodeState {
+    bool value = false, leafState = false, firstInside = false;
+    int childrenInside = 0, clipsInside = 0;
+};
+
 // Scratch space kept per thread (no allocation per ray once warm:
 // accel/thread_scratch.h), one list per use.
 struct CrossingScratch {
-    std::vector<const CsgNode*> leaves;
-    std::vector<char> silent;
     std::vector<LeafEvent> events;
     std::vector<char> state;
+    std::vector<NodeState> nodes;
     std::vector<Crossing> leafMany, closestMany;
     std::vector<SurfaceCrossing> nearestAll, closestAll;
 };
 CrossingScratch& crossingScratch() { return ThreadScratch<CrossingScratch>::get(); }
 
-// Leaves in DFS order (children, then clips); a leaf under a clip is silent:
-// its crossings change the state but are not surfaces.
-void collectLeaves(const CsgNode& node, bool silent, std::vector<const CsgNode*>& leaves,
-                   std::vector<char>& silentLeaves) {
+void planNode(const CsgNode& node, int parent, bool clipOfParent, bool firstChild, bool silent, CsgPlan& plan) {
+    const int index = static_cast<int>(plan.nodes.size());
+    CsgPlan::Node n;
+    n.parent = parent;
+    n.clipOfParent = clipOfParent;
+    n.firstChild = firstChild;
+    n.leaf = node.leaf;
+    n.op = node.op;
+    n.inverse = node.inverse;
+    n.children = static_cast<int>(node.children.size());
+    n.clips = static_cast<int>(node.clips.size());
+    plan.nodes.push_back(n);
     if (node.leaf) {
-        leaves.push_back(&node);
-        silentLeaves.push_back(silent);
+        plan.leaves.push_back(&node);
+        plan.leafNode.push_back(index);
+        plan.silent.push_back(silent);
     }
-    for (const CsgNode& child : node.children) collectLeaves(child, silent, leaves, silentLeaves);
-    for (const CsgNode& clip : node.clips) collectLeaves(clip, true, leaves, silentLeaves);
+    for (size_t i = 0; i < node.children.size(); ++i) planNode(node.children[i], index, false, i == 0, silent, plan);
+    for (const CsgNode& clip : node.clips) planNode(clip, index, true, false, true, plan);
 }
 
-// Evaluates the tree on the leaves' current states (leaves in collectLeaves'
-// order). A leaf's state already includes its inversion.
-bool evaluate(const CsgNode& node, const std::vector<char>& state, int& nextLeaf) {
-    bool inside = false;
-    if (node.leaf) {
-        inside = state[nextLeaf++] != 0;
-    } else {
-        bool first = true;
-        for (const CsgNode& child : node.children) {
-            const bool c = evaluate(child, state, nextLeaf);
-            switch (node.op) {
-            case Csg::Op::Union:
-            case Csg::Op::Merge: inside = first ? c : (inside || c); break;
-            case Csg::Op::Intersection: inside = first ? c : (inside && c); break;
-            case Csg::Op::Difference: inside = first ? c : (inside && !c); break;
-            }
-            first = false;
+// A node's value from its leaf state or its children's, then its clips': an
+// operation combines its children (union and merge: any; intersection: all, and
+// at least one; difference: the first and none of the others), then applies its
+// inversion; every clip must be inside too.
+bool nodeValue(const CsgPlan::Node& n, const NodeState& s) {
+    bool inside = s.leafState;
+    if (!n.leaf) {
+        switch (n.op) {
+        case Csg::Op::Union:
+        case Csg::Op::Merge: inside = s.childrenInside > 0; break;
+        case Csg::Op::Intersection: inside = n.children > 0 && s.childrenInside == n.children; break;
+        case Csg::Op::Difference: inside = s.firstInside && s.childrenInside == 1; break;
         }
-        inside = inside != node.inverse;
+        inside = inside != n.inverse;
     }
-    for (const CsgNode& clip : node.clips) {
-        const bool c = evaluate(clip, state, nextLeaf); // always: it advances nextLeaf
-        inside = inside && c;
-    }
-    return inside;
+    return inside && s.clipsInside == n.clips;
 }
 
+// Counts node `index`'s value in its parent by `delta` (+1 or -1).
+void countInParent(const CsgPlan& plan, std::vector<NodeState>& states, int index, int delta) {
+    const CsgPlan::Node& n = plan.nodes[size_t(index)];
+    NodeState& parent = states[size_t(n.parent)];
+    if (n.clipOfParent) {
+        parent.clipsInside += delta;
+    } else {
+        parent.childrenInside += delta;
+        if (n.firstChild) parent.firstInside = delta > 0;
+    }
+}
+
+// Every node's state from the leaves' states, children before parents (the
+// reverse of pre-order).
+void evaluateAll(const CsgPlan& plan, const std::vector<char>& leafStates, std::vector<NodeState>& states) {
+    states.assign(plan.nodes.size(), NodeState{});
+    for (size_t i = 0; i < plan.leafNode.size(); ++i) states[size_t(plan.leafNode[i])].leafState = leafStates[i] != 0;
+    for (size_t i = plan.nodes.size(); i-- > 0;) {
+        states[i].value = nodeValue(plan.nodes[i], states[i]);
+        if (states[i].value && plan.nodes[i].parent >= 0) countInParent(plan, states, int(i), +1);
+    }
+}
+
+// Sets one leaf's state and re-evaluates the nodes above it while their values
+// change; returns the root's value.
+bool setLeafState(const CsgPlan& plan, std::vector<NodeState>& states, int leaf, bool state) {
+    int index = plan.leafNode[size_t(leaf)];
+    states[size_t(index)].leafState = state;
+    while (true) {
+        NodeState& s = states[size_t(index)];
+        const bool value = nodeValue(plan.nodes[size_t(index)], s);
+        if (value == s.value) break;
+        s.value = value;
+        const int parent = plan.nodes[size_t(index)].parent;
+        if (parent < 0) break;
+        countInParent(plan, states, index, value ? +1 : -1);
+        index = parent;
+    }
+    return states[0].value;
+}
 
 } // namespace
 
@@ -97,19 +143,21 @@ bool insideNode(const CsgNode& node, const Vec3& p) {
     return inside;
 }
 
+CsgPlan planCsg(const CsgNode& root) {
+    CsgPlan plan;
+    planNode(root, -1, false, false, false, plan);
+    return plan;
+}
+
 std::unique_ptr<InstalledScratch> installCrossingScratch() { return ThreadScratch<CrossingScratch>::install(); }
 
-void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out) {
+void csgCrossings(const CsgPlan& plan, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out) {
     out.clear();
     CrossingScratch& scratch = crossingScratch();
-    std::vector<const CsgNode*>& leaves = scratch.leaves;
-    std::vector<char>& silent = scratch.silent;
+    const std::vector<const CsgNode*>& leaves = plan.leaves;
     std::vector<LeafEvent>& events = scratch.events;
     std::vector<char>& state = scratch.state;
-    leaves.clear();
-    silent.clear();
     events.clear();
-    collectLeaves(root, false, leaves, silent);
     state.assign(leaves.size(), 0);
     for (size_t i = 0; i < leaves.size(); ++i) {
         const CsgNode& leaf = *leaves[i];
@@ -130,16 +178,15 @@ void csgCrossings(const CsgNode& root, const Vec3& o, const Vec3& d, std::vector
     // A stable sort by t without std::stable_sort's temporary buffer.
     std::sort(events.begin(), events.end(),
               [](const LeafEvent& a, const LeafEvent& b) { return a.t < b.t || (a.t == b.t && a.order < b.order); });
-    int cursor = 0;
-    bool inside = evaluate(root, state, cursor);
+    std::vector<NodeState>& nodes = scratch.nodes;
+    evaluateAll(plan, state, nodes);
+    bool inside = nodes[0].value;
     for (const LeafEvent& e : events) {
-        const CsgNode& leaf = *leaves[e.leaf];
-        state[e.leaf] = e.entering != leaf.inverse;
-        cursor = 0;
-        const bool now = evaluate(root, state, cursor);
+        const CsgNode& leaf = *leaves[size_t(e.leaf)];
+        const bool now = setLeafState(plan, nodes, e.leaf, e.entering != leaf.inverse);
         if (now == inside) continue;
         inside = now;
-        if (silent[e.leaf]) continue;
+        if (plan.silent[size_t(e.leaf)]) continue;
         Vec3 n = unitOrZero(leaf.toLevel.normal(e.normal));
         // Outward from the combined solid: against the ray when entering it.
         if ((dot(n, d) < 0) != now) n = -n;
@@ -228,7 +275,7 @@ bool insideClips(const Primitive& p, const Vec3& o, const Vec3& d, double t) {
 // Every crossing of the primitive along the whole line, sorted, clips applied.
 void primitiveCrossings(const Primitive& p, const Vec3& o, const Vec3& d, std::vector<SurfaceCrossing>& out) {
     if (p.csg) {
-        csgCrossings(*p.csg, o, d, out);
+        csgCrossings(p.csgPlan, o, d, out);
     } else {
         out.clear();
         Crossing c[kMaxCrossings];

@@ -1,0 +1,188 @@
+// CSG crossings through a flattened tree (accel/built_scene.h's CsgPlan): a
+// leaf's change of state re-evaluates only the nodes above it. The crossings
+// must be exactly those of re-evaluating the whole tree at every leaf crossing,
+// as csgCrossings first did; the reference below does that.
+#include "accel/built_scene.h"
+#include "accel/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <random>
+
+namespace drt::accel {
+namespace {
+
+// The whole tree's value from the leaves' states (leaves in pre-order, children
+// before clips; a leaf's state includes its inversion).
+bool wholeTree(const CsgNode& node, const std::vector<char>& state, int& nextLeaf) {
+    bool inside = false;
+    if (node.leaf) {
+        inside = state[size_t(nextLeaf++)] != 0;
+    } else {
+        bool first = true;
+        for (const CsgNode& child : node.children) {
+            const bool c = wholeTree(child, state, nextLeaf);
+            if (node.op == Csg::Op::Intersection) inside = first ? c : (inside && c);
+            else if (node.op == Csg::Op::Difference) inside = first ? c : (inside && !c);
+            else inside = first ? c : (inside || c);
+            first = false;
+        }
+        inside = inside != node.inverse;
+    }
+    for (const CsgNode& clip : node.clips) {
+        const bool c = wholeTree(clip, state, nextLeaf);
+        inside = inside && c;
+    }
+    return inside;
+}
+
+void leavesOf(const CsgNode& node, bool silent, std::vector<const CsgNode*>& leaves, std::vector<char>& silentLeaves) {
+    if (node.leaf) leaves.push_back(&node), silentLeaves.push_back(silent);
+    for (const CsgNode& child : node.children) leavesOf(child, silent, leaves, silentLeaves);
+    for (const CsgNode& clip : node.clips) leavesOf(clip, true, leaves, silentLeaves);
+}
+
+struct Event {
+    double t;
+    int order, leaf;
+    bool entering;
+    Vec3 normal;
+};
+
+std::vector<SurfaceCrossing> referenceCrossings(const CsgNode& root, const Vec3& o, const Vec3& d) {
+    std::vector<const CsgNode*> leaves;
+    std::vector<char> silent, state;
+    leavesOf(root, false, leaves, silent);
+    std::vector<Event> events;
+    for (size_t i = 0; i < leaves.size(); ++i) {
+        const CsgNode& leaf = *leaves[i];
+        const Vec3 lo = leaf.toLevel.inversePoint(o), ld = leaf.toLevel.inverseVector(d);
+        Crossing fixed[kMaxCrossings];
+        std::vector<Crossing> many;
+        const Crossing* c = nullptr;
+        const int n = allCrossings(leaf.shape, lo, ld, fixed, many, c);
+        for (int k = 0; k < n; ++k)
+            events.push_back({c[k].t, int(events.size()), int(i), dot(c[k].normal, ld) < 0, c[k].normal});
+        const bool inside = n > 0 ? dot(c[0].normal, ld) > 0 : insideShape(leaf.shape, lo);
+        state.push_back(inside != leaf.inverse);
+    }
+    std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
+    std::vector<SurfaceCrossing> out;
+    int cursor = 0;
+    bool inside = wholeTree(root, state, cursor);
+    for (const Event& e : events) {
+        const CsgNode& leaf = *leaves[size_t(e.leaf)];
+        state[size_t(e.leaf)] = e.entering != leaf.inverse;
+        cursor = 0;
+        const bool now = wholeTree(root, state, cursor);
+        if (now == inside) continue;
+        inside = now;
+        if (silent[size_t(e.leaf)]) continue;
+        Vec3 n = unitOrZero(leaf.toLevel.normal(e.normal));
+        if ((dot(n, d) < 0) != now) n = -n;
+        out.push_back({e.t, n, leaf.object});
+    }
+    return out;
+}
+
+const Object kObjects[64] = {};
+
+// A random tree of spheres and boxes (each its own object, some inverted,
+// some translated), up to `depth` levels of unions, merges, intersections and
+// differences with up to 4 children, some inverted, some with clips.
+CsgNode randomTree(std::mt19937_64& rng, int depth, int& nextObject) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    CsgNode node;
+    if (depth == 0 || rng() % 4 == 0) {
+        node.leaf = true;
+        if (rng() % 2) {
+            node.shape.kind = ShapeKind::Sphere;
+            node.shape.center = Vec3(u(rng), u(rng), u(rng));
+            node.shape.radius = 0.3 + 0.5 * (u(rng) + 1);
+        } else {
+            node.shape.kind = ShapeKind::Box;
+            const Vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
+            node.shape.lower = min(a, b) - Vec3(0.1);
+            node.shape.upper = max(a, b) + Vec3(0.1);
+        }
+        if (rng() % 3 == 0) node.toLevel = Transform::translate(Vec3(u(rng), u(rng), u(rng)) * 0.5);
+        node.inverse = rng() % 5 == 0;
+        node.object = &kObjects[size_t(nextObject++ % 64)];
+    } else {
+        node.leaf = false;
+        const Csg::Op ops[] = {Csg::Op::Union, Csg::Op::Merge, Csg::Op::Intersection, Csg::Op::Difference};
+        node.op = ops[rng() % 4];
+        node.inverse = rng() % 6 == 0;
+        const int children = 1 + int(rng() % 4);
+        for (int i = 0; i < children; ++i) node.children.push_back(randomTree(rng, depth - 1, nextObject));
+    }
+    if (rng() % 5 == 0) node.clips.push_back(randomTree(rng, std::max(0, depth - 2), nextObject));
+    return node;
+}
+
+bool sameBits(double a, double b) { return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b); }
+
+TEST(CsgPlan, CrossingsAreThoseOfTheWholeTreeReevaluatedAtEachLeafCrossing) {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int crossings = 0, trees = 0;
+    for (int tree = 0; tree < 300; ++tree) {
+        int nextObject = 0;
+        CsgNode root = randomTree(rng, 1 + tree % 4, nextObject);
+        if (root.leaf) continue;
+        ++trees;
+        const CsgPlan plan = planCsg(root);
+        ASSERT_EQ(plan.leaves.size(), plan.leafNode.size());
+        std::vector<SurfaceCrossing> got;
+        for (int ray = 0; ray < 40; ++ray) {
+            // Lines through the middle of the shapes; some along an axis, which
+            // meets boxes' faces edge-on and crosses several leaves at equal t.
+            const Vec3 target = Vec3(u(rng), u(rng), u(rng)) * 0.5;
+            const Vec3 o = ray % 4 == 0 ? target - Vec3(4, 0, 0) : Vec3(u(rng), u(rng), u(rng)) * 4;
+            const Vec3 d = target - o;
+            csgCrossings(plan, o, d, got);
+            const std::vector<SurfaceCrossing> expected = referenceCrossings(root, o, d);
+            ASSERT_EQ(got.size(), expected.size()) << "tree " << tree << " ray " << ray;
+            for (size_t i = 0; i < got.size(); ++i) {
+                EXPECT_TRUE(sameBits(got[i].t, expected[i].t));
+                EXPECT_TRUE(sameBits(got[i].normal.x, expected[i].normal.x) &&
+                            sameBits(got[i].normal.y, expected[i].normal.y) &&
+                            sameBits(got[i].normal.z, expected[i].normal.z));
+                EXPECT_EQ(got[i].object, expected[i].object);
+            }
+            crossings += int(got.size());
+        }
+    }
+    // The trees are not all empty or all solid: many crossings were compared.
+    EXPECT_GT(trees, 200);
+    EXPECT_GT(crossings, 5000);
+}
+
+TEST(CsgPlan, NodesArePreOrderWithChildrenBeforeClips) {
+    CsgNode root;
+    root.leaf = false;
+    root.op = Csg::Op::Difference;
+    CsgNode a, b, clip;
+    a.object = &kObjects[0];
+    b.object = &kObjects[1];
+    clip.object = &kObjects[2];
+    a.clips.push_back(clip);
+    root.children = {a, b};
+    const CsgPlan plan = planCsg(root);
+    ASSERT_EQ(plan.nodes.size(), 4u);
+    ASSERT_EQ(plan.leaves.size(), 3u);
+    EXPECT_EQ(plan.leaves[0]->object, &kObjects[0]);
+    EXPECT_EQ(plan.leaves[1]->object, &kObjects[2]); // a's clip, before b
+    EXPECT_EQ(plan.leaves[2]->object, &kObjects[1]);
+    EXPECT_EQ(plan.silent, (std::vector<char>{0, 1, 0}));
+    EXPECT_TRUE(plan.nodes[1].firstChild);
+    EXPECT_TRUE(plan.nodes[2].clipOfParent);
+    EXPECT_EQ(plan.nodes[2].parent, 1);
+    EXPECT_EQ(plan.nodes[3].parent, 0);
+    EXPECT_FALSE(plan.nodes[3].firstChild);
+}
+
+} // namespace
+} // namespace drt::accel
