@@ -63,9 +63,11 @@ std::vector<SurfaceCrossing> referenceCrossings(const CsgNode& root, const Vec3&
         std::vector<Crossing> many;
         const Crossing* c = nullptr;
         const int n = allCrossings(leaf.shape, lo, ld, fixed, many, c);
-        for (int k = 0; k < n; ++k)
+        const bool solid = isSolidShape(leaf.shape);
+        for (int k = 0; solid && k < n; ++k)
             events.push_back({c[k].t, int(events.size()), int(i), dot(c[k].normal, ld) < 0, c[k].normal});
-        const bool inside = n > 0 ? dot(c[0].normal, ld) > 0 : insideShape(leaf.shape, lo);
+        bool inside = false;
+        if (solid) inside = n > 0 ? dot(c[0].normal, ld) > 0 : insideShape(leaf.shape, lo);
         state.push_back(inside != leaf.inverse);
     }
     std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
@@ -89,15 +91,26 @@ std::vector<SurfaceCrossing> referenceCrossings(const CsgNode& root, const Vec3&
 
 const Object kObjects[64] = {};
 
-// A random tree of spheres and boxes (each its own object, some inverted,
-// some translated), up to `depth` levels of unions, merges, intersections and
+// A random tree of spheres, boxes, some planes and discs (not solid: their
+// crossings are ignored), each its own object, some inverted, some translated,
+// rotated or squashed to a hundredth along one axis, up to `depth` levels of unions, merges, intersections and
 // differences with up to 4 children, some inverted, some with clips.
 CsgNode randomTree(std::mt19937_64& rng, int depth, int& nextObject) {
     std::uniform_real_distribution<double> u(-1, 1);
     CsgNode node;
     if (depth == 0 || rng() % 4 == 0) {
         node.leaf = true;
-        if (rng() % 2) {
+        const uint64_t kind = rng() % 10;
+        if (kind == 0) {
+            node.shape.kind = ShapeKind::Plane;
+            node.shape.normal = normalize(Vec3(u(rng), u(rng), u(rng)));
+            node.shape.distance = 0.5 * u(rng);
+        } else if (kind == 1) {
+            node.shape.kind = ShapeKind::Disc;
+            node.shape.center = Vec3(u(rng), u(rng), u(rng)) * 0.5;
+            node.shape.normal = normalize(Vec3(u(rng), u(rng), u(rng)));
+            node.shape.radius = 0.8;
+        } else if (kind < 6) {
             node.shape.kind = ShapeKind::Sphere;
             node.shape.center = Vec3(u(rng), u(rng), u(rng));
             node.shape.radius = 0.3 + 0.5 * (u(rng) + 1);
@@ -107,7 +120,11 @@ CsgNode randomTree(std::mt19937_64& rng, int depth, int& nextObject) {
             node.shape.lower = min(a, b) - Vec3(0.1);
             node.shape.upper = max(a, b) + Vec3(0.1);
         }
-        if (rng() % 3 == 0) node.toLevel = Transform::translate(Vec3(u(rng), u(rng), u(rng)) * 0.5);
+        const Vec3 angles = Vec3(u(rng), u(rng), u(rng)) * 180;
+        const uint64_t placement = rng() % 6;
+        if (placement == 0) node.toLevel = Transform::translate(Vec3(u(rng), u(rng), u(rng)) * 0.5);
+        else if (placement == 1) node.toLevel = Transform::rotate(angles);
+        else if (placement == 2) node.toLevel = Transform::scale(Vec3(1, 0.01, 1.5)).then(Transform::rotate(angles));
         node.inverse = rng() % 5 == 0;
         node.object = &kObjects[size_t(nextObject++ % 64)];
     } else {
@@ -127,7 +144,7 @@ bool sameBits(double a, double b) { return std::bit_cast<uint64_t>(a) == std::bi
 TEST(CsgPlan, CrossingsAreThoseOfTheWholeTreeReevaluatedAtEachLeafCrossing) {
     std::mt19937_64 rng(17);
     std::uniform_real_distribution<double> u(-1, 1);
-    int crossings = 0, trees = 0;
+    int crossings = 0, trees = 0, boxed = 0, neverCrossed = 0;
     for (int tree = 0; tree < 300; ++tree) {
         int nextObject = 0;
         CsgNode root = randomTree(rng, 1 + tree % 4, nextObject);
@@ -135,12 +152,16 @@ TEST(CsgPlan, CrossingsAreThoseOfTheWholeTreeReevaluatedAtEachLeafCrossing) {
         ++trees;
         const CsgPlan plan = planCsg(root);
         ASSERT_EQ(plan.leaves.size(), plan.leafNode.size());
+        ASSERT_EQ(plan.leaves.size(), plan.leafBounds.size());
+        for (const CsgPlan::LeafBounds& b : plan.leafBounds) boxed += b.boxed, neverCrossed += b.neverCrossed;
         std::vector<SurfaceCrossing> got;
         for (int ray = 0; ray < 40; ++ray) {
             // Lines through the middle of the shapes; some along an axis, which
             // meets boxes' faces edge-on and crosses several leaves at equal t.
             const Vec3 target = Vec3(u(rng), u(rng), u(rng)) * 0.5;
-            const Vec3 o = ray % 4 == 0 ? target - Vec3(4, 0, 0) : Vec3(u(rng), u(rng), u(rng)) * 4;
+            // Origins near and far (where the margin for rounding grows).
+            const double distance = ray % 8 == 1 ? 1e3 : ray % 8 == 2 ? 1e6 : 4;
+            const Vec3 o = ray % 4 == 0 ? target - Vec3(4, 0, 0) : Vec3(u(rng), u(rng), u(rng)) * distance;
             const Vec3 d = target - o;
             csgCrossings(plan, o, d, got);
             const std::vector<SurfaceCrossing> expected = referenceCrossings(root, o, d);
@@ -157,7 +178,10 @@ TEST(CsgPlan, CrossingsAreThoseOfTheWholeTreeReevaluatedAtEachLeafCrossing) {
     }
     // The trees are not all empty or all solid: many crossings were compared.
     EXPECT_GT(trees, 200);
-    EXPECT_GT(crossings, 5000);
+    EXPECT_GT(crossings, 3000);
+    // Lines skip spheres and boxes they miss, and discs always.
+    EXPECT_GT(boxed, 500);
+    EXPECT_GT(neverCrossed, 50);
 }
 
 TEST(CsgPlan, NodesArePreOrderWithChildrenBeforeClips) {

@@ -90,6 +90,19 @@ struct CsgPlan {
     std::vector<const CsgNode*> leaves; // in pre-order
     std::vector<int> leafNode;          // each leaf's index in `nodes`
     std::vector<char> silent;           // a leaf under a clip: its crossings are not surfaces
+    // Per leaf, what a line that cannot meet it skips (csgCrossings): a leaf that
+    // is not solid never changes the state; a sphere or box that the line misses
+    // by more than a margin (level-space bounds grown by the rounding of its
+    // solver, below) has no crossing and the line starts outside it.
+    struct LeafBounds {
+        bool neverCrossed = false; // not solid: its crossings are ignored
+        bool boxed = false;        // a sphere or box with finite level-space bounds
+        Vec3 lower, upper;
+        double reach = 0;        // |centre| + size, max norms
+        double size = 0;         // the bounds' largest side
+        double conditioning = 1; // |M| |M^-1| of toLevel's linear part, max-row-sum norms
+    };
+    std::vector<LeafBounds> leafBounds;
 };
 CsgPlan planCsg(const CsgNode& root);
 

@@ -143,9 +143,80 @@ bool insideNode(const CsgNode& node, const Vec3& p) {
     return inside;
 }
 
+namespace {
+
+double linearNorm(const Mat4& m) {
+    double norm = 0;
+    for (int row = 0; row < 3; ++row)
+        norm = std::max(norm, std::fabs(m.m[row][0]) + std::fabs(m.m[row][1]) + std::fabs(m.m[row][2]));
+    return norm;
+}
+
+CsgPlan::LeafBounds leafBounds(const CsgNode& leaf) {
+    CsgPlan::LeafBounds b;
+    if (!isSolidShape(leaf.shape)) {
+        b.neverCrossed = true;
+        return b;
+    }
+    if (leaf.shape.kind != ShapeKind::Sphere && leaf.shape.kind != ShapeKind::Box) return b;
+    if (!shapeBounds(leaf.shape, b.lower, b.upper)) return b;
+    transformBounds(leaf.toLevel, b.lower, b.upper);
+    b.size = maxComponent(b.upper - b.lower);
+    b.reach = maxComponent(max(abs(b.lower), abs(b.upper))) + b.size;
+    b.conditioning = linearNorm(leaf.toLevel.matrix()) * linearNorm(leaf.toLevel.inverseMatrix());
+    b.boxed = isFinite(b.lower) && isFinite(b.upper) && b.size > 0 && std::isfinite(b.reach) &&
+              std::isfinite(b.conditioning);
+    return b;
+}
+
+// A line o + t d (all t) as the leaves' bounds test takes it: its direction's
+// reciprocals (an axis the line runs across has none). `usable` when o and the
+// reciprocals are finite; else no leaf is skipped.
+struct CullLine {
+    Vec3 o, inverseD;
+    bool across[3];
+    double originNorm;
+    bool usable;
+};
+
+CullLine cullLine(const Vec3& o, const Vec3& d) {
+    CullLine line{o, Vec3(0.0), {}, maxComponent(abs(o)), isFinite(o) && isFinite(d)};
+    for (int axis = 0; axis < 3; ++axis) {
+        line.across[axis] = d[axis] == 0;
+        if (!line.across[axis]) line.inverseD[axis] = 1 / d[axis];
+    }
+    line.usable = line.usable && isFinite(line.inverseD) && std::isfinite(line.originNorm);
+    return line;
+}
+
+// Whether the line misses the leaf's bounds grown by a margin well above what
+// rounding moves its solver's crossings and inside test by: with S = |o| +
+// reach and k the conditioning, m = 1e-6 k S (1 + k S / size), against errors
+// of order 1e-16 k S in the leaf-space origin and 1e-16 k^2 S^2 / size in a
+// sphere's discriminant (the slab test's own rounding is of order 1e-16 S).
+bool lineMissesLeaf(const CsgPlan::LeafBounds& b, const CullLine& line) {
+    const double reach = line.originNorm + b.reach;
+    const double margin = 1e-6 * b.conditioning * reach * (1 + b.conditioning * reach / b.size);
+    double tNear = -HUGE_VAL, tFar = HUGE_VAL;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double lo = b.lower[axis] - margin - line.o[axis], hi = b.upper[axis] + margin - line.o[axis];
+        if (line.across[axis]) {
+            if (lo > 0 || hi < 0) return true;
+            continue;
+        }
+        const double t0 = lo * line.inverseD[axis], t1 = hi * line.inverseD[axis];
+        tNear = std::max(tNear, std::min(t0, t1));
+        tFar = std::min(tFar, std::max(t0, t1));
+    }
+    return tNear > tFar;
+}
+
+} // namespace
+
 CsgPlan planCsg(const CsgNode& root) {
     CsgPlan plan;
     planNode(root, -1, false, false, false, plan);
+    for (const CsgNode* leaf : plan.leaves) plan.leafBounds.push_back(leafBounds(*leaf));
     return plan;
 }
 
@@ -159,8 +230,14 @@ void csgCrossings(const CsgPlan& plan, const Vec3& o, const Vec3& d, std::vector
     std::vector<char>& state = scratch.state;
     events.clear();
     state.assign(leaves.size(), 0);
+    const CullLine line = cullLine(o, d);
     for (size_t i = 0; i < leaves.size(); ++i) {
         const CsgNode& leaf = *leaves[i];
+        const CsgPlan::LeafBounds& bounds = plan.leafBounds[i];
+        if (bounds.neverCrossed || (bounds.boxed && line.usable && lineMissesLeaf(bounds, line))) {
+            state[i] = leaf.inverse; // outside, and no crossing
+            continue;
+        }
         const Vec3 lo = leaf.toLevel.inversePoint(o), ld = leaf.toLevel.inverseVector(d);
         thread_local Crossing fixed[kMaxCrossings]; // not zero-initialised per leaf
         std::vector<Crossing>& many = scratch.leafMany;
