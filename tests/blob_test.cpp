@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 
 namespace drt {
@@ -229,6 +230,58 @@ TEST(BlobIntersect, TranslatedAndScaledComponentsMatchMovedOnes) {
         }
     }
     EXPECT_GT(compared, 500);
+}
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool sameBits(const Vec3& a, const Vec3& b) { return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z); }
+
+// A blob of many components takes only those a line or point may meet from a
+// bounding-box hierarchy; the crossings, field and gradient must be those of
+// testing every component, to the bit, for lines near and far (where the
+// hierarchy's margin for rounding grows), grazing ones and points on and off
+// the surface.
+TEST(BlobIntersect, SpatialIndexGivesTheResultsOfTestingEveryComponent) {
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Blob blob;
+    blob.threshold = 0.6;
+    for (int i = 0; i < 300; ++i) // a cloud of small spheres, POV-Ray's logo blob's kind
+        blob.components.push_back(ball(Vec3(u(rng), u(rng), 0.3 * u(rng)) * 2, 0.08 + 0.1 * (u(rng) + 1), 1));
+    blob.components.push_back(ball(Vec3(0.5, 0, 0), 0.5, -0.5, Transform::scale(Vec3(1, 2, 0.5))));
+    BlobComponent rod;
+    rod.kind = BlobComponent::Kind::Cylinder;
+    rod.center = Vec3(-2, -1, 0);
+    rod.end = Vec3(2, 1, 0.2);
+    rod.radius = 0.15;
+    blob.components.push_back(rod);
+    const BlobGeometry indexed(blob), every(blob, false);
+    std::vector<Crossing> got, expected;
+    int crossings = 0;
+    for (int ray = 0; ray < 3000; ++ray) {
+        const double distance = ray % 10 == 1 ? 1e3 : ray % 10 == 2 ? 1e6 : 5;
+        const Vec3 target = Vec3(u(rng), u(rng), 0.3 * u(rng)) * 2;
+        Vec3 o = target + randomUnit(rng) * distance;
+        Vec3 d = target - o;
+        if (ray % 10 == 3) d = Vec3(0, d.y, d.z); // across the x slabs
+        if (ray % 10 == 4) { // grazing a component: through a point at its radius
+            const BlobComponent& c = blob.components[size_t(ray) % 300];
+            o = c.center + Vec3(0, c.radius, 0) - Vec3(5, 0, 0) + Vec3(0, 0, 1e-9 * u(rng));
+            d = Vec3(1, 0, 0);
+        }
+        indexed.intersect(o, d, got);
+        every.intersect(o, d, expected);
+        ASSERT_EQ(got.size(), expected.size()) << "ray " << ray;
+        for (size_t i = 0; i < got.size(); ++i) {
+            ASSERT_TRUE(sameBits(got[i].t, expected[i].t)) << "ray " << ray;
+            ASSERT_TRUE(sameBits(got[i].normal, expected[i].normal)) << "ray " << ray;
+        }
+        crossings += int(got.size());
+        const Vec3 p = ray % 2 == 0 && !got.empty() ? o + got[0].t * d : target + randomUnit(rng) * 0.1;
+        ASSERT_TRUE(sameBits(indexed.field(p), every.field(p)));
+        ASSERT_TRUE(sameBits(indexed.gradient(p), every.gradient(p)));
+        ASSERT_EQ(indexed.inside(p), every.inside(p));
+    }
+    EXPECT_GT(crossings, 3000);
 }
 
 TEST(BlobIntersect, BadBlobsAreRejected) {

@@ -1,5 +1,6 @@
 #include "accel/blob_shape.h"
 
+#include "accel/line_cull.h"
 #include "accel/polynomial.h"
 
 #include <algorithm>
@@ -43,9 +44,17 @@ void addPiece(std::vector<Piece>& pieces, const Vec3& w, const Vec3& dir, double
     pieces.push_back({t0, t1, w, dir, tRef, 1 / radius2, strength});
 }
 
+// intersect's, field's and gradient's working lists, kept per thread
+// (accel/thread_scratch.h).
+struct BlobScratch {
+    std::vector<Piece> pieces;
+    std::vector<double> cuts;
+    std::vector<int> lineComponents, pointComponents;
+};
+
 } // namespace
 
-BlobGeometry::BlobGeometry(const Blob& blob) : threshold_(blob.threshold) {
+BlobGeometry::BlobGeometry(const Blob& blob, bool spatialIndex) : threshold_(blob.threshold) {
     if (blob.components.empty()) throw std::invalid_argument("blob needs at least one component");
     if (!positiveFinite(blob.threshold)) throw std::invalid_argument("blob threshold must be positive");
     for (const BlobComponent& b : blob.components) {
@@ -67,6 +76,126 @@ BlobGeometry::BlobGeometry(const Blob& blob) : threshold_(blob.threshold) {
         components_.push_back(c);
     }
     blobBounds(blob, lower_, upper_);
+    if (spatialIndex) buildIndex();
+}
+
+namespace {
+constexpr size_t kIndexedFrom = 16; // fewer components: test them all
+constexpr int kLeafSize = 4;
+
+Vec3 sphereLower(const Vec3& centre, double radius2) { return centre - Vec3(std::sqrt(radius2)); }
+Vec3 sphereUpper(const Vec3& centre, double radius2) { return centre + Vec3(std::sqrt(radius2)); }
+} // namespace
+
+void BlobGeometry::buildIndex() {
+    if (components_.size() < kIndexedFrom) return;
+    for (size_t i = 0; i < components_.size(); ++i) {
+        const Component& c = components_[i];
+        const bool sphere = c.kind == BlobComponent::Kind::Sphere && !c.transformed;
+        (sphere && isFinite(c.center) ? indexed_ : unindexed_).push_back(int(i));
+    }
+    if (indexed_.size() < kIndexedFrom) { // mostly transformed or cylinders: nothing to gain
+        indexed_.clear();
+        unindexed_.clear();
+        return;
+    }
+    smallestRadius_ = HUGE_VAL;
+    for (int i : indexed_) {
+        const Component& c = components_[size_t(i)];
+        smallestRadius_ = std::min(smallestRadius_, std::sqrt(c.radius2));
+        const Vec3 lo = sphereLower(c.center, c.radius2), hi = sphereUpper(c.center, c.radius2);
+        reach_ = std::max({reach_, maxComponent(abs(lo)), maxComponent(abs(hi))});
+    }
+    // Median splits along the longest side of the centres' box.
+    const auto build = [&](auto& self, int first, int count) -> void {
+        const size_t node = index_.size();
+        index_.push_back({});
+        Vec3 lower(HUGE_VAL), upper(-HUGE_VAL), centreLower(HUGE_VAL), centreUpper(-HUGE_VAL);
+        for (int k = first; k < first + count; ++k) {
+            const Component& c = components_[size_t(indexed_[size_t(k)])];
+            lower = min(lower, sphereLower(c.center, c.radius2));
+            upper = max(upper, sphereUpper(c.center, c.radius2));
+            centreLower = min(centreLower, c.center);
+            centreUpper = max(centreUpper, c.center);
+        }
+        index_[node].lower = lower;
+        index_[node].upper = upper;
+        if (count <= kLeafSize) {
+            index_[node].first = first;
+            index_[node].count = count;
+            return;
+        }
+        const Vec3 extent = centreUpper - centreLower;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+        const int half = count / 2;
+        const auto below = [&](int a, int b) {
+            return components_[size_t(a)].center[axis] < components_[size_t(b)].center[axis];
+        };
+        std::nth_element(indexed_.begin() + first, indexed_.begin() + first + half, indexed_.begin() + first + count,
+                         below);
+        self(self, first, half);
+        index_[node].second = int(index_.size());
+        self(self, first + half, count - half);
+    };
+    build(build, 0, int(indexed_.size()));
+    reach_ += maxComponent(index_[0].upper - index_[0].lower);
+}
+
+namespace {
+
+// Every component in a leaf whose box `overlaps` accepts, and the unindexed
+// ones, in the components' order.
+template <class Node, class Overlaps>
+void gatherCandidates(const std::vector<Node>& index, const std::vector<int>& indexed,
+                      const std::vector<int>& unindexed, Overlaps overlaps, std::vector<int>& out) {
+    out = unindexed;
+    int stack[64], depth = 0;
+    stack[depth++] = 0;
+    while (depth > 0) {
+        const int at = stack[--depth];
+        const Node& node = index[size_t(at)];
+        if (!overlaps(node.lower, node.upper)) continue;
+        if (node.count > 0) {
+            out.insert(out.end(), indexed.begin() + node.first, indexed.begin() + node.first + node.count);
+            continue;
+        }
+        stack[depth++] = node.second;
+        stack[depth++] = at + 1;
+    }
+    std::sort(out.begin(), out.end());
+}
+
+} // namespace
+
+// Skipping a sphere is exact: addPiece's gap r^2 - |w*|^2 (w* the closest
+// approach) is rounded by about 1e-16 |w| r, and the field's q by 1e-16 |w|^2 /
+// r^2, far below the margins here (1e-6 of the extent of origin and blob).
+const int* BlobGeometry::lineCandidates(const Vec3& o, const Vec3& d, std::vector<int>& scratch,
+                                       size_t& count) const {
+    count = components_.size();
+    const CullLine line = cullLine(o, d);
+    if (index_.empty() || !line.usable) return nullptr;
+    const double extent = line.originNorm + reach_;
+    const double margin = 1e-6 * extent * (1 + extent / smallestRadius_);
+    gatherCandidates(
+        index_, indexed_, unindexed_,
+        [&](const Vec3& lower, const Vec3& upper) { return !lineMissesBox(line, lower, upper, margin); }, scratch);
+    count = scratch.size();
+    return scratch.data();
+}
+
+const int* BlobGeometry::pointCandidates(const Vec3& p, std::vector<int>& scratch, size_t& count) const {
+    count = components_.size();
+    if (index_.empty() || !isFinite(p)) return nullptr;
+    const double margin = 1e-6 * (maxComponent(abs(p)) + reach_);
+    const auto within = [&](const Vec3& lower, const Vec3& upper) {
+        for (int axis = 0; axis < 3; ++axis)
+            if (!(p[axis] >= lower[axis] - margin && p[axis] <= upper[axis] + margin)) return false;
+        return true;
+    };
+    gatherCandidates(index_, indexed_, unindexed_, within, scratch);
+    count = scratch.size();
+    return scratch.data();
 }
 
 Vec3 BlobGeometry::offsetFromCore(const Component& c, const Vec3& q) {
@@ -78,8 +207,11 @@ Vec3 BlobGeometry::offsetFromCore(const Component& c, const Vec3& q) {
 
 // sum of strength (1 - d^2/r^2)^2 over the components with d < r.
 double BlobGeometry::field(const Vec3& p) const {
+    size_t count = 0;
+    const int* candidates = pointCandidates(p, ThreadScratch<BlobScratch>::get().pointComponents, count);
     double sum = 0;
-    for (const Component& c : components_) {
+    for (size_t k = 0; k < count; ++k) {
+        const Component& c = components_[candidates ? size_t(candidates[k]) : k];
         const Vec3 w = offsetFromCore(c, c.transformed ? c.toBlob.inversePoint(p) : p);
         const double q = dot(w, w) / c.radius2;
         if (q < 1) sum += c.strength * (1 - q) * (1 - q);
@@ -90,8 +222,11 @@ double BlobGeometry::field(const Vec3& p) const {
 // d/dp of strength (1 - |w|^2/r^2)^2 = -4 strength (1 - q) w / r^2 in
 // component space; gradients go to blob space by the inverse transpose.
 Vec3 BlobGeometry::gradient(const Vec3& p) const {
+    size_t count = 0;
+    const int* candidates = pointCandidates(p, ThreadScratch<BlobScratch>::get().pointComponents, count);
     Vec3 sum(0);
-    for (const Component& c : components_) {
+    for (size_t k = 0; k < count; ++k) {
+        const Component& c = components_[candidates ? size_t(candidates[k]) : k];
         const Vec3 w = offsetFromCore(c, c.transformed ? c.toBlob.inversePoint(p) : p);
         const double q = dot(w, w) / c.radius2;
         if (q >= 1) continue;
@@ -100,16 +235,6 @@ Vec3 BlobGeometry::gradient(const Vec3& p) const {
     }
     return sum;
 }
-
-namespace {
-
-// intersect's working lists, kept per thread (accel/thread_scratch.h).
-struct BlobScratch {
-    std::vector<Piece> pieces;
-    std::vector<double> cuts;
-};
-
-} // namespace
 
 std::unique_ptr<InstalledScratch> installBlobScratch() { return ThreadScratch<BlobScratch>::install(); }
 
@@ -120,7 +245,10 @@ void BlobGeometry::intersect(const Vec3& o, const Vec3& d, std::vector<Crossing>
     std::vector<double>& cuts = scratch.cuts;
     pieces.clear();
     const double inf = HUGE_VAL;
-    for (const Component& c : components_) {
+    size_t count = 0;
+    const int* candidates = lineCandidates(o, d, scratch.lineComponents, count);
+    for (size_t k = 0; k < count; ++k) {
+        const Component& c = components_[candidates ? size_t(candidates[k]) : k];
         const Vec3 oc = c.transformed ? c.toBlob.inversePoint(o) : o;
         const Vec3 dc = c.transformed ? c.toBlob.inverseVector(d) : d;
         const Vec3 w = oc - c.center; // offset from the centre at t = 0

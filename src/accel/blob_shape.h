@@ -20,7 +20,9 @@ class BlobGeometry {
 public:
     // Throws std::invalid_argument for no component, a non-positive or
     // non-finite radius, threshold or strength, or a cylinder with equal ends.
-    explicit BlobGeometry(const Blob& blob);
+    // `spatialIndex` false tests every component for every line and point (the
+    // same results, to the bit; for tests).
+    explicit BlobGeometry(const Blob& blob, bool spatialIndex = true);
 
     // Every crossing of the line o + t d, sorted by t, outward normals.
     void intersect(const Vec3& o, const Vec3& d, std::vector<Crossing>& out) const;
@@ -42,6 +44,27 @@ private:
     // Component-space vector from the nearest point of the component's core
     // (centre or axis segment) to q.
     static Vec3 offsetFromCore(const Component& c, const Vec3& q);
+
+    // The components a line or a point may meet, in their order (so sums are
+    // made in the same order as over all of them): with many components, a
+    // bounding-box hierarchy over the untransformed spheres skips those whose
+    // box, grown by a margin far above the rounding of the tests it replaces,
+    // the line misses or the point lies outside; the others are always taken.
+    // The candidates' indices in `scratch`, or nullptr for every component;
+    // `count` is set to their number.
+    const int* lineCandidates(const Vec3& o, const Vec3& d, std::vector<int>& scratch, size_t& count) const;
+    const int* pointCandidates(const Vec3& p, std::vector<int>& scratch, size_t& count) const;
+    void buildIndex();
+    struct IndexNode {
+        Vec3 lower, upper;
+        int first = 0, count = 0; // a leaf: indexed_[first, first + count)
+        int second = 0;           // an inner node: its first child follows it, its second is here
+    };
+    std::vector<IndexNode> index_; // empty: every component is a candidate
+    std::vector<int> indexed_;     // the spheres in the hierarchy, by leaf
+    std::vector<int> unindexed_;   // the rest, in order
+    double reach_ = 0;             // max |coordinate| of the indexed boxes plus their largest side
+    double smallestRadius_ = 0;    // of the indexed spheres
 
     std::vector<Component> components_;
     double threshold_ = 1;

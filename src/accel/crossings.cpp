@@ -3,6 +3,7 @@
 // leaves' inside/outside states with the tree's operations, and report the
 // points where the combined state changes).
 #include "accel/built_scene.h"
+#include "accel/line_cull.h"
 
 #include <algorithm>
 #include <cmath>
@@ -169,26 +170,6 @@ CsgPlan::LeafBounds leafBounds(const CsgNode& leaf) {
     return b;
 }
 
-// A line o + t d (all t) as the leaves' bounds test takes it: its direction's
-// reciprocals (an axis the line runs across has none). `usable` when o and the
-// reciprocals are finite; else no leaf is skipped.
-struct CullLine {
-    Vec3 o, inverseD;
-    bool across[3];
-    double originNorm;
-    bool usable;
-};
-
-CullLine cullLine(const Vec3& o, const Vec3& d) {
-    CullLine line{o, Vec3(0.0), {}, maxComponent(abs(o)), isFinite(o) && isFinite(d)};
-    for (int axis = 0; axis < 3; ++axis) {
-        line.across[axis] = d[axis] == 0;
-        if (!line.across[axis]) line.inverseD[axis] = 1 / d[axis];
-    }
-    line.usable = line.usable && isFinite(line.inverseD) && std::isfinite(line.originNorm);
-    return line;
-}
-
 // Whether the line misses the leaf's bounds grown by a margin well above what
 // rounding moves its solver's crossings and inside test by: with S = |o| +
 // reach and k the conditioning, m = 1e-6 k S (1 + k S / size), against errors
@@ -197,18 +178,7 @@ CullLine cullLine(const Vec3& o, const Vec3& d) {
 bool lineMissesLeaf(const CsgPlan::LeafBounds& b, const CullLine& line) {
     const double reach = line.originNorm + b.reach;
     const double margin = 1e-6 * b.conditioning * reach * (1 + b.conditioning * reach / b.size);
-    double tNear = -HUGE_VAL, tFar = HUGE_VAL;
-    for (int axis = 0; axis < 3; ++axis) {
-        const double lo = b.lower[axis] - margin - line.o[axis], hi = b.upper[axis] + margin - line.o[axis];
-        if (line.across[axis]) {
-            if (lo > 0 || hi < 0) return true;
-            continue;
-        }
-        const double t0 = lo * line.inverseD[axis], t1 = hi * line.inverseD[axis];
-        tNear = std::max(tNear, std::min(t0, t1));
-        tFar = std::min(tFar, std::max(t0, t1));
-    }
-    return tNear > tFar;
+    return lineMissesBox(line, b.lower, b.upper, margin);
 }
 
 } // namespace
