@@ -103,6 +103,15 @@ struct CsgPlan {
         double conditioning = 1; // |M| |M^-1| of toLevel's linear part, max-row-sum norms
     };
     std::vector<LeafBounds> leafBounds;
+    // A node's state along a line: its value (inside or not) and how many of its
+    // children and clips are inside.
+    struct NodeState {
+        bool value = false, leafState = false, firstInside = false;
+        int childrenInside = 0, clipsInside = 0;
+    };
+    // Every node's state where the line meets no leaf (each leaf's state its
+    // inversion): where csgCrossings starts, changing only the leaves it meets.
+    std::vector<NodeState> outside;
 };
 CsgPlan planCsg(const CsgNode& root);
 

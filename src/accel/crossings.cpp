@@ -22,18 +22,12 @@ struct LeafEvent {
     Vec3 normal; // object space
 };
 
-// The state of a CsgPlan's nodes along the line: each node's value (inside or
-// not) and how many of its children and clips are inside.
-struct NodeState {
-    bool value = false, leafState = false, firstInside = false;
-    int childrenInside = 0, clipsInside = 0;
-};
+using NodeState = CsgPlan::NodeState;
 
 // Scratch space kept per thread (no allocation per ray once warm:
 // accel/thread_scratch.h), one list per use.
 struct CrossingScratch {
     std::vector<LeafEvent> events;
-    std::vector<char> state;
     std::vector<NodeState> nodes;
     std::vector<Crossing> leafMany, closestMany;
     std::vector<SurfaceCrossing> nearestAll, closestAll;
@@ -186,7 +180,12 @@ bool lineMissesLeaf(const CsgPlan::LeafBounds& b, const CullLine& line) {
 CsgPlan planCsg(const CsgNode& root) {
     CsgPlan plan;
     planNode(root, -1, false, false, false, plan);
-    for (const CsgNode* leaf : plan.leaves) plan.leafBounds.push_back(leafBounds(*leaf));
+    std::vector<char> inversions;
+    for (const CsgNode* leaf : plan.leaves) {
+        plan.leafBounds.push_back(leafBounds(*leaf));
+        inversions.push_back(leaf->inverse);
+    }
+    evaluateAll(plan, inversions, plan.outside);
     return plan;
 }
 
@@ -197,17 +196,15 @@ void csgCrossings(const CsgPlan& plan, const Vec3& o, const Vec3& d, std::vector
     CrossingScratch& scratch = crossingScratch();
     const std::vector<const CsgNode*>& leaves = plan.leaves;
     std::vector<LeafEvent>& events = scratch.events;
-    std::vector<char>& state = scratch.state;
+    std::vector<NodeState>& nodes = scratch.nodes;
     events.clear();
-    state.assign(leaves.size(), 0);
+    nodes = plan.outside;
     const CullLine line = cullLine(o, d);
     for (size_t i = 0; i < leaves.size(); ++i) {
         const CsgNode& leaf = *leaves[i];
         const CsgPlan::LeafBounds& bounds = plan.leafBounds[i];
-        if (bounds.neverCrossed || (bounds.boxed && line.usable && lineMissesLeaf(bounds, line))) {
-            state[i] = leaf.inverse; // outside, and no crossing
-            continue;
-        }
+        if (bounds.neverCrossed || (bounds.boxed && line.usable && lineMissesLeaf(bounds, line)))
+            continue; // outside, and no crossing: as in plan.outside
         const Vec3 lo = leaf.toLevel.inversePoint(o), ld = leaf.toLevel.inverseVector(d);
         thread_local Crossing fixed[kMaxCrossings]; // not zero-initialised per leaf
         std::vector<Crossing>& many = scratch.leafMany;
@@ -220,13 +217,11 @@ void csgCrossings(const CsgPlan& plan, const Vec3& o, const Vec3& d, std::vector
         // State before the first crossing along the whole line.
         bool inside = false;
         if (solid) inside = n > 0 ? dot(c[0].normal, ld) > 0 : insideShape(leaf.shape, lo);
-        state[i] = inside != leaf.inverse;
+        if (inside) setLeafState(plan, nodes, int(i), !leaf.inverse);
     }
     // A stable sort by t without std::stable_sort's temporary buffer.
     std::sort(events.begin(), events.end(),
               [](const LeafEvent& a, const LeafEvent& b) { return a.t < b.t || (a.t == b.t && a.order < b.order); });
-    std::vector<NodeState>& nodes = scratch.nodes;
-    evaluateAll(plan, state, nodes);
     bool inside = nodes[0].value;
     for (const LeafEvent& e : events) {
         const CsgNode& leaf = *leaves[size_t(e.leaf)];
