@@ -81,9 +81,9 @@ Scene wallScene() {
     Scene scene;
     Object wall;
     wall.shape = Plane{{0, 0, -1}, -10};
-    wall.texture.pigment.color.rgb = {0.9, 0.1, 0.1};
-    wall.texture.finish.ambient = Color(1);
-    wall.texture.finish.diffuse = 0;
+    wall.texture.edit().pigment.color.rgb = {0.9, 0.1, 0.1};
+    wall.texture.edit().finish.ambient = Color(1);
+    wall.texture.edit().finish.diffuse = 0;
     scene.objects.push_back(wall);
     scene.camera.angle = 0.5;
     return scene;

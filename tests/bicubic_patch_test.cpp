@@ -170,11 +170,11 @@ TEST(PovBicubicPatch, ObjectUvMappingMapsTheTexturesAfterIt) {
         "s.pov", diags);
     ASSERT_TRUE(scene) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-    const Pigment& mapped = scene->objects[0].texture.pigment;
+    const Pigment& mapped = scene->objects[0].texture->pigment;
     EXPECT_TRUE(mapped.uvMapping);
     EXPECT_TRUE(mapped.children.at(0).uvMapping);
     EXPECT_NEAR(mapped.toWorld.point({1, 0, 0}).x, 1.0 / 3, 1e-12); // the object's scale 5 leaves it
-    EXPECT_FALSE(scene->objects[1].texture.pigment.uvMapping);      // a texture before it is not mapped
+    EXPECT_FALSE(scene->objects[1].texture->pigment.uvMapping);      // a texture before it is not mapped
 }
 
 TEST(PovBicubicPatch, MeshOfADeclaredMeshIsACopyOfIt) {

@@ -64,7 +64,7 @@ TEST(DensityFile, ValuesAreThoseOfPovRaysRenders) {
             const auto s = loadResolved(greyPlane(interpolation), name, dir, diags);
             ASSERT_TRUE(s) << diags.formatAll();
             EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-            const Pigment& pigment = s->objects.at(0).texture.pigment;
+            const Pigment& pigment = s->objects.at(0).texture->pigment;
             ASSERT_EQ(pigment.pattern, PatternKind::DensityFile);
             const double* expected = interpolation == 0 ? none : interpolation == 1 ? trilinear : tricubic;
             for (int k = 0; k < 16; ++k) {
@@ -87,7 +87,7 @@ TEST(DensityFile, TrilinearIsTheBlendOfTheEightVoxelsAroundThePoint) {
     Diagnostics diags;
     const auto s = loadResolved(greyPlane(1), "s.pov", dir, diags);
     ASSERT_TRUE(s) << diags.formatAll();
-    const Pigment& pigment = s->objects.at(0).texture.pigment;
+    const Pigment& pigment = s->objects.at(0).texture->pigment;
     const double v[2][4] = {{0.2, 85 / 255.0, 170 / 255.0, 1}, {1, 0, 1, 0}};
     const auto lerp = [](double a, double b, double t) { return a + t * (b - a); };
     // x = 0.3: grid 1.2, between voxels 1 and 2; y = 0.3: grid 0.6, between rows 0 and 1.
@@ -106,8 +106,8 @@ TEST(DensityFile, SixteenAndThirtyTwoBitVoxels) {
     const auto s = loadResolved(greyPlane(0) + "plane { z, 0.5 pigment { density_file df3 \"w32.df3\" } }", "s.pov",
                                 dir, diags);
     ASSERT_TRUE(s) << diags.formatAll();
-    EXPECT_NEAR(evaluatePigment(s->objects.at(0).texture.pigment, Vec3(0.75, 0.5, 0.5)).rgb.r, 32768 / 65535.0, 1e-6);
-    const Pigment& big = s->objects.at(1).texture.pigment;
+    EXPECT_NEAR(evaluatePigment(s->objects.at(0).texture->pigment, Vec3(0.75, 0.5, 0.5)).rgb.r, 32768 / 65535.0, 1e-6);
+    const Pigment& big = s->objects.at(1).texture->pigment;
     EXPECT_NEAR(samplePattern(big, Vec3(0.25, 0.5, 0.5)).value, 1.0, 1e-6);
     EXPECT_NEAR(samplePattern(big, Vec3(0.75, 0.5, 0.5)).value, 0.25, 1e-6);
 }
@@ -125,13 +125,13 @@ TEST(DensityFile, TexturePatternNormalAndMediaDensity) {
         "s.pov", dir, diags);
     ASSERT_TRUE(s) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-    const Pigment& pattern = s->objects.at(0).texture.pigment;
+    const Pigment& pattern = s->objects.at(0).texture->pigment;
     ASSERT_EQ(pattern.pattern, PatternKind::DensityFile);
     ASSERT_TRUE(pattern.densityFile);
     EXPECT_EQ(pattern.densityFile->interpolation, DensityFile::Interpolation::Trilinear);
     EXPECT_EQ(pattern.densityFile->values.size(), 8u);
-    ASSERT_TRUE(s->objects.at(1).texture.normal);
-    const Normal& normal = *s->objects.at(1).texture.normal;
+    ASSERT_TRUE(s->objects.at(1).texture->normal);
+    const Normal& normal = *s->objects.at(1).texture->normal;
     EXPECT_EQ(normal.pattern, PatternKind::DensityFile);
     EXPECT_DOUBLE_EQ(normal.amount, 2.6);
     ASSERT_TRUE(normal.densityFile);
@@ -157,12 +157,12 @@ TEST(DensityFile, AConvertedSceneNamesTheFileAndKeepsTheValues) {
     const auto drt = loadResolved(text, "converted.drt", "/", again);
     ASSERT_TRUE(drt) << text << "\n" << again.formatAll();
     for (const Vec3 p : {Vec3(0.1, 0.1, 0.5), Vec3(0.6, 0.3, 0.5), Vec3(0.95, 0.9, 0.2)})
-        EXPECT_EQ(evaluatePigment(drt->objects.at(0).texture.pigment, p).rgb.r,
-                  evaluatePigment(pov->objects.at(0).texture.pigment, p).rgb.r)
+        EXPECT_EQ(evaluatePigment(drt->objects.at(0).texture->pigment, p).rgb.r,
+                  evaluatePigment(pov->objects.at(0).texture->pigment, p).rgb.r)
             << text;
-    ASSERT_TRUE(drt->objects.at(1).texture.normal);
-    EXPECT_DOUBLE_EQ(drt->objects.at(1).texture.normal->amount, 1.5);
-    EXPECT_EQ(drt->objects.at(1).texture.normal->densityFile->interpolation, DensityFile::Interpolation::Trilinear);
+    ASSERT_TRUE(drt->objects.at(1).texture->normal);
+    EXPECT_DOUBLE_EQ(drt->objects.at(1).texture->normal->amount, 1.5);
+    EXPECT_EQ(drt->objects.at(1).texture->normal->densityFile->interpolation, DensityFile::Interpolation::Trilinear);
 }
 
 TEST(DensityFile, ErrorsAreLocated) {
@@ -194,7 +194,7 @@ TEST(DensityFile, ErrorsAreLocated) {
     Diagnostics lenient;
     const auto s = loadResolved("plane { z, 0 pigment { density_file df3 \"w.df3\" interpolate 7 } }", "s.pov", dir, lenient);
     ASSERT_TRUE(s) << lenient.formatAll();
-    EXPECT_EQ(s->objects.at(0).texture.pigment.densityFile->interpolation, DensityFile::Interpolation::None);
+    EXPECT_EQ(s->objects.at(0).texture->pigment.densityFile->interpolation, DensityFile::Interpolation::None);
     EXPECT_NE(lenient.formatAll().find("interpolate 7 is not known"), std::string::npos) << lenient.formatAll();
 }
 

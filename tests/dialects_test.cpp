@@ -94,7 +94,7 @@ TEST(DrtDirectives, MacrosTakeArgumentsAndRecurse) {
     ASSERT_EQ(s.objects.size(), 4u);
     EXPECT_EQ(centre(s, 0), Vec3(0, 3, 0));
     EXPECT_DOUBLE_EQ(radius(s, 2), 1);
-    EXPECT_EQ(s.objects[2].texture.pigment.color.rgb, Color(1, 0, 0));
+    EXPECT_EQ(s.objects[2].texture->pigment.color.rgb, Color(1, 0, 0));
     EXPECT_DOUBLE_EQ(radius(s, 3), 3);
 }
 
@@ -234,8 +234,8 @@ TEST(PovDialect, TakesDrtEffects) {
     ASSERT_EQ(s.objects[0].motion.size(), 1u);
     ASSERT_EQ(s.objects[0].motion[0].motion.keys.size(), 2u);
     EXPECT_EQ(s.objects[0].motion[0].motion.keys[1].translate, Vec3(1, 0, 0));
-    EXPECT_DOUBLE_EQ(s.objects[1].texture.finish.reflectionBlur, 0.2);
-    EXPECT_DOUBLE_EQ(s.objects[2].texture.finish.refractionBlur, 0.1);
+    EXPECT_DOUBLE_EQ(s.objects[1].texture->finish.reflectionBlur, 0.2);
+    EXPECT_DOUBLE_EQ(s.objects[2].texture->finish.refractionBlur, 0.1);
     EXPECT_EQ(s.render.samplesPerPixel, 16);
     EXPECT_EQ(s.render.sampler, "stratified");
     EXPECT_EQ(s.render.filter, "gaussian");

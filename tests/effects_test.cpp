@@ -27,22 +27,22 @@ Scene testScene() {
     Scene scene;
     Object floor;
     floor.shape = Plane{{0, 1, 0}, -1};
-    floor.texture.pigment.pattern = PatternKind::Checker;
-    floor.texture.pigment.children.resize(2);
-    floor.texture.pigment.children[0].color.rgb = {0.9, 0.9, 0.9};
-    floor.texture.pigment.children[1].color.rgb = {0.2, 0.3, 0.6};
+    floor.texture.edit().pigment.pattern = PatternKind::Checker;
+    floor.texture.edit().pigment.children.resize(2);
+    floor.texture.edit().pigment.children[0].color.rgb = {0.9, 0.9, 0.9};
+    floor.texture.edit().pigment.children[1].color.rgb = {0.2, 0.3, 0.6};
     scene.objects.push_back(floor);
     Object mirror;
     mirror.shape = Sphere{{-0.8, 0, 1}, 0.9};
-    mirror.texture.pigment.color.rgb = {0.8, 0.4, 0.3};
-    mirror.texture.finish.reflectionMin = mirror.texture.finish.reflectionMax = Color(0.6);
+    mirror.texture.edit().pigment.color.rgb = {0.8, 0.4, 0.3};
+    mirror.texture.edit().finish.reflectionMin = mirror.texture.edit().finish.reflectionMax = Color(0.6);
     scene.objects.push_back(mirror);
     Object glass;
     glass.shape = Sphere{{1, -0.2, 0}, 0.7};
-    glass.texture.pigment.color = ColorFT{Color(1), 0, 0.9};
-    glass.texture.finish.reflectionMin = Color(0.05);
-    glass.texture.finish.reflectionMax = Color(1);
-    glass.texture.finish.reflectionFresnel = true;
+    glass.texture.edit().pigment.color = ColorFT{Color(1), 0, 0.9};
+    glass.texture.edit().finish.reflectionMin = Color(0.05);
+    glass.texture.edit().finish.reflectionMax = Color(1);
+    glass.texture.edit().finish.reflectionFresnel = true;
     glass.interior.ior = 1.5;
     scene.objects.push_back(glass);
     Light light;
@@ -105,10 +105,10 @@ TEST(Effects, ZeroLengthShutterIsTheStaticSceneAtThatTime) {
 TEST(Effects, ZeroBlurIsTheMirrorBitForBit) {
     const Scene mirror = testScene();
     Scene zero = mirror;
-    zero.objects[1].texture.finish.reflectionBlur = 0;
-    zero.objects[2].texture.finish.refractionBlur = 0;
+    zero.objects[1].texture.edit().finish.reflectionBlur = 0;
+    zero.objects[2].texture.edit().finish.refractionBlur = 0;
     EXPECT_EQ(render(mirror, smallOptions()).color.pixels, render(zero, smallOptions()).color.pixels);
-    zero.objects[1].texture.finish.reflectionBlur = 0.2;
+    zero.objects[1].texture.edit().finish.reflectionBlur = 0.2;
     EXPECT_NE(render(zero, smallOptions()).color.pixels, render(mirror, smallOptions()).color.pixels);
 }
 
@@ -131,9 +131,9 @@ TEST(Effects, InverseSquarePointLightIsColourOverDistanceSquared) {
     Scene scene;
     Object floor;
     floor.shape = Plane{{0, 1, 0}, 0};
-    floor.texture.pigment.color.rgb = Color(1);
-    floor.texture.finish.ambient = Color(0);
-    floor.texture.finish.diffuse = 1;
+    floor.texture.edit().pigment.color.rgb = Color(1);
+    floor.texture.edit().finish.ambient = Color(0);
+    floor.texture.edit().finish.diffuse = 1;
     scene.objects.push_back(floor);
     Light light;
     light.position = {0, 4, 0};

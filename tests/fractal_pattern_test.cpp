@@ -142,7 +142,7 @@ TEST_P(FractalDialects, PigmentsNormalsAndTexturePatterns) {
     ASSERT_TRUE(scene) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
     const Scene& s = *scene;
-    const Pigment& p = s.objects.at(0).texture.pigment;
+    const Pigment& p = s.objects.at(0).texture->pigment;
     ASSERT_EQ(p.pattern, PatternKind::Fractal);
     ASSERT_TRUE(p.fractal);
     EXPECT_EQ(p.fractal->kind, FractalKind::Mandel);
@@ -155,7 +155,7 @@ TEST_P(FractalDialects, PigmentsNormalsAndTexturePatterns) {
     // The pigment's colour at a point is its colour map at the fractal's value.
     const double v = fractalValue(*p.fractal, 0.3, -0.2);
     EXPECT_NEAR(evaluatePigment(p, Vec3(0.3, -0.2, 7)).rgb.r, std::fmod(v, 1.00001), 1e-9);
-    const Normal& n = *s.objects.at(0).texture.normal;
+    const Normal& n = *s.objects.at(0).texture->normal;
     ASSERT_EQ(n.pattern, PatternKind::Fractal);
     EXPECT_EQ(n.fractal->kind, FractalKind::Julia);
     EXPECT_EQ(n.fractal->cx, 0.3);
@@ -163,13 +163,13 @@ TEST_P(FractalDialects, PigmentsNormalsAndTexturePatterns) {
     EXPECT_EQ(n.fractal->iterations, 20);
     EXPECT_EQ(n.fractal->interiorType, 5);
     EXPECT_EQ(n.amount, 0.7);
-    const Pigment& t = s.objects.at(1).texture.pigment;
+    const Pigment& t = s.objects.at(1).texture->pigment;
     ASSERT_EQ(t.pattern, PatternKind::Fractal);
     EXPECT_EQ(t.fractal->kind, FractalKind::Magnet2Julia);
     EXPECT_EQ(t.fractal->cx, 1.3);
     EXPECT_EQ(t.fractal->exteriorType, 8);
-    EXPECT_EQ(s.objects.at(1).texture.map.size(), 2u);
-    const Pigment& m = s.objects.at(2).texture.pigment;
+    EXPECT_EQ(s.objects.at(1).texture->map.size(), 2u);
+    const Pigment& m = s.objects.at(2).texture->pigment;
     EXPECT_EQ(m.fractal->kind, FractalKind::Magnet1Mandel);
     EXPECT_EQ(m.fractal->iterations, 12);
 
@@ -179,13 +179,13 @@ TEST_P(FractalDialects, PigmentsNormalsAndTexturePatterns) {
     const auto back = load(written, "back.drt", backDiags);
     ASSERT_TRUE(back) << backDiags.formatAll() << "\n" << written;
     for (size_t i = 0; i < 3; ++i) {
-        const Pigment& a = s.objects.at(i).texture.pigment;
-        const Pigment& b = back->objects.at(i).texture.pigment;
+        const Pigment& a = s.objects.at(i).texture->pigment;
+        const Pigment& b = back->objects.at(i).texture->pigment;
         ASSERT_TRUE(b.fractal) << written;
         for (const Vec3 q : {Vec3(0.1, 0.2, 0), Vec3(-0.7, 0.3, 1), Vec3(1.2, -0.4, 0)})
             EXPECT_DOUBLE_EQ(fractalValue(*a.fractal, q.x, q.y), fractalValue(*b.fractal, q.x, q.y)) << written;
     }
-    const Normal& nb = *back->objects.at(0).texture.normal;
+    const Normal& nb = *back->objects.at(0).texture->normal;
     ASSERT_TRUE(nb.fractal) << written;
     EXPECT_EQ(nb.amount, 0.7);
     EXPECT_EQ(nb.fractal->interiorType, 5);
@@ -246,7 +246,7 @@ TEST(FractalErrors, ExponentOutsidePovRaysRangeIsAnErrorInDrtOnly) {
     Diagnostics pov; // POV-Ray reads it without a word
     const auto scene = load(source, "e.pov", pov);
     ASSERT_TRUE(scene) << pov.formatAll();
-    EXPECT_EQ(scene->objects.at(0).texture.pigment.fractal->exponent, 33);
+    EXPECT_EQ(scene->objects.at(0).texture->pigment.fractal->exponent, 33);
 }
 
 TEST(FractalErrors, InteriorOutsideAFractalPigmentStillBelongsToTheObject) {

@@ -122,7 +122,7 @@ TEST(Function, NeverGivesNaN) {
     ASSERT_FALSE(r->diags.hasErrors()) << r->diags.formatAll();
     auto scene = run(f + "sphere { 0, 1 pigment { function { F(x, y, z) / z } } }\n");
     ASSERT_TRUE(scene->scene) << scene->diags.formatAll();
-    const Pigment& p = scene->scene->objects[0].texture.pigment;
+    const Pigment& p = scene->scene->objects[0].texture->pigment;
     ASSERT_EQ(p.pattern, PatternKind::Function);
     const double bad[][3] = {{-1, 1, 1}, {1, -1, 1}, {1, 1, 0}, {0, 0, 0}};
     for (const auto& a : bad) {
@@ -137,15 +137,15 @@ TEST(Function, FunctionPatternsColourPigmentsTexturesAndNormals) {
                  "sphere { 0, 1 normal { function { sin(x * 10) } 0.5 } }\n",
                  false);
     ASSERT_TRUE(r->scene) << r->diags.formatAll();
-    const ColorFT c = evaluatePigment(r->scene->objects[0].texture.pigment, Vec3(-0.4, 0, 0));
+    const ColorFT c = evaluatePigment(r->scene->objects[0].texture->pigment, Vec3(-0.4, 0, 0));
     EXPECT_NEAR(c.rgb.r, 0.4, 1e-9);
     EXPECT_NEAR(c.rgb.g, 0.2, 1e-9);
     const Texture& t = r->scene->objects[1].texture;
     ASSERT_EQ(t.map.size(), 2u);
     EXPECT_EQ(t.pigment.pattern, PatternKind::Function);
     EXPECT_NEAR(samplePattern(t.pigment, Vec3(0, 0.3, 0)).value, 0.3, 1e-9);
-    ASSERT_TRUE(r->scene->objects[2].texture.normal);
-    EXPECT_EQ(r->scene->objects[2].texture.normal->pattern, PatternKind::Function);
+    ASSERT_TRUE(r->scene->objects[2].texture->normal);
+    EXPECT_EQ(r->scene->objects[2].texture->normal->pattern, PatternKind::Function);
 }
 
 TEST(Function, HeightFieldSamplesTheFunctionAsPovRayDoes) {

@@ -79,9 +79,9 @@ ImageMap loadedMap(const std::string& dir, const std::string& items) {
     const Scene s = loadPov("#version 3.7; sphere { 0, 1 pigment { image_map { png \"quad.png\" " + items + " } } }",
                             dir, diags);
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-    if (s.objects.empty() || !s.objects[0].texture.pigment.imageMap) return ADD_FAILURE() << "no image map", ImageMap{};
-    EXPECT_EQ(s.objects[0].texture.pigment.pattern, PatternKind::ImageMap);
-    return *s.objects[0].texture.pigment.imageMap;
+    if (s.objects.empty() || !s.objects[0].texture->pigment.imageMap) return ADD_FAILURE() << "no image map", ImageMap{};
+    EXPECT_EQ(s.objects[0].texture->pigment.pattern, PatternKind::ImageMap);
+    return *s.objects[0].texture->pigment.imageMap;
 }
 
 // ------------------------------------------------------------ height_field
@@ -315,7 +315,7 @@ TEST(ImageMap, EightBitFilesAreDecodedFromSrgbUnlessGammaIsGiven) {
     const Scene s = loadPov("#version 3.7; sphere { 0, 1 pigment { image_map { png \"quad.png\" gamma 2 } scale 2 } }", dir,
                             diags);
     const double g = std::pow(128 / 255.0, 2.0);
-    expectColor(evaluatePigment(s.objects[0].texture.pigment, {1, 1, 0}), g, g, g);
+    expectColor(evaluatePigment(s.objects[0].texture->pigment, {1, 1, 0}), g, g, g);
 }
 
 TEST(ImageMap, MissingFileIsAnErrorInBothLanguages) {
@@ -344,8 +344,8 @@ TEST(ImageMap, UnreadableFileIsAnErrorAndBareNamesGetImageExtensions) {
     Diagnostics ok;
     const Scene s = loadPov("sphere { 0, 1 pigment { image_map { \"quad\" } } }", dir, ok);
     ASSERT_EQ(s.objects.size(), 1u);
-    ASSERT_TRUE(s.objects[0].texture.pigment.imageMap);
-    EXPECT_EQ(std::filesystem::path(s.objects[0].texture.pigment.imageMap->path).filename(), "quad.png");
+    ASSERT_TRUE(s.objects[0].texture->pigment.imageMap);
+    EXPECT_EQ(std::filesystem::path(s.objects[0].texture->pigment.imageMap->path).filename(), "quad.png");
 }
 
 TEST(ImageMap, PovUnknownSettingsAreWarnings) {
@@ -355,9 +355,9 @@ TEST(ImageMap, PovUnknownSettingsAreWarnings) {
     const Scene s = loadPov("sphere { 0, 1 pigment { image_map { png \"quad.png\" map_type 7 interpolate 9 "
                             "filter 1, 0.5 } } }", dir, diags);
     EXPECT_EQ(diags.warningCount(), 3) << diags.formatAll();
-    ASSERT_TRUE(s.objects[0].texture.pigment.imageMap);
-    EXPECT_EQ(s.objects[0].texture.pigment.imageMap->projection, ImageMap::Projection::Planar);
-    EXPECT_EQ(s.objects[0].texture.pigment.imageMap->interpolation, ImageMap::Interpolation::None);
+    ASSERT_TRUE(s.objects[0].texture->pigment.imageMap);
+    EXPECT_EQ(s.objects[0].texture->pigment.imageMap->projection, ImageMap::Projection::Planar);
+    EXPECT_EQ(s.objects[0].texture->pigment.imageMap->interpolation, ImageMap::Interpolation::None);
 }
 
 TEST(ImageMap, DrtBadSettingsAreErrors) {
@@ -384,8 +384,8 @@ TEST(ImageMap, DrtWriterRoundTrip) {
     Diagnostics again;
     const auto back = loadSceneText(text, "back.drt", again, "/");
     ASSERT_TRUE(back) << again.formatAll() << "\n" << text;
-    const Pigment& a = scene->objects[0].texture.pigment;
-    const Pigment& b = back->objects[0].texture.pigment;
+    const Pigment& a = scene->objects[0].texture->pigment;
+    const Pigment& b = back->objects[0].texture->pigment;
     ASSERT_TRUE(b.imageMap);
     EXPECT_EQ(b.imageMap->path, a.imageMap->path);
     EXPECT_EQ(b.imageMap->projection, ImageMap::Projection::Cylindrical);
@@ -413,7 +413,7 @@ TEST(ImageMap, PovImageMapConvertsAndRoundTrips) {
     ASSERT_TRUE(back) << again.formatAll() << "\n" << text;
     const Vec3 p{0.4, 0.3, 0};
     const Scene backRead = test::withAssets(*back);
-    EXPECT_EQ(evaluatePigment(backRead.objects[0].texture.pigment, p), evaluatePigment(s.objects[0].texture.pigment, p));
+    EXPECT_EQ(evaluatePigment(backRead.objects[0].texture->pigment, p), evaluatePigment(s.objects[0].texture->pigment, p));
 }
 
 TEST(ImageMap, RenderRefusesAnImageThatWasNotRead) {
@@ -435,7 +435,7 @@ TEST(ImageMap, RenderRefusesAnImageThatWasNotRead) {
 // The pattern value at p of the only object's pigment, through a colour map from black to white.
 double patternValue(const Scene& s, const Vec3& p) {
     if (s.objects.empty()) return ADD_FAILURE() << "no object", -1;
-    const Pigment& pigment = s.objects[0].texture.pigment;
+    const Pigment& pigment = s.objects[0].texture->pigment;
     EXPECT_EQ(pigment.pattern, PatternKind::ImagePattern);
     return evaluatePigment(pigment, p).rgb.g;
 }
@@ -483,7 +483,7 @@ TEST(ImagePattern, DrtRoundTripAndUseAlpha) {
     EXPECT_EQ(writeDrtScene(*back), text);
     const Scene a = test::withAssets(*scene), b = test::withAssets(*back);
     for (const Vec3 p : {Vec3{0.3, 1.2, -0.4}, Vec3{2.0, 0.5, 1.0}})
-        EXPECT_EQ(evaluatePigment(a.objects[0].texture.pigment, p), evaluatePigment(b.objects[0].texture.pigment, p));
+        EXPECT_EQ(evaluatePigment(a.objects[0].texture->pigment, p), evaluatePigment(b.objects[0].texture->pigment, p));
     // use_alpha: a warning in a .pov scene, a located error in .drt.
     Diagnostics pov;
     loadPov("plane { z, 0 pigment { image_pattern { png \"quad.png\" use_alpha } } }", dir, pov);

@@ -312,7 +312,7 @@ TEST(LayeredTextureSyntax, SecondTextureIsALayerOnTop) {
     ASSERT_EQ(t.layersAbove.size(), 2u);
     EXPECT_EQ(t.layersAbove[0].pigment.color.transmit, 0.5);
     EXPECT_EQ(t.layersAbove[1].pigment.color.filter, 1);
-    ASSERT_EQ(s.objects[1].texture.layersAbove.size(), 1u);
+    ASSERT_EQ(s.objects[1].texture->layersAbove.size(), 1u);
 }
 
 TEST(LayeredTextureSyntax, TextureMapTilesAndPigmentMapParse) {
@@ -337,7 +337,7 @@ TEST(LayeredTextureSyntax, TextureMapTilesAndPigmentMapParse) {
     // POV-Ray puts tile2 where checker puts its first texture.
     EXPECT_EQ(tiles.map[1].texture.layersAbove.size(), 1u);
     EXPECT_EQ(tiles.map[0].texture.pigment.color.rgb, Color(0, 1, 0));
-    const Pigment& avg = s.objects[2].texture.pigment;
+    const Pigment& avg = s.objects[2].texture->pigment;
     EXPECT_EQ(avg.pattern, PatternKind::Average);
     ASSERT_EQ(avg.pigmentMap.size(), 2u);
     EXPECT_EQ(avg.pigmentMap[1].pigment.pattern, PatternKind::Checker);
@@ -401,13 +401,13 @@ TEST(PovLayeredTexture, LayersMapsTilesAndPigmentMapsLoadWithoutWarnings) {
         diags);
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
     ASSERT_EQ(s.objects.size(), 6u);
-    EXPECT_EQ(s.objects[0].texture.layersAbove.size(), 1u);
-    EXPECT_EQ(s.objects[1].texture.map.size(), 2u);
-    EXPECT_EQ(s.objects[1].texture.map[0].texture.layersAbove.size(), 1u);
-    EXPECT_EQ(s.objects[2].texture.pigment.pattern, PatternKind::Checker);
-    EXPECT_EQ(s.objects[3].texture.map.size(), 2u);
-    EXPECT_EQ(s.objects[4].texture.pigment.pigmentMap.size(), 2u);
-    EXPECT_EQ(s.objects[5].texture.pigment.pigmentMap[1].pigment.pattern, PatternKind::Checker);
+    EXPECT_EQ(s.objects[0].texture->layersAbove.size(), 1u);
+    EXPECT_EQ(s.objects[1].texture->map.size(), 2u);
+    EXPECT_EQ(s.objects[1].texture->map[0].texture.layersAbove.size(), 1u);
+    EXPECT_EQ(s.objects[2].texture->pigment.pattern, PatternKind::Checker);
+    EXPECT_EQ(s.objects[3].texture->map.size(), 2u);
+    EXPECT_EQ(s.objects[4].texture->pigment.pigmentMap.size(), 2u);
+    EXPECT_EQ(s.objects[5].texture->pigment.pigmentMap[1].pigment.pattern, PatternKind::Checker);
 }
 
 TEST(PovLayeredTexture, ObjectPigmentAndFinishChangeTheTopLayer) {
@@ -423,10 +423,10 @@ TEST(PovLayeredTexture, ObjectPigmentAndFinishChangeTheTopLayer) {
     expectColorNear(pixel(render(s, onePixel())), Color(0.5, 0.5, 0));
     const Scene d = loadDrt("plane { y, 0 texture { pigment { rgb x } } texture { pigment { rgbt <0, 0, 1, 0.5> } }"
                             " pigment { rgbt <0, 1, 0, 0.5> } finish { phong 1 } }");
-    ASSERT_EQ(d.objects[0].texture.layersAbove.size(), 1u);
-    EXPECT_EQ(d.objects[0].texture.layersAbove[0].pigment.color.rgb, Color(0, 1, 0));
-    EXPECT_EQ(d.objects[0].texture.layersAbove[0].finish.phong, 1);
-    EXPECT_EQ(d.objects[0].texture.pigment.color.rgb, Color(1, 0, 0));
+    ASSERT_EQ(d.objects[0].texture->layersAbove.size(), 1u);
+    EXPECT_EQ(d.objects[0].texture->layersAbove[0].pigment.color.rgb, Color(0, 1, 0));
+    EXPECT_EQ(d.objects[0].texture->layersAbove[0].finish.phong, 1);
+    EXPECT_EQ(d.objects[0].texture->pigment.color.rgb, Color(1, 0, 0));
 }
 
 TEST(PovLayeredTexture, RadialWithoutAColourMapTakesPovRaysDefaultMap) {
@@ -434,7 +434,7 @@ TEST(PovLayeredTexture, RadialWithoutAColourMapTakesPovRaysDefaultMap) {
     Diagnostics diags;
     const Scene s = loadPov("sphere { 0, 1 pigment { gradient y pigment_map { [0 radial] [1 rgb 1] } } }", diags);
     ASSERT_EQ(s.objects.size(), 1u);
-    const std::vector<ColorMapEntry>& map = s.objects[0].texture.pigment.pigmentMap.at(0).pigment.colorMap;
+    const std::vector<ColorMapEntry>& map = s.objects[0].texture->pigment.pigmentMap.at(0).pigment.colorMap;
     ASSERT_EQ(map.size(), 4u);
     EXPECT_EQ(map[0].color.rgb, Color(0, 1, 1));
     EXPECT_EQ(map[1].color.rgb, Color(1, 1, 0));
@@ -448,8 +448,8 @@ TEST(PovLayeredTexture, UnsupportedTexturePatternAveragesItsEntriesWithAWarning)
                             diags);
     EXPECT_EQ(diags.warningCount(), 1) << diags.formatAll();
     ASSERT_EQ(s.objects.size(), 1u);
-    EXPECT_EQ(s.objects[0].texture.pigment.pattern, PatternKind::Average);
-    EXPECT_EQ(s.objects[0].texture.map.size(), 2u);
+    EXPECT_EQ(s.objects[0].texture->pigment.pattern, PatternKind::Average);
+    EXPECT_EQ(s.objects[0].texture->map.size(), 2u);
 }
 
 TEST(PovLayeredTexture, LayeringPatternedTexturesIsAnErrorAsInPovRay) {

@@ -141,7 +141,7 @@ mesh { triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> }
 )",
                                      "uv.drt", diags);
     ASSERT_TRUE(scene && !diags.hasErrors()) << diags.formatAll();
-    const Pigment& p = scene->objects[0].texture.pigment;
+    const Pigment& p = scene->objects[0].texture->pigment;
     EXPECT_TRUE(p.uvMapping);
     EXPECT_TRUE(p.children.empty() || p.children[0].uvMapping);
     // Pattern space = uv space scaled by 0.5, then moved by x: the object's scale and rotation are not in it.

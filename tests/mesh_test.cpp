@@ -372,7 +372,7 @@ TEST(UvMapping, UvMappedCheckerOnAMeshHasItsKnownColourAtAPixel) {
     Object o =
         makeObject(compact(unitSquare()), Transform::scale({4, 2, 1}).then(Transform::rotate({0, 0, 30})));
     o.texture = t;
-    transformTextureSpaces(o.texture, o.transform);
+    transformTextureSpaces(o.texture.edit(), o.transform);
     Scene scene = sceneOf({o});
     // Aim at uv (0.375, 0.125): cell (1, 0), odd: blue. (0.125, 0.125): red.
     const auto aim = [&](double u, double v) {

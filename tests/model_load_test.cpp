@@ -25,8 +25,8 @@ Object modelObject(const std::string& path) {
     mesh.source = source;
     Object o;
     o.shape = mesh;
-    o.texture.pigment.color = ColorFT{Color(0.5, 0.5, 0.5), 0, 0};
-    o.texture.finish.phong = 0.7;
+    o.texture.edit().pigment.color = ColorFT{Color(0.5, 0.5, 0.5), 0, 0};
+    o.texture.edit().finish.phong = 0.7;
     return o;
 }
 
@@ -210,7 +210,7 @@ TEST(ModelFile, CopiesOfOneModelShareOneMesh) {
     Object a = modelObject(dir + "/square.obj");
     Object b = a; // a declared model used twice shares its MeshSource
     b.transform = Transform::translate({5, 0, 0});
-    b.texture.finish.phong = 0.1;
+    b.texture.edit().finish.phong = 0.1;
     Scene scene = test::sceneOf({a, b});
     EXPECT_EQ(load(scene), "");
     EXPECT_EQ(&indexedOf(scene, 0), &indexedOf(scene, 1));

@@ -348,7 +348,7 @@ TEST(NoisePov, WoodWithTurbulenceAndBumpsLoadsWithNotesOnly) {
     EXPECT_EQ(t.normal->pattern, PatternKind::Bumps);
     EXPECT_EQ(t.normal->amount, 0.4);
     EXPECT_NEAR(t.normal->toWorld.point(Vec3(1, 0, 0)).x, 0.2, 1e-12);
-    EXPECT_EQ(s->objects[1].texture.pigment.turbulence.octaves, 3);
+    EXPECT_EQ(s->objects[1].texture->pigment.turbulence.octaves, 3);
     // A normal pattern drt does not model still warns.
     Diagnostics other;
     ASSERT_TRUE(loadPovSceneText("sphere { 0, 1 normal { facets 0.4 } }", "q.pov", other));
@@ -364,7 +364,7 @@ TEST(NoisePov, WoodWithoutAColourMapTakesPovRaysBrowns) {
                                     "sphere { 0, 1 pigment { P color_map { [0 rgb 0] [1 rgb 1] } } }",
                                     "s.pov", diags);
     ASSERT_TRUE(s) << diags.formatAll();
-    const Pigment& bare = s->objects[0].texture.pigment;
+    const Pigment& bare = s->objects[0].texture->pigment;
     for (const double x : {0.05, 0.29, 0.71, 0.95}) {
         const ColorFT c = evaluatePigment(bare, Vec3(x, 0, 0));
         EXPECT_NEAR(c.rgb.r, 0.666, 1e-12) << x;
@@ -378,7 +378,7 @@ TEST(NoisePov, WoodWithoutAColourMapTakesPovRaysBrowns) {
         EXPECT_NEAR(c.rgb.b, 0.0667, 1e-12) << x;
     }
     // A colour map given later replaces the default.
-    EXPECT_NEAR(evaluatePigment(s->objects[1].texture.pigment, Vec3(0.2, 0, 0)).rgb.g, 0.4, 1e-9);
+    EXPECT_NEAR(evaluatePigment(s->objects[1].texture->pigment, Vec3(0.2, 0, 0)).rgb.g, 0.4, 1e-9);
 }
 
 } // namespace

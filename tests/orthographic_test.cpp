@@ -73,10 +73,10 @@ double glowingSphereArea(double sphereZ, bool orthographic) {
     scene.render.filter = "box";
     Object sphere;
     sphere.shape = Sphere{{0, 0, sphereZ}, 1};
-    sphere.texture.pigment.color = ColorFT{Color(1)};
-    sphere.texture.finish.ambient = Color(0);
-    sphere.texture.finish.diffuse = 0;
-    sphere.texture.finish.emission = Color(1);
+    sphere.texture.edit().pigment.color = ColorFT{Color(1)};
+    sphere.texture.edit().finish.ambient = Color(0);
+    sphere.texture.edit().finish.diffuse = 0;
+    sphere.texture.edit().finish.emission = Color(1);
     scene.objects.push_back(sphere);
     RenderOptions o;
     o.width = o.height = 80;

@@ -362,7 +362,7 @@ sphere { <-0.5, 0.3, -1.5>, 0.3 pigment { color rgb 0.9 } finish { reflection { 
     const RenderResult plain = render(*scene, options);
     Scene wrapped = *scene;
     for (Object& object : wrapped.objects) {
-        ASSERT_TRUE(object.texture.plain());
+        ASSERT_TRUE(object.texture->plain());
         Texture map;
         map.pigment.pattern = PatternKind::Average;
         map.map.push_back({1.0, object.texture});

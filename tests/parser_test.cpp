@@ -46,20 +46,20 @@ TEST(Parser, EmptySceneHasPovRayDefaults) {
 TEST(Parser, EmptyFinishHasPovRayDefaults) {
     const Scene s = parseOk("sphere { 0, 1 finish { } }");
     ASSERT_EQ(s.objects.size(), 1u);
-    const Finish& f = s.objects[0].texture.finish;
+    const Finish& f = s.objects[0].texture->finish;
     EXPECT_EQ(f.ambient, Color(0.1));
     EXPECT_DOUBLE_EQ(f.diffuse, 0.6);
     EXPECT_DOUBLE_EQ(f.phongSize, 40);
     EXPECT_DOUBLE_EQ(f.roughness, 0.05);
     EXPECT_EQ(f.reflectionMax, Color(0));
-    EXPECT_EQ(s.objects[0].texture.pigment.color.rgb, Color(0)); // default pigment black
+    EXPECT_EQ(s.objects[0].texture->pigment.color.rgb, Color(0)); // default pigment black
 }
 
 // Colour-map values outside [0, 1] are POV-Ray's (skies.inc uses 1.001): the
 // pattern value 0.5 lies between -1 (black) and 1.001 (white), at 1.5 / 2.001.
 TEST(Parser, ColorMapValuesMayLieOutsideZeroToOne) {
     const Scene s = parseOk("sphere { 0, 1 pigment { gradient x color_map { [-1 rgb 0] [1.001 rgb 1] } } }");
-    const Pigment& p = s.objects.at(0).texture.pigment;
+    const Pigment& p = s.objects.at(0).texture->pigment;
     ASSERT_EQ(p.colorMap.size(), 2u);
     EXPECT_EQ(p.colorMap[0].value, -1);
     EXPECT_NEAR(lookupColorMap(p.colorMap, 0.5).rgb.g, 1.5 / 2.001, 1e-12);
@@ -117,7 +117,7 @@ TEST(Parser, ColoursInAllForms) {
         "sphere { 0, 1 pigment { srgb <1, 0.5, 0> } }\n"
         "sphere { 0, 1 pigment { color rgb 1 * 0.5 } }\n");
     ASSERT_EQ(s.objects.size(), 8u);
-    auto color = [&](int i) { return s.objects[i].texture.pigment.color; };
+    auto color = [&](int i) { return s.objects[i].texture->pigment.color; };
     EXPECT_EQ(color(0).rgb, Color(1, 0.5, 0.25));
     EXPECT_DOUBLE_EQ(color(1).filter, 0.3);
     EXPECT_DOUBLE_EQ(color(2).transmit, 0.5);
@@ -273,7 +273,7 @@ TEST(Parser, FinishKeywords) {
                             "specular 0.3 roughness 0.01 metallic emission rgb <1, 0, 0> reflection 0.4 "
                             "conserve_energy reflection_blur 0.2 refraction_blur 0.1 } }\n"
                             "sphere { 0, 1 finish { reflection { 0.1, 0.9 fresnel falloff 2 metallic 0.5 } } }");
-    const Finish& f = s.objects.at(0).texture.finish;
+    const Finish& f = s.objects.at(0).texture->finish;
     EXPECT_EQ(f.ambient, Color(0.2));
     EXPECT_DOUBLE_EQ(f.diffuse, 0.7);
     EXPECT_DOUBLE_EQ(f.brilliance, 2);
@@ -288,7 +288,7 @@ TEST(Parser, FinishKeywords) {
     EXPECT_TRUE(f.conserveEnergy);
     EXPECT_DOUBLE_EQ(f.reflectionBlur, 0.2);
     EXPECT_DOUBLE_EQ(f.refractionBlur, 0.1);
-    const Finish& g = s.objects.at(1).texture.finish;
+    const Finish& g = s.objects.at(1).texture->finish;
     EXPECT_EQ(g.reflectionMin, Color(0.1));
     EXPECT_EQ(g.reflectionMax, Color(0.9));
     EXPECT_TRUE(g.reflectionFresnel);
@@ -303,26 +303,26 @@ TEST(Parser, PatternsAndTheirDefaults) {
                             "plane { y, 0 pigment { gradient x color_map { [0 rgb 0] [0.5 rgb 1] [1 rgb 0] } } }\n"
                             "plane { y, 0 pigment { radial } }\n"
                             "plane { y, 0 pigment { onion } }\n");
-    const Pigment& checker = s.objects[0].texture.pigment;
+    const Pigment& checker = s.objects[0].texture->pigment;
     EXPECT_EQ(checker.pattern, PatternKind::Checker);
     ASSERT_EQ(checker.children.size(), 2u);
     EXPECT_EQ(checker.children[0].color.rgb, Color(0, 0, 1)); // POV-Ray's blue / green
     EXPECT_EQ(checker.children[1].color.rgb, Color(0, 1, 0));
-    const Pigment& nested = s.objects[1].texture.pigment;
+    const Pigment& nested = s.objects[1].texture->pigment;
     EXPECT_EQ(nested.children[0].color.rgb, Color(1));
     EXPECT_EQ(nested.children[1].pattern, PatternKind::Hexagon);
     EXPECT_EQ(nested.children[1].children.size(), 3u);
-    const Pigment& brick = s.objects[2].texture.pigment;
+    const Pigment& brick = s.objects[2].texture->pigment;
     EXPECT_EQ(brick.pattern, PatternKind::Brick);
     expectNear(brick.brickSize, {2, 1, 1});
     EXPECT_DOUBLE_EQ(brick.mortar, 0.1);
-    const Pigment& gradient = s.objects[3].texture.pigment;
+    const Pigment& gradient = s.objects[3].texture->pigment;
     EXPECT_EQ(gradient.pattern, PatternKind::Gradient);
     expectNear(gradient.gradientAxis, {1, 0, 0});
     ASSERT_EQ(gradient.colorMap.size(), 3u);
     EXPECT_DOUBLE_EQ(gradient.colorMap[1].value, 0.5);
-    EXPECT_EQ(s.objects[4].texture.pigment.colorMap.size(), 4u);
-    EXPECT_EQ(s.objects[5].texture.pigment.colorMap.back().color.rgb, Color(1));
+    EXPECT_EQ(s.objects[4].texture->pigment.colorMap.size(), 4u);
+    EXPECT_EQ(s.objects[5].texture->pigment.colorMap.back().color.rgb, Color(1));
 }
 
 TEST(Parser, DeclaredValuesOfEveryKind) {
@@ -334,13 +334,13 @@ TEST(Parser, DeclaredValuesOfEveryKind) {
                             "sphere { V, 1 texture { T } interior { I } }\n"
                             "sphere { 0, 1 texture { T finish { phong 0.2 } } }\n");
     const Object& a = s.objects.at(0);
-    EXPECT_EQ(a.texture.pigment.color.rgb, Color(1, 0, 0));
-    EXPECT_DOUBLE_EQ(a.texture.finish.phong, 1);
-    EXPECT_DOUBLE_EQ(a.texture.finish.diffuse, 0.9);
+    EXPECT_EQ(a.texture->pigment.color.rgb, Color(1, 0, 0));
+    EXPECT_DOUBLE_EQ(a.texture->finish.phong, 1);
+    EXPECT_DOUBLE_EQ(a.texture->finish.diffuse, 0.9);
     EXPECT_DOUBLE_EQ(a.interior.ior, 1.33);
     expectNear(std::get<Sphere>(a.shape).center, {1, 2, 3});
-    EXPECT_DOUBLE_EQ(s.objects.at(1).texture.finish.phong, 0.2);
-    EXPECT_DOUBLE_EQ(s.objects.at(1).texture.finish.diffuse, 0.6); // a new finish starts from the defaults
+    EXPECT_DOUBLE_EQ(s.objects.at(1).texture->finish.phong, 0.2);
+    EXPECT_DOUBLE_EQ(s.objects.at(1).texture->finish.diffuse, 0.6); // a new finish starts from the defaults
 }
 
 TEST(Parser, DeclaredObjectIsReusedWithExtraTransforms) {
@@ -353,7 +353,7 @@ TEST(Parser, DeclaredObjectIsReusedWithExtraTransforms) {
     expectNear(s.objects[0].transform.point({0, 0, 0}), {0, 1, 0});
     expectNear(s.objects[1].transform.point({0, 0, 0}), {3, 1, 0});
     expectNear(s.objects[2].transform.point({0, 0, 0}), {0, 2, 0});
-    EXPECT_EQ(s.objects[1].texture.pigment.color.rgb, Color(1));
+    EXPECT_EQ(s.objects[1].texture->pigment.color.rgb, Color(1));
 }
 
 // POV-Ray: a texture moves with the object's transforms that come after it,
@@ -362,18 +362,18 @@ TEST(Parser, TextureFollowsOnlyLaterTransforms) {
     const Scene s = parseOk("sphere { 0, 1 translate x pigment { checker } scale 2 }\n"
                             "sphere { 0, 1 pigment { checker scale 0.5 } translate y }\n"
                             "sphere { 0, 1 texture { pigment { checker } translate z } rotate <0, 90, 0> }\n");
-    const Pigment& a = s.objects[0].texture.pigment;
+    const Pigment& a = s.objects[0].texture->pigment;
     expectNear(a.toWorld.point({1, 1, 1}), {2, 2, 2}); // scaled, not moved
     expectNear(a.children[0].toWorld.point({1, 1, 1}), {2, 2, 2});
-    const Pigment& b = s.objects[1].texture.pigment;
+    const Pigment& b = s.objects[1].texture->pigment;
     expectNear(b.toWorld.point({2, 2, 2}), {1, 2, 1});
-    const Pigment& c = s.objects[2].texture.pigment;
+    const Pigment& c = s.objects[2].texture->pigment;
     expectNear(c.toWorld.point({0, 0, 0}), Transform::rotate({0, 90, 0}).point({0, 0, 1}), 1e-12);
 }
 
 TEST(Parser, DeclaredObjectKeepsItsTextureAttached) {
     const Scene s = parseOk("#declare B = box { 0, 1 pigment { checker } }\nobject { B translate <5, 0, 0> }");
-    expectNear(s.objects.at(0).texture.pigment.toWorld.point({0, 0, 0}), {5, 0, 0});
+    expectNear(s.objects.at(0).texture->pigment.toWorld.point({0, 0, 0}), {5, 0, 0});
 }
 
 TEST(Parser, UnionIsFlattenedWithTransformsAndInheritedTexture) {
@@ -387,10 +387,10 @@ TEST(Parser, UnionIsFlattenedWithTransformsAndInheritedTexture) {
     ASSERT_EQ(s.objects.size(), 2u);
     expectNear(s.objects[0].transform.point(std::get<Sphere>(s.objects[0].shape).center), {1, 2, 0});
     expectNear(s.objects[1].transform.point(std::get<Sphere>(s.objects[1].shape).center), {-1, 2, 0});
-    EXPECT_EQ(s.objects[0].texture.pigment.pattern, PatternKind::Checker);
+    EXPECT_EQ(s.objects[0].texture->pigment.pattern, PatternKind::Checker);
     // The union's pigment moves with the union: its origin is at y = 2 in the world.
-    expectNear(s.objects[0].texture.pigment.toWorld.point({0, 0, 0}), {0, 2, 0});
-    EXPECT_EQ(s.objects[1].texture.pigment.color.rgb, Color(0, 1, 0)); // own texture kept
+    expectNear(s.objects[0].texture->pigment.toWorld.point({0, 0, 0}), {0, 2, 0});
+    EXPECT_EQ(s.objects[1].texture->pigment.color.rgb, Color(0, 1, 0)); // own texture kept
     EXPECT_TRUE(s.objects[0].noShadow && s.objects[1].noShadow);
 }
 
@@ -469,7 +469,7 @@ TEST(Parser, MotionStandsWhereItIsWritten) {
         expectNear(at.point({3, 0, 1}), Vec3{3, 0, 0} + Transform::rotate({0, 360 * t, 0}).point({0, 0, 1}));
     }
     // The texture is placed in the rest pose (every motion the identity).
-    expectNear(wheel.texture.pigment.toWorld.point({1, 2, 3}), {1, 2, 3});
+    expectNear(wheel.texture->pigment.toWorld.point({1, 2, 3}), {1, 2, 3});
     // A member of a transformed union turns in the union's own space.
     const Object& member = s.objects.at(1);
     const Transform outer = Transform::translate({0, 2, 0}).then(Transform::rotate({90, 0, 0}));
@@ -507,7 +507,7 @@ TEST(Parser, IncludeIsRelativeToTheIncludingFile) {
     const auto scene = loadSceneFile(main, diags);
     ASSERT_TRUE(scene) << diags.formatAll();
     EXPECT_DOUBLE_EQ(std::get<Sphere>(scene->objects.at(0).shape).radius, 2);
-    EXPECT_EQ(scene->objects.at(0).texture.pigment.color.rgb, Color(1, 0, 0));
+    EXPECT_EQ(scene->objects.at(0).texture->pigment.color.rgb, Color(1, 0, 0));
 }
 
 TEST(Parser, ErrorInIncludedFileShowsTheIncludeChain) {
@@ -656,7 +656,7 @@ TEST(Parser, SolidCsgKeepsItsMembers) {
     // ...the CSG carries the transform to world space...
     EXPECT_EQ(scene->objects[0].transform.point({0, 0, 0}), drt::Vec3(0, 2, 0));
     // ...and the inherited pigment follows the CSG to world space.
-    EXPECT_EQ(difference.children[0].texture.pigment.toWorld.point({0, 0, 0}), drt::Vec3(0, 2, 0));
+    EXPECT_EQ(difference.children[0].texture->pigment.toWorld.point({0, 0, 0}), drt::Vec3(0, 2, 0));
     EXPECT_EQ(std::get<drt::Csg>(scene->objects[1].shape).op, drt::Csg::Op::Intersection);
     EXPECT_EQ(std::get<drt::Csg>(scene->objects[2].shape).op, drt::Csg::Op::Merge);
 }

@@ -59,7 +59,7 @@ Pigment loadPigment(const std::string& pigmentText) {
     Diagnostics diags;
     const std::optional<Scene> scene = loadSceneText("sphere { 0, 1 " + pigmentText + " }", "w.drt", diags);
     EXPECT_TRUE(scene) << diags.formatAll();
-    return scene ? scene->objects.at(0).texture.pigment : Pigment{};
+    return scene ? scene->objects.at(0).texture->pigment : Pigment{};
 }
 
 TEST(PatternWave, GradientWithFrequencyAndPhaseGivesTheColourMapColours) {
@@ -128,17 +128,17 @@ sphere { 0, 1 pigment { onion poly_wave 2 ramp_wave poly_wave } }
     ASSERT_TRUE(scene) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
     ASSERT_EQ(scene->objects.size(), 4u);
-    const PatternWave& g = scene->objects[0].texture.pigment.wave;
+    const PatternWave& g = scene->objects[0].texture->pigment.wave;
     EXPECT_EQ(g.frequency, 2);
     EXPECT_EQ(g.phase, 0.25);
     EXPECT_EQ(g.kind, WaveKind::Triangle);
-    EXPECT_EQ(scene->objects[1].texture.pigment.wave.kind, WaveKind::Sine);
-    ASSERT_TRUE(scene->objects[1].texture.normal);
-    EXPECT_EQ(scene->objects[1].texture.normal->wave.frequency, 3);
-    EXPECT_EQ(scene->objects[1].texture.normal->wave.kind, WaveKind::Scallop);
-    EXPECT_EQ(scene->objects[2].texture.pigment.wave.kind, WaveKind::Cubic);
-    EXPECT_EQ(scene->objects[3].texture.pigment.wave.kind, WaveKind::Poly);
-    EXPECT_EQ(scene->objects[3].texture.pigment.wave.exponent, 1); // the last poly_wave, without exponent
+    EXPECT_EQ(scene->objects[1].texture->pigment.wave.kind, WaveKind::Sine);
+    ASSERT_TRUE(scene->objects[1].texture->normal);
+    EXPECT_EQ(scene->objects[1].texture->normal->wave.frequency, 3);
+    EXPECT_EQ(scene->objects[1].texture->normal->wave.kind, WaveKind::Scallop);
+    EXPECT_EQ(scene->objects[2].texture->pigment.wave.kind, WaveKind::Cubic);
+    EXPECT_EQ(scene->objects[3].texture->pigment.wave.kind, WaveKind::Poly);
+    EXPECT_EQ(scene->objects[3].texture->pigment.wave.exponent, 1); // the last poly_wave, without exponent
 }
 
 TEST(PatternWave, PovPolyWaveWithANonPositiveExponentWarns) {
@@ -147,7 +147,7 @@ TEST(PatternWave, PovPolyWaveWithANonPositiveExponentWarns) {
         loadPovSceneText("sphere { 0, 1 pigment { onion poly_wave -1 } }", "w.pov", diags);
     ASSERT_TRUE(scene);
     EXPECT_EQ(diags.warningCount(), 1) << diags.formatAll();
-    EXPECT_EQ(scene->objects.at(0).texture.pigment.wave.exponent, 1);
+    EXPECT_EQ(scene->objects.at(0).texture->pigment.wave.exponent, 1);
 }
 
 TEST(PatternWave, PovWarpTurbulenceBeforeAnyTransformIsTheTurbulence) {
@@ -158,7 +158,7 @@ sphere { 0, 1 pigment { crackle turbulence <0.6, 0.2, 0.1> octaves 3 omega 0.4 l
 )", "w.pov", diags);
     ASSERT_TRUE(scene) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-    const Pigment &warped = scene->objects.at(0).texture.pigment, &plain = scene->objects.at(1).texture.pigment;
+    const Pigment &warped = scene->objects.at(0).texture->pigment, &plain = scene->objects.at(1).texture->pigment;
     EXPECT_EQ(warped.turbulence.amount, Vec3(0.6, 0.2, 0.1));
     EXPECT_EQ(warped.turbulence.octaves, 3);
     EXPECT_EQ(warped.turbulence.omega, 0.4);
@@ -177,7 +177,7 @@ sphere { 0, 1 pigment { bozo warp { repeat x } } }
 )", "w.pov", diags);
     ASSERT_TRUE(scene) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 2) << diags.formatAll();
-    EXPECT_EQ(scene->objects.at(0).texture.pigment.turbulence.amount, Vec3(0, 0, 0));
+    EXPECT_EQ(scene->objects.at(0).texture->pigment.turbulence.amount, Vec3(0, 0, 0));
 }
 
 } // namespace

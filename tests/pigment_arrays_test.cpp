@@ -15,7 +15,7 @@ namespace {
 class PigmentArrays : public ::testing::TestWithParam<const char*> {};
 
 Color colourOf(const Scene& s, size_t i, const Vec3& at = Vec3(0.5, 0.5, 0.5)) {
-    return evaluatePigment(s.objects.at(i).texture.pigment, at).rgb;
+    return evaluatePigment(s.objects.at(i).texture->pigment, at).rgb;
 }
 
 TEST_P(PigmentArrays, ElementsAreColoursAndPigments) {

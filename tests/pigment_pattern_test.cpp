@@ -30,7 +30,7 @@ TEST(PigmentPattern, TheValueIsThePigmentsGreyInBothDialects) {
                             name, diags);
         ASSERT_TRUE(s) << name << "\n" << diags.formatAll();
         EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-        const Pigment& pigment = s->objects.at(0).texture.pigment;
+        const Pigment& pigment = s->objects.at(0).texture->pigment;
         ASSERT_EQ(pigment.pattern, PatternKind::Function) << name;
         ASSERT_TRUE(pigment.function);
         const Vec3 red(0, 0.5, 0.5), quarter(0.25, 0.5, 0.5); // the inner gradient's first entry, and a quarter on
@@ -49,7 +49,7 @@ TEST(PigmentPattern, ATransformedInnerPigmentMovesWithItsOwnTransformsAndTheOute
     Diagnostics diags;
     const auto s = load("sphere { 0, 1 pigment { pigment_pattern { gradient x scale 2 } translate x } }", "p.pov", diags);
     ASSERT_TRUE(s) << diags.formatAll();
-    const Pigment& pigment = s->objects.at(0).texture.pigment;
+    const Pigment& pigment = s->objects.at(0).texture->pigment;
     // The outer translate moves the point by -1 first, the inner gradient
     // (period 2) then reads x / 2: at world x = 1.5 the value is 0.25.
     EXPECT_NEAR(evaluatePigment(pigment, Vec3(1.5, 0, 0)).rgb.r, 0.25, 1e-9);
@@ -66,11 +66,11 @@ TEST(PigmentPattern, TexturePatternNormalAndDensity) {
                         "p.pov", diags);
     ASSERT_TRUE(s) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-    const Pigment& texturePattern = s->objects.at(0).texture.pigment;
+    const Pigment& texturePattern = s->objects.at(0).texture->pigment;
     ASSERT_TRUE(texturePattern.function);
     EXPECT_NEAR(texturePattern.function->at(Vec3(0.3, 0.1, 0.2)), 0.589, 1e-12);
-    ASSERT_TRUE(s->objects.at(1).texture.normal);
-    const Normal& normal = *s->objects.at(1).texture.normal;
+    ASSERT_TRUE(s->objects.at(1).texture->normal);
+    const Normal& normal = *s->objects.at(1).texture->normal;
     EXPECT_EQ(normal.pattern, PatternKind::Function);
     EXPECT_DOUBLE_EQ(normal.amount, 0.7);
     ASSERT_TRUE(normal.function);
@@ -93,8 +93,8 @@ TEST(PigmentPattern, AConvertedSceneKeepsTheValues) {
     const auto drt = load(text, "converted.drt", again);
     ASSERT_TRUE(drt) << text << "\n" << again.formatAll();
     for (const Vec3 p : {Vec3(0.1, 0.1, 0.1), Vec3(0.6, 0.1, 0.1), Vec3(-0.3, 0.7, 0.2)})
-        EXPECT_NEAR(evaluatePigment(drt->objects.at(0).texture.pigment, p).rgb.r,
-                    evaluatePigment(pov->objects.at(0).texture.pigment, p).rgb.r, 1e-12)
+        EXPECT_NEAR(evaluatePigment(drt->objects.at(0).texture->pigment, p).rgb.r,
+                    evaluatePigment(pov->objects.at(0).texture->pigment, p).rgb.r, 1e-12)
             << text;
 }
 

@@ -115,7 +115,7 @@ TEST(PovAtmosphere, DefaultWithoutHashIsTheDefaultDirective) {
     Diagnostics diags;
     const Scene s = loadPov("default { finish { ambient 0.3 } }\nsphere { 0, 1 }", diags);
     ASSERT_EQ(s.objects.size(), 1u);
-    EXPECT_DOUBLE_EQ(s.objects[0].texture.finish.ambient.r, 0.3);
+    EXPECT_DOUBLE_EQ(s.objects[0].texture->finish.ambient.r, 0.3);
 }
 
 TEST(PovAtmosphere, TrailingCommaInAVectorAndJitterBeforeAreaLight) {

@@ -270,7 +270,7 @@ TEST(PovCrossCheckControls, AMissingShadingTermFails) {
     // Drop the highlight (Blinn specular) of every object.
     const Figures f = brokenFigures(scenes()[1], "specular highlights dropped", [](Scene& scene) {
         for (Object& o : scene.objects)
-            o.texture.finish.specular = 0;
+            o.texture.edit().finish.specular = 0;
     });
     EXPECT_FALSE(f.within(Thresholds{})) << f;
 }
@@ -344,7 +344,7 @@ TEST(PovCrossCheckControls, SwappedTextureLayersFail) {
     };
     const Figures f = brokenFigures(layered, "texture layers in reverse order", [&](Scene& scene) {
         for (Object& o : scene.objects)
-            reverseLayers(o.texture);
+            reverseLayers(o.texture.edit());
     });
     EXPECT_FALSE(f.within(Thresholds{})) << f;
 }
@@ -363,7 +363,7 @@ TEST(PovCrossCheckControls, FilterTreatedAsTransmitFails) {
             }
         };
         for (Object& o : scene.objects)
-            unfilter(o.texture);
+            unfilter(o.texture.edit());
     });
     EXPECT_FALSE(f.within(Thresholds{})) << f;
 }

@@ -20,8 +20,8 @@ TEST(PovFeatures, CrandIsReadWithoutAWarning) {
     const auto s = load("sphere { 0, 1 finish { crand 0.25 diffuse 0.7 } }", diags);
     ASSERT_TRUE(s) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-    EXPECT_EQ(s->objects.at(0).texture.finish.crand, 0.25);
-    EXPECT_EQ(s->objects.at(0).texture.finish.diffuse, 0.7);
+    EXPECT_EQ(s->objects.at(0).texture->finish.crand, 0.25);
+    EXPECT_EQ(s->objects.at(0).texture->finish.diffuse, 0.7);
 }
 
 TEST(PovFeatures, MinAndMaxExtent) {
@@ -92,13 +92,13 @@ TEST(PovFeatures, QuiltedIsPovRaysFormulaWithItsControls) {
         const double t = length(v), b = 3 * t * (1 - t) * (1 - t) * c0 + 3 * t * t * (1 - t) * c1 + t * t * t;
         return 2 / (3 * std::sqrt(3.0)) * (std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z)) * b;
     };
-    const Pigment& pigment = s->objects.at(0).texture.pigment;
+    const Pigment& pigment = s->objects.at(0).texture->pigment;
     ASSERT_EQ(pigment.pattern, PatternKind::Function);
     ASSERT_TRUE(pigment.function);
     const Texture& texture = s->objects.at(1).texture;
     ASSERT_TRUE(texture.pigment.function);
-    ASSERT_TRUE(s->objects.at(2).texture.normal);
-    const Normal& normal = *s->objects.at(2).texture.normal;
+    ASSERT_TRUE(s->objects.at(2).texture->normal);
+    const Normal& normal = *s->objects.at(2).texture->normal;
     ASSERT_TRUE(normal.function);
     EXPECT_DOUBLE_EQ(normal.amount, 0.6);
     for (const Vec3 p : {Vec3(0.1, 0.2, 0.3), Vec3(-1.7, 2.45, 0.9), Vec3(3.5, 3.5, 3.5), Vec3(0, 0, 0)}) {

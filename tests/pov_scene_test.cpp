@@ -155,8 +155,8 @@ TEST(PovScene, UnionTextureGoesToChildrenWithoutOne) {
     const Scene s = loadOk("union { sphere { 0, 1 } sphere { x, 1 pigment { rgb <1, 0, 0> } } "
                            "pigment { rgb <0, 0, 1> } }");
     const Csg& csg = std::get<Csg>(s.objects[0].shape);
-    EXPECT_EQ(csg.children[0].texture.pigment.color.rgb, Color(0, 0, 1));
-    EXPECT_EQ(csg.children[1].texture.pigment.color.rgb, Color(1, 0, 0));
+    EXPECT_EQ(csg.children[0].texture->pigment.color.rgb, Color(0, 0, 1));
+    EXPECT_EQ(csg.children[1].texture->pigment.color.rgb, Color(1, 0, 0));
 }
 
 TEST(PovScene, DeclaredObjectsAreCopiedAndTransformed) {
@@ -166,7 +166,7 @@ TEST(PovScene, DeclaredObjectsAreCopiedAndTransformed) {
     expectNear(s.objects[0].transform.point({0, 0, 0}), {5, 0, 0});
     expectNear(s.objects[1].transform.point({1, 0, 0}), {2, 0, 0});
     // The pigment moves with the object it belongs to.
-    const Pigment& p = s.objects[0].texture.pigment;
+    const Pigment& p = s.objects[0].texture->pigment;
     EXPECT_EQ(p.pattern, PatternKind::Checker);
     ASSERT_EQ(p.children.size(), 2u);
     expectNear(p.toWorld.point({0, 0, 0}), {5, 0, 0});
@@ -201,13 +201,13 @@ TEST(PovScene, FinishInteriorAndColourMaps) {
                            "specular 0.3 roughness 0.01 metallic reflection { 0.1, 0.6 fresnel on falloff 2 } "
                            "conserve_energy brilliance 2 } } interior { ior 1.5 fade_distance 2 fade_power 3 } }");
     const Object& o = s.objects[0];
-    const Pigment& p = o.texture.pigment;
+    const Pigment& p = o.texture->pigment;
     EXPECT_EQ(p.pattern, PatternKind::Gradient);
     ASSERT_EQ(p.colorMap.size(), 4u);
     EXPECT_EQ(p.colorMap[1].value, 0.5);
     EXPECT_EQ(p.colorMap[2].value, 0.7);
     EXPECT_EQ(p.colorMap[3].color.rgb, Color(0, 0, 1));
-    const Finish& f = o.texture.finish;
+    const Finish& f = o.texture->finish;
     EXPECT_EQ(f.ambient, Color(0.2));
     EXPECT_EQ(f.diffuse, 0.7);
     EXPECT_EQ(f.phong, 0.5);
@@ -232,7 +232,7 @@ TEST(PovScene, UnmodelledNoisePatternIsApproximatedByItsMapAverageOnce) {
                         "sphere { 0, 1 pigment { cells color_map { [0 rgb 0] [1 rgb 1] } } }",
                         diags);
     ASSERT_TRUE(s);
-    const Pigment& p = s->objects[0].texture.pigment;
+    const Pigment& p = s->objects[0].texture->pigment;
     EXPECT_EQ(p.pattern, PatternKind::Solid);
     EXPECT_NEAR(p.color.rgb.r, 0.5, 1e-12);
     EXPECT_EQ(warningsContaining(diags, "'cells' is approximated"), 1);
@@ -241,14 +241,14 @@ TEST(PovScene, UnmodelledNoisePatternIsApproximatedByItsMapAverageOnce) {
 TEST(PovScene, GammaRules) {
     const std::string body = "sphere { 0, 1 pigment { rgb 0.5 } }\nlight_source { 0 rgb 0.5 }\n";
     // 3.7 default and assumed_gamma 1: linear, unchanged.
-    EXPECT_EQ(loadOk("#version 3.7;\n" + body).objects[0].texture.pigment.color.rgb, Color(0.5));
-    EXPECT_EQ(loadOk("global_settings { assumed_gamma 1.0 }\n" + body).objects[0].texture.pigment.color.rgb,
+    EXPECT_EQ(loadOk("#version 3.7;\n" + body).objects[0].texture->pigment.color.rgb, Color(0.5));
+    EXPECT_EQ(loadOk("global_settings { assumed_gamma 1.0 }\n" + body).objects[0].texture->pigment.color.rgb,
               Color(0.5));
     EXPECT_EQ(loadOk("#version 3.7;\n" + body).global.assumedGamma, 1.0);
     // assumed_gamma 2.2: colours are encoded; POV-Ray shades them as written and
     // decodes the pixels, so the model keeps them and carries the gamma.
     const Scene g = loadOk("global_settings { assumed_gamma 2.2 }\n" + body);
-    EXPECT_EQ(g.objects[0].texture.pigment.color.rgb, Color(0.5));
+    EXPECT_EQ(g.objects[0].texture->pigment.color.rgb, Color(0.5));
     EXPECT_EQ(g.lights[0].color, Color(0.5));
     EXPECT_EQ(g.global.assumedGamma, 2.2);
     // #version 3.6 without assumed_gamma: no gamma handling in POV-Ray, which is gamma 2.2.
@@ -256,9 +256,9 @@ TEST(PovScene, GammaRules) {
     // srgb: to linear, then into the working space with the gamma known at that point.
     const double linear = std::pow((0.5 + 0.055) / 1.055, 2.4);
     EXPECT_NEAR(loadOk("global_settings { assumed_gamma 2.2 }\nsphere { 0, 1 pigment { srgb 0.5 } }")
-                    .objects[0].texture.pigment.color.rgb.r,
+                    .objects[0].texture->pigment.color.rgb.r,
                 std::pow(linear, 1 / 2.2), 1e-12);
-    EXPECT_NEAR(loadOk("sphere { 0, 1 pigment { srgb 0.5 } }").objects[0].texture.pigment.color.rgb.r, linear, 1e-12);
+    EXPECT_NEAR(loadOk("sphere { 0, 1 pigment { srgb 0.5 } }").objects[0].texture->pigment.color.rgb.r, linear, 1e-12);
 }
 
 // POV-Ray's working gamma end to end: a surface lit head-on with diffuse 0.6
@@ -345,9 +345,9 @@ TEST(PovScene, ArrayElementsAsTexturesAndPigments) {
                            "sphere { 0, 1 texture { T[1] } }\nsphere { 0, 1 pigment { C[0] } }\n"
                            "sphere { 0, 1 pigment { C[1] } }");
     ASSERT_EQ(s.objects.size(), 3u);
-    EXPECT_EQ(s.objects[0].texture.pigment.color.rgb, Color(0, 1, 0));
-    EXPECT_EQ(s.objects[1].texture.pigment.color.rgb, Color(0, 0, 1));
-    EXPECT_EQ(s.objects[2].texture.pigment.color.rgb, Color(0.5));
+    EXPECT_EQ(s.objects[0].texture->pigment.color.rgb, Color(0, 1, 0));
+    EXPECT_EQ(s.objects[1].texture->pigment.color.rgb, Color(0, 0, 1));
+    EXPECT_EQ(s.objects[2].texture->pigment.color.rgb, Color(0.5));
 }
 
 TEST(PovScene, DefaultTextureAppliesToLaterObjectsWithoutOne) {
@@ -355,12 +355,12 @@ TEST(PovScene, DefaultTextureAppliesToLaterObjectsWithoutOne) {
                            "sphere { 0, 1 }\nsphere { 0, 1 pigment { rgb x } }\n"
                            "union { sphere { 0, 1 } pigment { rgb z } }");
     ASSERT_EQ(s.objects.size(), 4u);
-    EXPECT_EQ(s.objects[0].texture.finish.ambient, Color(0.1));
-    EXPECT_EQ(s.objects[1].texture.finish.ambient, Color(0.3));
-    EXPECT_EQ(s.objects[1].texture.pigment.color.rgb, Color(0, 1, 0));
-    EXPECT_EQ(s.objects[2].texture.pigment.color.rgb, Color(1, 0, 0));
-    EXPECT_EQ(s.objects[2].texture.finish.ambient, Color(0.3));
-    EXPECT_EQ(std::get<Csg>(s.objects[3].shape).children[0].texture.pigment.color.rgb, Color(0, 0, 1));
+    EXPECT_EQ(s.objects[0].texture->finish.ambient, Color(0.1));
+    EXPECT_EQ(s.objects[1].texture->finish.ambient, Color(0.3));
+    EXPECT_EQ(s.objects[1].texture->pigment.color.rgb, Color(0, 1, 0));
+    EXPECT_EQ(s.objects[2].texture->pigment.color.rgb, Color(1, 0, 0));
+    EXPECT_EQ(s.objects[2].texture->finish.ambient, Color(0.3));
+    EXPECT_EQ(std::get<Csg>(s.objects[3].shape).children[0].texture->pigment.color.rgb, Color(0, 0, 1));
 }
 
 // ---------------------------------------------------------------- command line

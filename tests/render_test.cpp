@@ -410,8 +410,8 @@ TEST(Lighting, ALightWhoseConeMissesThePointDrawsNoSamples) {
         sp.hit = &hit;
         sp.normal = {0, 1, 0};
         sp.incoming = {0, -1, 0};
-        sp.pigment = s.objects[0].texture.pigment.color;
-        sp.finish = &s.objects[0].texture.finish;
+        sp.pigment = s.objects[0].texture->pigment.color;
+        sp.finish = &s.objects[0].texture->finish;
         sampler.startPixelSample(2, 3, 5);
         return lighting.shade(sp, samples, sampler, counts);
     };

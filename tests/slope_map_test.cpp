@@ -66,7 +66,7 @@ TEST_P(SlopeMapDialects, IsReadAndWrittenBack) {
                                      name, diags, LoadOptions{});
     ASSERT_TRUE(scene) << diags.formatAll();
     EXPECT_EQ(diags.warningCount(), 0) << diags.formatAll();
-    const Normal& n = *scene->objects.at(0).texture.normal;
+    const Normal& n = *scene->objects.at(0).texture->normal;
     EXPECT_EQ(n.pattern, PatternKind::Marble);
     EXPECT_EQ(n.amount, 0.6);
     ASSERT_EQ(n.slopeMap.size(), 3u);
@@ -79,7 +79,7 @@ TEST_P(SlopeMapDialects, IsReadAndWrittenBack) {
     Diagnostics backDiags;
     const auto back = loadSceneText(written, "back.drt", backDiags, LoadOptions{});
     ASSERT_TRUE(back) << backDiags.formatAll() << "\n" << written;
-    const Normal& b = *back->objects.at(0).texture.normal;
+    const Normal& b = *back->objects.at(0).texture->normal;
     ASSERT_EQ(b.slopeMap.size(), 3u);
     for (size_t i = 0; i < 3; ++i) {
         EXPECT_EQ(b.slopeMap[i].value, n.slopeMap[i].value);
@@ -136,7 +136,7 @@ TEST(SlopeMapErrors, DecreasingValuesAreAnErrorInDrtOnly) {
     Diagnostics pov; // POV-Ray reads it without a word
     const auto scene = loadSceneText(source, "e.pov", pov, LoadOptions{});
     ASSERT_TRUE(scene) << pov.formatAll();
-    EXPECT_EQ(scene->objects.at(0).texture.normal->slopeMap.size(), 2u);
+    EXPECT_EQ(scene->objects.at(0).texture->normal->slopeMap.size(), 2u);
 }
 
 } // namespace

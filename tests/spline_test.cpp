@@ -95,8 +95,8 @@ TEST_P(SplineDialects, SplineFunctionsAreCalledInTheSceneAndInFunctions) {
     ASSERT_TRUE(scene) << diags.formatAll();
     const Sphere& s = std::get<Sphere>(scene->objects.at(0).shape);
     EXPECT_EQ(s.center, Vec3(0.5, 0.1, 0));
-    const Function& f = *scene->objects.at(1).texture.pigment.function;
-    const Function& inlined = *scene->objects.at(2).texture.pigment.function;
+    const Function& f = *scene->objects.at(1).texture->pigment.function;
+    const Function& inlined = *scene->objects.at(2).texture->pigment.function;
     EXPECT_DOUBLE_EQ(inlined.at(Vec3(0.25, 0, 0)), 0.75);
     EXPECT_DOUBLE_EQ(inlined.at(Vec3(2, 0, 0)), 0);
 
@@ -105,11 +105,11 @@ TEST_P(SplineDialects, SplineFunctionsAreCalledInTheSceneAndInFunctions) {
     Diagnostics backDiags;
     const auto back = loadSceneText(written, "back.drt", backDiags, LoadOptions{});
     ASSERT_TRUE(back) << backDiags.formatAll() << "\n" << written;
-    const Function& inlinedBack = *back->objects.at(2).texture.pigment.function;
+    const Function& inlinedBack = *back->objects.at(2).texture->pigment.function;
     EXPECT_TRUE(inlinedBack == inlined) << written;
     // The pigment function's call is written out in place: the same values (the gray of a grey
     // ramp at Spl(x).y: POV-Ray's 0.281125498 at x = 0.375).
-    const Function& fBack = *back->objects.at(1).texture.pigment.function;
+    const Function& fBack = *back->objects.at(1).texture->pigment.function;
     EXPECT_NEAR(f.at(Vec3(0.375, 0, 0)), 0.281125498, 1e-6);
     for (const double x : {0.1, 0.375, 0.6, 0.9}) EXPECT_DOUBLE_EQ(fBack.at(Vec3(x, 0, 0)), f.at(Vec3(x, 0, 0))) << written;
 }
@@ -125,7 +125,7 @@ TEST(Spline, SplineFunctionValueIsTheCallsComponent) {
         "box { 0, 1 pigment { function { Spl(x).y } } }\n",
         "f.pov", diags, LoadOptions{});
     ASSERT_TRUE(scene) << diags.formatAll();
-    const Function& f = *scene->objects.at(0).texture.pigment.function;
+    const Function& f = *scene->objects.at(0).texture->pigment.function;
     // POV-Ray's #debug of G(0.375, 0, 0) and G(0.6, 0, 0), G = function { Spl(x).y }.
     EXPECT_NEAR(f.at(Vec3(0.375, 0, 0)), 0.281125498, 1e-9);
     EXPECT_NEAR(f.at(Vec3(0.6, 0, 0)), 0.415027888, 1e-9);

@@ -205,7 +205,7 @@ mesh2 {
             const auto scene = parse(text, diags, name);
             ASSERT_TRUE(scene && !diags.hasErrors()) << diags.formatAll();
             EXPECT_EQ(diags.formatAll().find("not supported"), std::string::npos) << diags.formatAll();
-            EXPECT_TRUE(scene->objects.at(0).texture.pigment.uvMapping);
+            EXPECT_TRUE(scene->objects.at(0).texture->pigment.uvMapping);
             RenderOptions options;
             options.width = options.height = 8;
             options.samplesPerPixel = 1;

@@ -238,8 +238,8 @@ struct Differ {
         return shape(a.shape, b.shape, p + ".shape") &&
                transform(a.transform, b.transform, p + ".transform") &&
                motion(a.motion, b.motion, p + ".motion") &&
-               pigment(a.texture.pigment, b.texture.pigment, p + ".pigment") &&
-               finish(a.texture.finish, b.texture.finish, p + ".finish") &&
+               pigment(a.texture->pigment, b.texture->pigment, p + ".pigment") &&
+               finish(a.texture->finish, b.texture->finish, p + ".finish") &&
                eq(a.interior.ior, b.interior.ior, p + ".ior") &&
                eq(a.interior.fadeDistance, b.interior.fadeDistance, p + ".fadeDistance") &&
                eq(a.interior.fadePower, b.interior.fadePower, p + ".fadePower") &&
@@ -483,8 +483,8 @@ cylinder { <0, 0, -2>, <0, 2, -2>, 0.3 pigment { bozo ramp_wave phase 0.5 } }
     EXPECT_NE(text.find("poly_wave 2.5"), std::string::npos) << text;
     EXPECT_NE(text.find("cubic_wave"), std::string::npos) << text;
     EXPECT_NE(text.find("sine_wave"), std::string::npos) << text;
-    EXPECT_EQ(again->objects.at(1).texture.normal->wave.kind, WaveKind::Sine);
-    EXPECT_EQ(again->objects.at(3).texture.pigment.wave.frequency, -1.5);
+    EXPECT_EQ(again->objects.at(1).texture->normal->wave.kind, WaveKind::Sine);
+    EXPECT_EQ(again->objects.at(3).texture->pigment.wave.frequency, -1.5);
     EXPECT_EQ(writeDrtScene(*again, {"test"}), text);
     const Image a = renderSmall(*scene), b = renderSmall(*again);
     EXPECT_TRUE(a.pixels == b.pixels);
@@ -539,7 +539,7 @@ TEST(Writer, AnyAffineTransformRoundTripsItsMatrix) {
     Scene scene;
     Object o;
     o.transform = *Transform::fromPovMatrix(shear);
-    o.texture.pigment.toWorld = o.transform; // as the parser leaves an untextured object
+    o.texture.edit().pigment.toWorld = o.transform; // as the parser leaves an untextured object
     scene.objects.push_back(o);
     std::string text;
     const std::optional<Scene> again = roundTrip(scene, &text);

@@ -13,6 +13,7 @@
 #include "lang/lexer.h"
 #include "lang/load.h"
 #include "lang/value.h"
+#include "scene/texture_sharing.h"
 #include "scene/weight.h"
 
 #include <cstdint>
@@ -291,6 +292,7 @@ public:
     bool versionSeen_ = false;
     Texture defaultTexture_; // #default { texture / pigment / finish / normal }
     bool defaultSet_ = false; // a #default was given: untextured objects get it when placed
+    TextureSharing textureSharing_; // objects placed with equal textures share one (scene/texture_sharing.h)
     std::vector<uint32_t> randomStreams_; // seed(n) returns an index into this
     Diagnostics& diags() { return diags_; }
     const LoadOptions& options() const { return options_; }

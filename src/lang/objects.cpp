@@ -319,7 +319,7 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
         return tex;
     };
     std::vector<Object> boundedBy; // for `clipped_by { bounded_by }`
-    auto topTexture = [&]() { return po.textured ? o.texture : defaultTexture_; };
+    auto topTexture = [&]() -> Texture { return po.textured ? *o.texture : defaultTexture_; };
     for (;;) {
         const Token t = peek();
         if (t.is("}")) {
@@ -578,6 +578,7 @@ struct Flattener {
         o.hollow = hollow;
         o.inverse = inverse;
         o.clippedBy = std::move(clips);
+        e.textureSharing_.share(o.texture);
         scene.objects.push_back(std::move(o));
     }
 };
@@ -591,7 +592,9 @@ void Evaluator::addToScene(ObjectValue o) {
     // POV-Ray gives the #default texture to what has none when the object is placed.
     if (defaultSet_) inheritTexture(o, defaultTexture_);
     if (scene().keepUnions && o.object.motion.empty() && !hasMotionInside(o)) {
-        scene_.objects.push_back(placed(std::move(o)));
+        Object top = placed(std::move(o));
+        textureSharing_.share(top.texture);
+        scene_.objects.push_back(std::move(top));
         return;
     }
     Flattener{*this, scene_}.flatten(o, Transform{}, MotionChain{}, false, false, false, {});

@@ -487,7 +487,7 @@ void SceneWriter::clips(const std::vector<Object>& clippedBy, int indent) {
         // A clip's texture is never seen: write none.
         Object shape = clip;
         shape.texture = Texture{};
-        transformTextureSpaces(shape.texture, clip.transform);
+        transformTextureSpaces(shape.texture.edit(), clip.transform);
         object(shape, indent + 1);
     }
     line(indent, "}");

@@ -164,10 +164,10 @@ void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const
     if (!surface.entering) // the ray crossed the object's interior
         weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
     const auto& corners = hit.cornerTextures;
-    if (corners[0] == nullptr && corners[1] == nullptr && corners[2] == nullptr && object.texture.plain()) {
+    if (corners[0] == nullptr && corners[1] == nullptr && corners[2] == nullptr && object.texture->plain()) {
         // The object's own texture, one plain layer: what forEachSurfaceTexture
         // and shadeTexture come to (with a share of 1: weight * 1 == weight).
-        const Texture* single = &object.texture;
+        const Texture* single = &*object.texture;
         shadeLayers(surface, &single, 1, weight, sampler, counts, result, stack);
         return;
     }

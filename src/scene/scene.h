@@ -418,11 +418,36 @@ struct Csg {
 using Shape = std::variant<Sphere, Plane, Box, Cylinder, Cone, Disc, Torus, Mesh, Csg, Algebraic, Superellipsoid,
                            Extrusion, Revolution, Blob, Isosurface, JuliaFractal>;
 
+// An object's texture, kept on the heap and shared by the objects that have
+// the same one: a texture is most of an object's size (about 850 of 1400
+// bytes), and a scene of many objects mostly repeats a few textures (the front
+// ends share equal ones as they place objects, scene/texture_sharing.h).
+// Reading goes through ->, * or a const Texture&; edit() gives this object a
+// copy of its own first when the texture is shared (copy on write), so
+// changing one object's texture never changes another's.
+class SharedTexture {
+public:
+    SharedTexture(); // the default texture, one for the whole process
+    SharedTexture(Texture texture) : texture_(std::make_shared<Texture>(std::move(texture))) {}
+
+    const Texture& operator*() const { return *texture_; }
+    const Texture* operator->() const { return texture_.get(); }
+    operator const Texture&() const { return *texture_; }
+    Texture& edit(); // this object's own texture, copied first if shared
+    // The texture every holder of it sees, for a change that applies to each
+    // alike (resolving the files it names): not for what differs per object.
+    Texture& editForEverySharer() { return *texture_; }
+    bool sharedWith(const SharedTexture& other) const { return texture_ == other.texture_; }
+
+private:
+    std::shared_ptr<Texture> texture_;
+};
+
 struct Object {
     Shape shape;
     Transform transform; // object -> world (the transforms before the first motion)
     MotionChain motion;  // motions and the transforms after each (scene/motion.h); empty: still
-    Texture texture;
+    SharedTexture texture;
     Interior interior;
     bool noShadow = false;
     bool hollow = false;
@@ -448,7 +473,7 @@ struct Object {
 // Moves an object's textures by `t`: its own and its mesh triangles' (both
 // are placed like the object).
 inline void transformObjectTextures(Object& o, const Transform& t) {
-    transformTextureSpaces(o.texture, t);
+    transformTextureSpaces(o.texture.edit(), t);
     if (Mesh* mesh = std::get_if<Mesh>(&o.shape))
         for (Texture& own : mesh->textures) transformTextureSpaces(own, t);
 }

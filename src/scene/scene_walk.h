@@ -5,6 +5,7 @@
 #include "scene/scene.h"
 
 #include <type_traits>
+#include <unordered_set>
 
 namespace drt {
 
@@ -24,9 +25,12 @@ void forEachObject(SceneT& scene, Fn&& fn) {
 
 namespace detail {
 // Calls fn(texture) for every texture of one object: its own and its mesh
-// triangles', each before its map entries and its layers.
+// triangles', each before its map entries and its layers. An object's own
+// texture may be shared with other objects (SharedTexture): a walk that may
+// change textures passes `seen`, and visits a shared texture once, changing it
+// for every object that has it.
 template <class ObjectT, class Fn>
-void forEachTextureOf(ObjectT& object, Fn&& fn) {
+void forEachTextureOf(ObjectT& object, Fn&& fn, std::unordered_set<const Texture*>* seen = nullptr) {
     constexpr bool isConst = std::is_const_v<ObjectT>;
     using TextureT = std::conditional_t<isConst, const Texture, Texture>;
     using MeshT = std::conditional_t<isConst, const Mesh, Mesh>;
@@ -35,7 +39,12 @@ void forEachTextureOf(ObjectT& object, Fn&& fn) {
         for (auto& entry : t.map) self(self, entry.texture);
         for (TextureT& layer : t.layersAbove) self(self, layer);
     };
-    texture(texture, object.texture);
+    if constexpr (isConst) {
+        texture(texture, *object.texture);
+    } else {
+        Texture& own = object.texture.editForEverySharer();
+        if (!seen || seen->insert(&own).second) texture(texture, own);
+    }
     if (MeshT* mesh = std::get_if<Mesh>(&object.shape))
         for (TextureT& own : mesh->textures) texture(texture, own);
 }
@@ -57,8 +66,9 @@ void forEachPigment(SceneT& scene, Fn&& fn) {
     auto media = [&](MediaT& m) {
         for (PigmentT& density : m.densities) pigment(pigment, density);
     };
+    std::unordered_set<const Texture*> seen;
     forEachObject(scene, [&](ObjectT& object) {
-        detail::forEachTextureOf(object, [&](TextureT& t) { pigment(pigment, t.pigment); });
+        detail::forEachTextureOf(object, [&](TextureT& t) { pigment(pigment, t.pigment); }, &seen);
         for (MediaT& m : object.interior.media) media(m);
     });
     for (PigmentT& sky : scene.sky) pigment(pigment, sky);
@@ -70,10 +80,14 @@ void forEachPigment(SceneT& scene, Fn&& fn) {
 template <class SceneT, class Fn>
 void forEachNormal(SceneT& scene, Fn&& fn) {
     using ObjectT = std::conditional_t<std::is_const_v<SceneT>, const Object, Object>;
+    std::unordered_set<const Texture*> seen;
     forEachObject(scene, [&](ObjectT& object) {
-        detail::forEachTextureOf(object, [&](auto& texture) {
-            if (texture.normal) fn(*texture.normal);
-        });
+        detail::forEachTextureOf(
+            object,
+            [&](auto& texture) {
+                if (texture.normal) fn(*texture.normal);
+            },
+            &seen);
     });
 }
 

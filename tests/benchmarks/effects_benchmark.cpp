@@ -48,14 +48,14 @@ public:
         Hit hit;
         if (!accel_.intersect(ray, hit)) return weight * scene_.background;
         const Object& object = *hit.object;
-        const Finish& finish = object.texture.finish;
+        const Finish& finish = object.texture->finish;
         const Vec3 incoming = normalize(ray.direction);
         const bool entering = dot(incoming, hit.geometricNormal) < 0;
         Vec3 normal = entering ? hit.shadingNormal : -hit.shadingNormal;
         if (dot(normal, incoming) >= 0) normal = entering ? hit.geometricNormal : -hit.geometricNormal;
         Color w = weight;
         if (!entering) w *= interiorAttenuation(object.interior, hit.t * length(ray.direction));
-        const ColorFT pigment = evaluatePigment(object.texture.pigment, hit.point);
+        const ColorFT pigment = evaluatePigment(object.texture->pigment, hit.point);
         Color result = w * ambientTerm(finish, pigment, scene_.global.ambientLight);
         for (const Light& light : scene_.lights) {
             const Vec3 toLight = light.position - hit.point;

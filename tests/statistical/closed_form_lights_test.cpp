@@ -171,9 +171,9 @@ Scene furnace() {
 
 Object glossyMirror(double blur) {
     Object o = floorPlane();
-    o.texture.finish.diffuse = 0;
-    o.texture.finish.reflectionMin = o.texture.finish.reflectionMax = Color(1);
-    o.texture.finish.reflectionBlur = blur;
+    o.texture.edit().finish.diffuse = 0;
+    o.texture.edit().finish.reflectionMin = o.texture.edit().finish.reflectionMax = Color(1);
+    o.texture.edit().finish.reflectionBlur = blur;
     return o;
 }
 
@@ -227,8 +227,8 @@ TEST(ClosedFormLights, GlossyMirrorInAFurnace) {
 Object clearGlass(double blur) {
     Object o;
     o.shape = Sphere{{0, 0, 0}, 1};
-    o.texture.pigment.color = ColorFT{Color(1), 0, 1}; // transmit 1
-    Finish& f = o.texture.finish;
+    o.texture.edit().pigment.color = ColorFT{Color(1), 0, 1}; // transmit 1
+    Finish& f = o.texture.edit().finish;
     f.ambient = Color(0);
     f.diffuse = 0;
     f.reflectionMin = Color(0);

@@ -81,9 +81,9 @@ inline double logLogSlope(const std::vector<double>& x, const std::vector<double
 inline Object floorPlane() {
     Object o;
     o.shape = Plane{{0, 1, 0}, 0};
-    o.texture.pigment.color = ColorFT{Color(1), 0, 0};
-    o.texture.finish.ambient = Color(0);
-    o.texture.finish.diffuse = 1;
+    o.texture.edit().pigment.color = ColorFT{Color(1), 0, 0};
+    o.texture.edit().finish.ambient = Color(0);
+    o.texture.edit().finish.diffuse = 1;
     return o;
 }
 

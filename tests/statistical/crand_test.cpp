@@ -27,10 +27,10 @@ Scene grainyFloor() {
     s.camera.right = Vec3(8, 0, 0);
     Object floor;
     floor.shape = Plane{{0, 1, 0}, 0};
-    floor.texture.pigment.color = ColorFT{Color(1)};
-    floor.texture.finish.ambient = Color(0);
-    floor.texture.finish.diffuse = kDiffuse;
-    floor.texture.finish.crand = kCrand;
+    floor.texture.edit().pigment.color = ColorFT{Color(1)};
+    floor.texture.edit().finish.ambient = Color(0);
+    floor.texture.edit().finish.diffuse = kDiffuse;
+    floor.texture.edit().finish.crand = kCrand;
     s.objects.push_back(floor);
     Light light;
     light.position = {0, 1e6, 0};

@@ -189,7 +189,7 @@ Scene gridScene(std::shared_ptr<const IndexedMesh> mesh, int copies = 1, const s
         m.source = source;
     }
     o.shape = m;
-    o.texture.pigment.color = ColorFT{Color(0.8, 0.7, 0.6), 0, 0};
+    o.texture.edit().pigment.color = ColorFT{Color(0.8, 0.7, 0.6), 0, 0};
     if (copies == 1) {
         scene.objects.push_back(o);
         return scene;
