@@ -9,6 +9,7 @@
 #include "scene/texture_sharing.h"
 #include "test_support.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -29,7 +30,7 @@ const std::string kCamera = "camera { location <0, 0, -5> look_at <0, 0, 0> }\n"
 TEST(TextureSharing, ObjectsWithEqualTexturesShareOne) {
     std::string text = kCamera;
     for (int i = 0; i < 50; ++i)
-        text += "sphere { <" + std::to_string(i) + ", 0, 0>, 0.4 pigment { rgb <1, 0, 0> } finish { phong 0.5 } }\n";
+        text += fmt::format("sphere {{ <{}, 0, 0>, 0.4 pigment {{ rgb <1, 0, 0> }} finish {{ phong 0.5 }} }}\n", i);
     text += "sphere { <0, 2, 0>, 0.4 pigment { rgb <0, 1, 0> } finish { phong 0.5 } }\n";
     const Scene scene = load(text);
     ASSERT_EQ(scene.objects.size(), 51u);
@@ -87,8 +88,11 @@ TEST(TextureSharing, TexturesThatDifferInAnyNumberAreNotShared) {
     for (size_t i = 0; i < n; ++i) {
         const Texture copy = *scene.objects[i].texture;
         EXPECT_TRUE(sameTexture(copy, *scene.objects[i].texture)) << i;
-        for (size_t j = 0; j < n; ++j)
-            if (j != i) EXPECT_FALSE(sameTexture(copy, *scene.objects[j].texture)) << i << ", " << j;
+        for (size_t j = 0; j < n; ++j) {
+            if (j != i) {
+                EXPECT_FALSE(sameTexture(copy, *scene.objects[j].texture)) << i << ", " << j;
+            }
+        }
     }
 }
 
@@ -118,7 +122,7 @@ TEST(TextureSharing, EditingOneObjectsTextureLeavesTheOthers) {
 // A walk that may change textures visits a shared one once, for every object that has it.
 TEST(TextureSharing, AChangingWalkVisitsASharedTextureOnce) {
     std::string text = kCamera;
-    for (int i = 0; i < 10; ++i) text += "sphere { <" + std::to_string(i) + ", 0, 0>, 0.4 pigment { rgb 1 } }\n";
+    for (int i = 0; i < 10; ++i) text += fmt::format("sphere {{ <{}, 0, 0>, 0.4 pigment {{ rgb 1 }} }}\n", i);
     Scene scene = load(text);
     int visits = 0;
     forEachPigment(scene, [&](Pigment& p) {
@@ -140,7 +144,7 @@ TEST(TextureSharing, SharedTexturesRenderTheSamePixels) {
                                      "#declare T = texture { pigment { bozo color_map { [0 rgb 1] [1 rgb <1, 0, 0>] } "
                                      "scale 0.3 } finish { phong 0.6 } }\n";
     for (int i = -2; i <= 2; ++i) {
-        const std::string at = "<" + std::to_string(i) + ", 0, 0>";
+        const std::string at = fmt::format("<{}, 0, 0>", i);
         written += "sphere { " + at + ", 0.45 texture { pigment { bozo color_map { [0 rgb 1] [1 rgb <1, 0, 0>] } "
                                       "scale 0.3 } finish { phong 0.6 } } }\n";
         declared += "sphere { " + at + ", 0.45 texture { T } }\n";
