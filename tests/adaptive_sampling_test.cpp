@@ -81,19 +81,23 @@ TEST(Adaptive, LooserTargetsTakeFewerSamples) {
     const RenderResult loose = render(scene, adaptiveOptions(24, 18, 4, 512, 0.1));
     EXPECT_LT(loose.stats.pixelSamples, tight.stats.pixelSamples);
     // And the guard on a pixel's own variance holds wherever a pixel stopped
-    // before the maximum: var / n <= 16 E^2 (mean^2 + 0.01) in every channel.
+    // before the maximum: var / n <= 16 T(n) (mean^2 + 0.01) in every channel,
+    // T(n) = E^2 n / 16 the target at its n samples.
     for (int y = 0; y < 18; ++y)
         for (int x = 0; x < 24; ++x) {
-            if (loose.sampleCount.at(x, y, 0) >= 512) continue;
+            const double n = loose.sampleCount.at(x, y, 0);
+            if (n >= 512) continue;
+            const double target = 0.1 * 0.1 * n / kAdaptiveReferenceSamples;
             for (int c = 0; c < 3; ++c) {
                 const double mean = loose.color.at(x, y, c), var = loose.variance.at(x, y, c);
-                EXPECT_LE(var, 16 * 0.1 * 0.1 * (mean * mean + 0.01) * (1 + 1e-5)) << x << "," << y;
+                EXPECT_LE(var, 16 * target * (mean * mean + 0.01) * (1 + 1e-5)) << x << "," << y;
             }
         }
 }
 
 // The stopping rule itself (render/tile_state.cpp, decideNextRound), on pixel
-// states set by hand: one 15x15 tile, error target E = 0.1, rounds 4, 8, ...
+// states set by hand: one 15x15 tile, error target E = 0.1, rounds 4, 8, ...;
+// the pixels have taken kAdaptiveReferenceSamples, where the target is E^2.
 class AdaptiveRule : public ::testing::Test {
 protected:
     static constexpr double kTarget = 0.1 * 0.1;
@@ -103,11 +107,11 @@ protected:
         o.tileSize = 15;
         return o;
     }
-    void setAll(double error, double varianceError) {
+    void setAll(double error, double varianceError, int taken = kAdaptiveReferenceSamples) {
         for (int y = 0; y < 15; ++y)
             for (int x = 0; x < 15; ++x) {
                 AdaptivePixel& p = state_.adaptivePixel(x, y);
-                p.taken = 4;
+                p.taken = taken;
                 p.error = error;
                 p.varianceError = varianceError;
             }
@@ -142,6 +146,35 @@ TEST_F(AdaptiveRule, EveryPixelStopsWhenItsNeighbourhoodMeetsTheTarget) {
 TEST_F(AdaptiveRule, APixelFarAboveTheTargetOnItsOwnSamplesAgain) {
     setAll(0, 0);
     at(3, 4).varianceError = 17 * kTarget;
+    EXPECT_EQ(endRound(), (std::set<std::pair<int, int>>{{3, 4}}));
+}
+
+// The target is E^2 n / 16 at n samples: a pixel's next round costs n samples
+// and takes about half its error off, so a pixel with more samples stops at a
+// proportionally larger error.
+TEST_F(AdaptiveRule, TheTargetGrowsInProportionToTheSamplesTaken) {
+    setAll(1.5 * kTarget, 0, 32); // at 32 samples the target is 2 E^2
+    EXPECT_TRUE(endRound().empty());
+}
+
+TEST_F(AdaptiveRule, APixelWithFewerSamplesThanTheReferenceMeetsASmallerTarget) {
+    setAll(0.3 * kTarget, 0, 4); // at 4 samples the target is E^2 / 4
+    EXPECT_EQ(endRound().size(), 15u * 15u);
+}
+
+TEST_F(AdaptiveRule, TheTargetIsThePixelsOwnAtItsOwnSampleCount) {
+    setAll(0.75 * kTarget, 0, 8); // E^2 / 2 at 8 samples: every pixel samples again
+    for (int y = 5; y <= 9; ++y)
+        for (int x = 5; x <= 9; ++x) at(x, y).taken = 16; // E^2 here: these stop
+    const std::set<std::pair<int, int>> active = endRound();
+    for (int y = 0; y < 15; ++y)
+        for (int x = 0; x < 15; ++x)
+            EXPECT_EQ(active.count({x, y}) == 1, !(x >= 5 && x <= 9 && y >= 5 && y <= 9)) << x << "," << y;
+}
+
+TEST_F(AdaptiveRule, TheOwnVarianceGuardScalesWithTheTarget) {
+    setAll(0, 20 * kTarget, 32); // 16 T(32) = 32 E^2: under the guard
+    at(3, 4).varianceError = 33 * kTarget;
     EXPECT_EQ(endRound(), (std::set<std::pair<int, int>>{{3, 4}}));
 }
 

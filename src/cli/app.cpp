@@ -84,7 +84,7 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
                      "Adaptive sampling: each pixel samples until its error is small (overrides the scene)");
     render->add_option("--adaptive-error", a.adaptiveError,
                        "Adaptive target: the relative error (square root of relMSE) each 5x5 neighbourhood of "
-                       "pixels aims at")
+                       "pixels aims at, at 16 samples (at n samples: E * sqrt(n / 16))")
         ->check(CLI::PositiveNumber);
     render->add_option("--min-spp", a.minSpp, "Adaptive: samples every pixel takes first")
         ->check(CLI::Range(1, 1 << 24));

@@ -35,8 +35,9 @@ struct RenderOptions {
     // Adaptive sampling (render.cpp, "Adaptive sampling"): each pixel takes
     // samples in rounds that double its count, from minSamplesPerPixel, until
     // the mean estimated relative error of its 5x5 neighbourhood (relative to
-    // sqrt(mean^2 + adaptiveDarkFloor^2)) is at most adaptiveError^2, or it
-    // has maxSamplesPerPixel. samplesPerPixel is then unused.
+    // sqrt(mean^2 + adaptiveDarkFloor^2)) is at most adaptiveError^2 n / 16 at
+    // its n samples (tile_state.h kAdaptiveReferenceSamples), or it has
+    // maxSamplesPerPixel. samplesPerPixel is then unused.
     bool adaptive = false;
     double adaptiveError = 0.02;
     double adaptiveDarkFloor = 0.1; // the 0.01 = 0.1^2 of relMSE's denominator

@@ -192,8 +192,9 @@ void RenderState::completeTile(int index, const TileCounts& counts) {
 // The neighbourhood rule (render.cpp, "Adaptive sampling"): a pixel samples
 // again if it is still active and either the mean error of the pixels within
 // kAdaptiveRadius of it (in the window; every pixel, stopped or not, at its
-// latest estimate) is above the target or its own variance error is far above
-// it; none does after the last round. Sums are taken in a fixed order over a
+// latest estimate) is above its target or its own variance error is far above
+// it; none does after the last round. The target grows with the samples the
+// pixel has taken (kAdaptiveReferenceSamples). Sums are taken in a fixed order over a
 // window clipped to the rendered window, so a pixel far enough inside it
 // (tile_state.h, "Crop windows") decides as in a full render.
 bool RenderState::decideNextRound() {
@@ -214,8 +215,9 @@ bool RenderState::decideNextRound() {
                     sum += pixels_[size_t(ny) * size_t(w) + size_t(nx)].error;
                     ++count;
                 }
+            const double allowed = target * double(pixel.taken) / kAdaptiveReferenceSamples;
             // Written so that NaN or infinity means "sample again".
-            const bool again = !(sum <= target * count) || !(pixel.varianceError <= kAdaptiveOwnFactor * target);
+            const bool again = !(sum <= allowed * count) || !(pixel.varianceError <= kAdaptiveOwnFactor * allowed);
             next[size_t(y) * size_t(w) + size_t(x)] = again;
             any = any || again;
         }

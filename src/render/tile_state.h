@@ -41,6 +41,11 @@ namespace drt {
 // Adaptive sampling's neighbourhood: a pixel stops when the mean estimated
 // error of the (2r + 1)^2 pixels around it (within the image) meets the target.
 inline constexpr int kAdaptiveRadius = 2;
+// The target a pixel meets is the adaptive error's square at this many samples
+// (the default min_samples), and n / kAdaptiveReferenceSamples times that at n
+// samples: a pixel keeps sampling while another round would take as much error
+// off per sample as it does at the reference (render.cpp, "Adaptive sampling").
+inline constexpr int kAdaptiveReferenceSamples = 16;
 
 // Adaptive sampling's state of one pixel between rounds.
 struct AdaptivePixel {
