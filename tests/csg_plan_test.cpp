@@ -3,12 +3,14 @@
 // must be exactly those of re-evaluating the whole tree at every leaf crossing,
 // as csgCrossings first did; the reference below does that.
 #include "accel/built_scene.h"
+#include "accel/line_cull.h"
 #include "accel/shapes.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <random>
 
 namespace drt::accel {
@@ -89,7 +91,7 @@ std::vector<SurfaceCrossing> referenceCrossings(const CsgNode& root, const Vec3&
     return out;
 }
 
-const Object kObjects[64] = {};
+const Object kObjects[1024] = {};
 
 // A random tree of spheres, boxes, some planes and discs (not solid: their
 // crossings are ignored), each its own object, some inverted, some translated,
@@ -141,6 +143,17 @@ CsgNode randomTree(std::mt19937_64& rng, int depth, int& nextObject) {
 
 bool sameBits(double a, double b) { return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b); }
 
+// Every crossing's t, normal and object the same, to the bit.
+bool sameCrossings(const std::vector<SurfaceCrossing>& got, const std::vector<SurfaceCrossing>& expected) {
+    if (got.size() != expected.size()) return false;
+    for (size_t i = 0; i < got.size(); ++i)
+        if (!sameBits(got[i].t, expected[i].t) || !sameBits(got[i].normal.x, expected[i].normal.x) ||
+            !sameBits(got[i].normal.y, expected[i].normal.y) || !sameBits(got[i].normal.z, expected[i].normal.z) ||
+            got[i].object != expected[i].object)
+            return false;
+    return true;
+}
+
 TEST(CsgPlan, CrossingsAreThoseOfTheWholeTreeReevaluatedAtEachLeafCrossing) {
     std::mt19937_64 rng(17);
     std::uniform_real_distribution<double> u(-1, 1);
@@ -164,15 +177,7 @@ TEST(CsgPlan, CrossingsAreThoseOfTheWholeTreeReevaluatedAtEachLeafCrossing) {
             const Vec3 o = ray % 4 == 0 ? target - Vec3(4, 0, 0) : Vec3(u(rng), u(rng), u(rng)) * distance;
             const Vec3 d = target - o;
             csgCrossings(plan, o, d, got);
-            const std::vector<SurfaceCrossing> expected = referenceCrossings(root, o, d);
-            ASSERT_EQ(got.size(), expected.size()) << "tree " << tree << " ray " << ray;
-            for (size_t i = 0; i < got.size(); ++i) {
-                EXPECT_TRUE(sameBits(got[i].t, expected[i].t));
-                EXPECT_TRUE(sameBits(got[i].normal.x, expected[i].normal.x) &&
-                            sameBits(got[i].normal.y, expected[i].normal.y) &&
-                            sameBits(got[i].normal.z, expected[i].normal.z));
-                EXPECT_EQ(got[i].object, expected[i].object);
-            }
+            ASSERT_TRUE(sameCrossings(got, referenceCrossings(root, o, d))) << "tree " << tree << " ray " << ray;
             crossings += int(got.size());
         }
     }
@@ -182,6 +187,128 @@ TEST(CsgPlan, CrossingsAreThoseOfTheWholeTreeReevaluatedAtEachLeafCrossing) {
     // Lines skip spheres and boxes they miss, and discs always.
     EXPECT_GT(boxed, 500);
     EXPECT_GT(neverCrossed, 50);
+}
+
+// A tree of many leaves, as POV-Ray's grenadine.pov (a merge of a sphere, a
+// cylinder-like box and an intersection of a union of 240 hollow bubbles with a
+// slab): spheres and boxes of sizes 0.003 to 0.3, some rotated or squashed, some
+// inverted, differences of nested spheres, some twice (their crossings at equal t
+// must keep the leaves' order), some cut in half by a plane (a leaf no box
+// bounds) and a clip.
+CsgNode manyLeaves(std::mt19937_64& rng, int bubbles) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    int nextObject = 0;
+    const auto leaf = [&](ShapeKind kind, const Vec3& centre, double size) {
+        CsgNode node;
+        node.shape.kind = kind;
+        if (kind == ShapeKind::Sphere) {
+            node.shape.center = centre;
+            node.shape.radius = size;
+        } else {
+            node.shape.lower = centre - Vec3(size);
+            node.shape.upper = centre + Vec3(size);
+        }
+        node.object = &kObjects[size_t(nextObject++ % 1024)];
+        return node;
+    };
+    const auto operation = [](Csg::Op op) {
+        CsgNode node;
+        node.leaf = false;
+        node.op = op;
+        return node;
+    };
+    CsgNode group = operation(Csg::Op::Union);
+    std::vector<CsgNode> twins; // placed after every bubble: far from their originals in the leaves' order
+    for (int i = 0; i < bubbles; ++i) {
+        const Vec3 centre(u(rng), 0.3 * u(rng), u(rng));
+        const double size = 0.003 + 0.3 * std::pow(0.5 * (u(rng) + 1), 3);
+        const ShapeKind kind = rng() % 4 == 0 ? ShapeKind::Box : ShapeKind::Sphere;
+        CsgNode bubble = leaf(kind, centre, size);
+        const uint64_t placement = rng() % 8;
+        const Vec3 angles = Vec3(u(rng), u(rng), u(rng)) * 180;
+        if (placement == 0) bubble.toLevel = Transform::rotate(angles);
+        else if (placement == 1)
+            bubble.toLevel = Transform::translate(-centre)
+                                 .then(Transform::scale(Vec3(1, 0.7, 1)))
+                                 .then(Transform::rotate(angles))
+                                 .then(Transform::translate(centre));
+        bubble.inverse = rng() % 16 == 0;
+        if (rng() % 3 == 0) { // hollow: the bubble less a slightly smaller one
+            CsgNode hollow = operation(Csg::Op::Difference);
+            CsgNode inner = leaf(kind, centre, size * (1 - 1e-7));
+            inner.toLevel = bubble.toLevel;
+            hollow.children = {bubble, inner};
+            group.children.push_back(hollow);
+        } else {
+            group.children.push_back(bubble);
+        }
+        if (group.children.back().leaf && rng() % 6 == 0) { // again, another object's: crossings at equal t
+            twins.push_back(group.children.back());
+            twins.back().object = &kObjects[size_t(nextObject++ % 1024)];
+        }
+        if (rng() % 20 == 0) { // half a bubble: cut by a plane, a leaf no box bounds
+            CsgNode half = operation(Csg::Op::Intersection);
+            CsgNode plane = leaf(ShapeKind::Sphere, {}, 1);
+            plane.shape.kind = ShapeKind::Plane;
+            plane.shape.normal = normalize(Vec3(u(rng), u(rng), u(rng)));
+            plane.shape.distance = dot(plane.shape.normal, centre);
+            half.children = {group.children.back(), plane};
+            group.children.back() = half;
+        }
+    }
+    group.children.insert(group.children.end(), twins.begin(), twins.end());
+    CsgNode slab = operation(Csg::Op::Intersection);
+    slab.children = {group, leaf(ShapeKind::Box, {0, 0, 0}, 0.25)};
+    slab.children[1].shape.lower = Vec3(-0.95, -0.25, -0.95);
+    slab.children[1].shape.upper = Vec3(0.95, 0.25, 0.95);
+    CsgNode root = operation(Csg::Op::Merge);
+    root.children = {leaf(ShapeKind::Sphere, {0, -1.2, 0}, 0.9), leaf(ShapeKind::Box, {0, -0.9, 0}, 0.6), slab};
+    root.clips.push_back(leaf(ShapeKind::Sphere, {0, 0, 0}, 1.9));
+    return root;
+}
+
+TEST(CsgPlan, LeafHierarchyGivesTheCrossingsOfVisitingEveryLeaf) {
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int crossings = 0, skipped = 0, lines = 0;
+    for (int tree = 0; tree < 6; ++tree) {
+        const CsgNode root = manyLeaves(rng, tree == 0 ? 20 : 240);
+        const CsgPlan plan = planCsg(root), flat = planCsg(root, false);
+        ASSERT_FALSE(plan.leafIndex.empty());
+        ASSERT_TRUE(flat.leafIndex.empty());
+        std::vector<SurfaceCrossing> got, expected;
+        for (int ray = 0; ray < 2000; ++ray, ++lines) {
+            // Lines through the bubbles from near and far (where the margins
+            // grow), some along an axis, some through a leaf's centre and some
+            // grazing a leaf's box.
+            Vec3 target = Vec3(u(rng), 0.3 * u(rng), u(rng));
+            const CsgPlan::LeafBounds& b = plan.leafBounds[rng() % plan.leafBounds.size()];
+            if (ray % 5 == 3 && b.boxed) target = Vec3(b.upper.x, 0.5 * (b.lower.y + b.upper.y), b.lower.z);
+            if (ray % 5 == 4 && b.boxed) target = 0.5 * (b.lower + b.upper);
+            const double distance = ray % 8 == 1 ? 1e3 : ray % 8 == 2 ? 1e6 : 4;
+            const Vec3 o = ray % 4 == 0 ? target - Vec3(4, 0, 0)
+                           : ray % 4 == 1 ? target + Vec3(0, 0, distance)
+                                          : Vec3(u(rng), u(rng), u(rng)) * distance;
+            const Vec3 d = target - o;
+            csgCrossings(plan, o, d, got);
+            csgCrossings(flat, o, d, expected);
+            ASSERT_TRUE(sameCrossings(got, expected)) << "tree " << tree << " ray " << ray;
+            if (ray % 50 == 0) { // and, now and then, as the whole tree re-evaluated
+                ASSERT_TRUE(sameCrossings(got, referenceCrossings(root, o, d))) << "tree " << tree << " ray " << ray;
+            }
+            // How many leaves the hierarchy let the line skip.
+            std::vector<int> candidates = plan.unindexedLeaves;
+            const CullLine line = cullLine(o, d);
+            plan.leafIndex.gather([&](int node) { return !lineMissesBox(line, plan.indexBounds[size_t(node)].lower,
+                                                                        plan.indexBounds[size_t(node)].upper, 0); },
+                                  candidates);
+            skipped += int(plan.leaves.size() - candidates.size());
+            crossings += int(got.size());
+        }
+    }
+    EXPECT_GT(crossings, 20000);
+    // Most leaves are skipped: the hierarchy is in use.
+    EXPECT_GT(skipped, lines * 100);
 }
 
 TEST(CsgPlan, NodesArePreOrderWithChildrenBeforeClips) {

@@ -3,6 +3,8 @@
 #include "accel/polynomial.h"
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -54,6 +56,10 @@ void ellipsoidBounds(PolynomialSurface& s) {
 
 } // namespace
 
+namespace {
+void prepareExpansion(PolynomialSurface& s); // below
+} // namespace
+
 PolynomialSurface preparePolynomial(const Algebraic& a) {
     const int order = a.form == Algebraic::Form::Cubic     ? 3
                       : a.form == Algebraic::Form::Quartic ? 4
@@ -76,92 +82,190 @@ PolynomialSurface preparePolynomial(const Algebraic& a) {
     std::sort(s.terms.begin(), s.terms.end(), [](const Monomial& l, const Monomial& r) {
         return l.x != r.x ? l.x > r.x : l.y != r.y ? l.y > r.y : l.z > r.z;
     });
-    for (const Monomial& m : s.terms) s.order = std::max(s.order, m.x + m.y + m.z);
+    for (const Monomial& m : s.terms) {
+        s.order = std::max(s.order, m.x + m.y + m.z);
+        s.degreeX = std::max(s.degreeX, m.x);
+        s.degreeY = std::max(s.degreeY, m.y);
+        s.degreeZ = std::max(s.degreeZ, m.z);
+        const int index = int(&m - s.terms.data());
+        if (s.groups.empty() || s.groups.back().x != m.x || s.groups.back().y != m.y)
+            s.groups.push_back({m.x, m.y, 0, index, index});
+        s.groups.back().zDegree = std::max(s.groups.back().zDegree, m.z);
+        s.groups.back().end = index + 1;
+    }
     if (s.order == 0) throw std::invalid_argument("algebraic surface has no non-constant term");
+    prepareExpansion(s);
     if (s.order == 2) ellipsoidBounds(s);
     return s;
 }
 
 namespace {
 
-// (p + s u)^i for i = 0..order as coefficient rows: row i, column k holds the
+// Row i of a triangular table of rows 0, 1, 2, ... of lengths 1, 2, 3, ...
+constexpr size_t triangleRow(int i) { return size_t(i) * size_t(i + 1) / 2; }
+
+// Series up to this degree are handled by loops of fixed length, unrolled.
+constexpr int kUnrolled = 4;
+
+// (p + s u)^i for i = 0..degree as triangular rows: row i, column k holds the
 // coefficient of s^k, C(i, k) p^(i-k) u^k, built by repeated multiplication.
-void linearPowers(double p, double u, int order, double* rows) {
-    const int width = order + 1;
-    std::fill(rows, rows + width * width, 0.0);
+// The first and last columns add a zero to their one product (as rows of full
+// width did, whose other columns were zero): -0 becomes +0 there.
+template <int kDegree>
+void linearPowers(double p, double u, int degreeIn, double* rows) {
+    const int degree = kDegree < 0 ? degreeIn : kDegree;
     rows[0] = 1;
-    for (int i = 1; i <= order; ++i) {
-        const double* prev = rows + (i - 1) * width;
-        double* row = rows + i * width;
-        for (int k = 0; k <= i; ++k) row[k] = (k < i ? prev[k] * p : 0) + (k > 0 ? prev[k - 1] * u : 0);
+    for (int i = 1; i <= degree; ++i) {
+        const double* prev = rows + triangleRow(i - 1);
+        double* row = rows + triangleRow(i);
+        row[0] = prev[0] * p + 0.0;
+        for (int k = 1; k < i; ++k) row[k] = prev[k] * p + prev[k - 1] * u;
+        row[i] = 0.0 + prev[i - 1] * u;
     }
 }
 
-// out[0..na+nb] += scale * a[0..na] * b[0..nb]
-void multiplyAdd(const double* a, int na, const double* b, int nb, double scale, double* out) {
+void linearPowersOfDegree(double p, double u, int degree, double* rows) {
+    switch (degree) {
+    case 1: linearPowers<1>(p, u, degree, rows); break;
+    case 2: linearPowers<2>(p, u, degree, rows); break;
+    case 3: linearPowers<3>(p, u, degree, rows); break;
+    case 4: linearPowers<4>(p, u, degree, rows); break;
+    default: linearPowers<-1>(p, u, degree, rows); break;
+    }
+}
+
+// out[0..na+nb] += a[0..na] * b[0..nb], skipping a's zeros (kNa, kNb >= 0: of
+// that fixed degree).
+template <int kNa, int kNb>
+void multiplyAdd(const double* a, int naIn, const double* b, int nbIn, double* out) {
+    const int na = kNa < 0 ? naIn : kNa, nb = kNb < 0 ? nbIn : kNb;
     for (int i = 0; i <= na; ++i) {
         if (a[i] == 0) continue;
-        const double ai = scale * a[i];
+        const double ai = a[i];
         for (int j = 0; j <= nb; ++j) out[i + j] += ai * b[j];
     }
 }
 
-double integerPower(double v, int e) {
-    double r = 1;
-    for (int i = 0; i < e; ++i) r *= v;
-    return r;
+// out[0..na+nb] = a[0..na] * b[0..nb]: zeros, then multiplyAdd.
+template <int kNa, int kNb>
+void product(const double* a, int naIn, const double* b, int nbIn, double* out) {
+    const int size = (kNa < 0 ? naIn : kNa) + (kNb < 0 ? nbIn : kNb) + 1;
+    for (int k = 0; k < size; ++k) out[k] = 0.0;
+    multiplyAdd<kNa, kNb>(a, naIn, b, nbIn, out);
 }
+
+// sum[0..z] += c zPowers[0..z]; the first term of a run sets the sum to 0 + c
+// zPowers (its z is the run's highest), as adding to a sum of zeros did.
+template <int kZ, bool kFirst>
+void addTerm(double c, const double* zPowers, int zIn, double* sum) {
+    const int z = kZ < 0 ? zIn : kZ;
+    for (int k = 0; k <= z; ++k) sum[k] = (kFirst ? 0.0 : sum[k]) + c * zPowers[k];
+}
+
+template <template <int, int> class Step, size_t... I>
+constexpr std::array<PolynomialSurface::SeriesProduct, sizeof...(I)> seriesTable(std::index_sequence<I...>) {
+    return {&Step<int(I) / (kUnrolled + 1), int(I) % (kUnrolled + 1)>::run...};
+}
+template <int kNa, int kNb>
+struct ProductStep {
+    static void run(const double* a, int na, const double* b, int nb, double* out) {
+        product<kNa, kNb>(a, na, b, nb, out);
+    }
+};
+template <int kNa, int kNb>
+struct MultiplyAddStep {
+    static void run(const double* a, int na, const double* b, int nb, double* out) {
+        multiplyAdd<kNa, kNb>(a, na, b, nb, out);
+    }
+};
+constexpr auto kProducts = seriesTable<ProductStep>(std::make_index_sequence<(kUnrolled + 1) * (kUnrolled + 1)>());
+constexpr auto kMultiplyAdds =
+    seriesTable<MultiplyAddStep>(std::make_index_sequence<(kUnrolled + 1) * (kUnrolled + 1)>());
+
+template <bool kFirst, size_t... I>
+constexpr std::array<PolynomialSurface::SeriesTerm, sizeof...(I)> termTable(std::index_sequence<I...>) {
+    return {&addTerm<int(I), kFirst>...};
+}
+constexpr auto kFirstTerms = termTable<true>(std::make_index_sequence<kUnrolled + 1>());
+constexpr auto kLaterTerms = termTable<false>(std::make_index_sequence<kUnrolled + 1>());
+
+bool unrolled(int na, int nb) { return na <= kUnrolled && nb <= kUnrolled; }
 
 // expandAlongLine's rows past kStackOrder, kept per thread (accel/thread_scratch.h).
 struct AlgebraicScratch {
     std::vector<double> heap;
 };
 
+// Chooses expandAlongLine's steps for the groups' and terms' degrees.
+void prepareExpansion(PolynomialSurface& s) {
+    for (PolynomialSurface::TermGroup& g : s.groups) {
+        const size_t at = size_t(g.x * (kUnrolled + 1) + g.y);
+        g.xyProduct = unrolled(g.x, g.y) ? kProducts[at] : &product<-1, -1>;
+        const size_t sumAt = size_t((g.x + g.y) * (kUnrolled + 1) + g.zDegree);
+        g.accumulate = unrolled(g.x + g.y, g.zDegree) ? kMultiplyAdds[sumAt] : &multiplyAdd<-1, -1>;
+        for (int t = g.first; t < g.end; ++t) {
+            const int z = s.terms[size_t(t)].z;
+            const bool first = t == g.first;
+            s.termSteps.push_back(z <= kUnrolled ? (first ? kFirstTerms : kLaterTerms)[size_t(z)]
+                                                 : first ? &addTerm<-1, true> : &addTerm<-1, false>);
+        }
+    }
+}
+
 } // namespace
 
 std::unique_ptr<InstalledScratch> installAlgebraicScratch() { return ThreadScratch<AlgebraicScratch>::install(); }
 
+// Each coefficient is the sum of the same products in the same order as the
+// expansion first written (full-width power rows, zeroed and recomputed per
+// group): only the products of the zeros that rows of full width held are no
+// longer formed.
 void expandAlongLine(const PolynomialSurface& surface, const Vec3& p, const Vec3& u, double* out) {
     const int order = surface.order, width = order + 1;
-    const size_t size = size_t(width * width * 3 + width * 2);
+    const size_t xSize = triangleRow(surface.degreeX + 1), ySize = triangleRow(surface.degreeY + 1);
+    const size_t size = xSize + ySize + triangleRow(surface.degreeZ + 1) + size_t(width) * 2;
     constexpr int kStackOrder = 8;
-    double stack[(kStackOrder + 1) * (kStackOrder + 1) * 3 + (kStackOrder + 1) * 2];
-    std::vector<double>& heap = ThreadScratch<AlgebraicScratch>::get().heap;
-    if (order > kStackOrder && heap.size() < size) heap.resize(size);
-    double* xs = order > kStackOrder ? heap.data() : stack;
-    double* ys = xs + width * width;
-    double* zs = ys + width * width;
-    double* group = zs + width * width; // sum of c z-powers of one (x, y) group
-    double* xy = group + width;         // x power times y power
-    linearPowers(p.x, u.x, order, xs);
-    linearPowers(p.y, u.y, order, ys);
-    linearPowers(p.z, u.z, order, zs);
-    std::fill(out, out + width, 0.0);
-    const auto& terms = surface.terms;
-    for (size_t start = 0; start < terms.size();) {
-        const int i = terms[start].x, j = terms[start].y;
-        std::fill(group, group + width, 0.0);
-        int zDegree = 0;
-        size_t end = start;
-        for (; end < terms.size() && terms[end].x == i && terms[end].y == j; ++end) {
-            const Monomial& m = terms[end];
-            zDegree = std::max(zDegree, m.z);
-            for (int k = 0; k <= m.z; ++k) group[k] += m.coefficient * zs[m.z * width + k];
-        }
-        std::fill(xy, xy + width, 0.0);
-        multiplyAdd(xs + i * width, i, ys + j * width, j, 1.0, xy);
-        multiplyAdd(xy, i + j, group, zDegree, 1.0, out);
-        start = end;
+    double stack[3 * triangleRow(kStackOrder + 1) + (kStackOrder + 1) * 2];
+    double* xs = stack;
+    if (order > kStackOrder) {
+        std::vector<double>& heap = ThreadScratch<AlgebraicScratch>::get().heap;
+        if (heap.size() < size) heap.resize(size);
+        xs = heap.data();
+    }
+    double* ys = xs + xSize;
+    double* zs = ys + ySize;
+    double* group = zs + triangleRow(surface.degreeZ + 1); // sum of c z-powers of one (x, y) group
+    double* xy = group + width;                            // x power times y power
+    linearPowersOfDegree(p.x, u.x, surface.degreeX, xs);
+    linearPowersOfDegree(p.y, u.y, surface.degreeY, ys);
+    linearPowersOfDegree(p.z, u.z, surface.degreeZ, zs);
+    for (int k = 0; k < width; ++k) out[k] = 0.0;
+    const Monomial* terms = surface.terms.data();
+    const PolynomialSurface::SeriesTerm* steps = surface.termSteps.data();
+    for (const PolynomialSurface::TermGroup& g : surface.groups) {
+        for (int t = g.first; t < g.end; ++t)
+            steps[t](terms[t].coefficient, zs + triangleRow(terms[t].z), terms[t].z, group);
+        g.xyProduct(xs + triangleRow(g.x), g.x, ys + triangleRow(g.y), g.y, xy);
+        g.accumulate(xy, g.x + g.y, group, g.zDegree, out);
     }
 }
 
+// The powers p^0..p^degree, each the product 1 p p ... p from the left.
+static void integerPowers(double p, int degree, double* powers) {
+    powers[0] = 1;
+    for (int e = 1; e <= degree; ++e) powers[e] = powers[e - 1] * p;
+}
+
 Vec3 polynomialGradient(const PolynomialSurface& surface, const Vec3& p) {
+    double px[kMaxAlgebraicOrder + 1], py[kMaxAlgebraicOrder + 1], pz[kMaxAlgebraicOrder + 1];
+    integerPowers(p.x, surface.degreeX, px);
+    integerPowers(p.y, surface.degreeY, py);
+    integerPowers(p.z, surface.degreeZ, pz);
     Vec3 g;
     for (const Monomial& m : surface.terms) {
-        const double px = integerPower(p.x, m.x), py = integerPower(p.y, m.y), pz = integerPower(p.z, m.z);
-        if (m.x > 0) g.x += m.coefficient * m.x * integerPower(p.x, m.x - 1) * py * pz;
-        if (m.y > 0) g.y += m.coefficient * m.y * px * integerPower(p.y, m.y - 1) * pz;
-        if (m.z > 0) g.z += m.coefficient * m.z * px * py * integerPower(p.z, m.z - 1);
+        if (m.x > 0) g.x += m.coefficient * m.x * px[m.x - 1] * py[m.y] * pz[m.z];
+        if (m.y > 0) g.y += m.coefficient * m.y * px[m.x] * py[m.y - 1] * pz[m.z];
+        if (m.z > 0) g.z += m.coefficient * m.z * px[m.x] * py[m.y] * pz[m.z - 1];
     }
     return g;
 }

@@ -14,7 +14,23 @@ namespace drt::accel {
 // A polynomial ready for tracing: its non-zero terms and its order.
 struct PolynomialSurface {
     int order = 0; // highest total degree of a non-zero term
-    std::vector<Monomial> terms;
+    std::vector<Monomial> terms; // sorted by decreasing x, then y, then z exponent
+    // The runs of `terms` with one (x, y) exponent pair, whose z powers
+    // expandAlongLine sums before multiplying by the pair's x and y powers.
+    // The steps that expandAlongLine takes are chosen for their sizes here, once:
+    // series of small degree are summed by loops unrolled at compile time.
+    using SeriesProduct = void (*)(const double* a, int na, const double* b, int nb, double* out);
+    using SeriesTerm = void (*)(double coefficient, const double* zPowers, int z, double* sum);
+    struct TermGroup {
+        int x = 0, y = 0;
+        int zDegree = 0; // the highest z exponent in the run
+        int first = 0, end = 0;
+        SeriesProduct xyProduct = nullptr;  // x power times y power: out = a b
+        SeriesProduct accumulate = nullptr; // that times the z sum: out += a b
+    };
+    std::vector<TermGroup> groups;
+    std::vector<SeriesTerm> termSteps; // by term: its z sum's share, the first of a run's setting the sum
+    int degreeX = 0, degreeY = 0, degreeZ = 0; // the highest exponent of each variable
     // Set for ellipsoids (a quadric whose quadratic part is positive
     // definite): the box around the solid; other polynomials are unbounded.
     bool bounded = false;

@@ -81,87 +81,45 @@ BlobGeometry::BlobGeometry(const Blob& blob, bool spatialIndex) : threshold_(blo
 
 namespace {
 constexpr size_t kIndexedFrom = 16; // fewer components: test them all
-constexpr int kLeafSize = 4;
-
-Vec3 sphereLower(const Vec3& centre, double radius2) { return centre - Vec3(std::sqrt(radius2)); }
-Vec3 sphereUpper(const Vec3& centre, double radius2) { return centre + Vec3(std::sqrt(radius2)); }
 } // namespace
 
 void BlobGeometry::buildIndex() {
     if (components_.size() < kIndexedFrom) return;
+    std::vector<int> indexed;
     for (size_t i = 0; i < components_.size(); ++i) {
         const Component& c = components_[i];
         const bool sphere = c.kind == BlobComponent::Kind::Sphere && !c.transformed;
-        (sphere && isFinite(c.center) ? indexed_ : unindexed_).push_back(int(i));
+        (sphere && isFinite(c.center) ? indexed : unindexed_).push_back(int(i));
     }
-    if (indexed_.size() < kIndexedFrom) { // mostly transformed or cylinders: nothing to gain
-        indexed_.clear();
+    if (indexed.size() < kIndexedFrom) { // mostly transformed or cylinders: nothing to gain
         unindexed_.clear();
         return;
     }
+    std::vector<Vec3> lower(components_.size()), upper(components_.size()), centre(components_.size());
     smallestRadius_ = HUGE_VAL;
-    for (int i : indexed_) {
+    for (int i : indexed) {
         const Component& c = components_[size_t(i)];
-        smallestRadius_ = std::min(smallestRadius_, std::sqrt(c.radius2));
-        const Vec3 lo = sphereLower(c.center, c.radius2), hi = sphereUpper(c.center, c.radius2);
-        reach_ = std::max({reach_, maxComponent(abs(lo)), maxComponent(abs(hi))});
+        const double radius = std::sqrt(c.radius2);
+        smallestRadius_ = std::min(smallestRadius_, radius);
+        lower[size_t(i)] = c.center - Vec3(radius);
+        upper[size_t(i)] = c.center + Vec3(radius);
+        centre[size_t(i)] = c.center;
+        reach_ = std::max({reach_, maxComponent(abs(lower[size_t(i)])), maxComponent(abs(upper[size_t(i)]))});
     }
-    // Median splits along the longest side of the centres' box.
-    const auto build = [&](auto& self, int first, int count) -> void {
-        const size_t node = index_.size();
-        index_.push_back({});
-        Vec3 lower(HUGE_VAL), upper(-HUGE_VAL), centreLower(HUGE_VAL), centreUpper(-HUGE_VAL);
-        for (int k = first; k < first + count; ++k) {
-            const Component& c = components_[size_t(indexed_[size_t(k)])];
-            lower = min(lower, sphereLower(c.center, c.radius2));
-            upper = max(upper, sphereUpper(c.center, c.radius2));
-            centreLower = min(centreLower, c.center);
-            centreUpper = max(centreUpper, c.center);
-        }
-        index_[node].lower = lower;
-        index_[node].upper = upper;
-        if (count <= kLeafSize) {
-            index_[node].first = first;
-            index_[node].count = count;
-            return;
-        }
-        const Vec3 extent = centreUpper - centreLower;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-        const int half = count / 2;
-        const auto below = [&](int a, int b) {
-            return components_[size_t(a)].center[axis] < components_[size_t(b)].center[axis];
-        };
-        std::nth_element(indexed_.begin() + first, indexed_.begin() + first + half, indexed_.begin() + first + count,
-                         below);
-        self(self, first, half);
-        index_[node].second = int(index_.size());
-        self(self, first + half, count - half);
-    };
-    build(build, 0, int(indexed_.size()));
-    reach_ += maxComponent(index_[0].upper - index_[0].lower);
+    index_.build(std::move(indexed), lower, upper, centre);
+    reach_ += maxComponent(index_.nodes()[0].upper - index_.nodes()[0].lower);
 }
 
 namespace {
 
 // Every component in a leaf whose box `overlaps` accepts, and the unindexed
 // ones, in the components' order.
-template <class Node, class Overlaps>
-void gatherCandidates(const std::vector<Node>& index, const std::vector<int>& indexed,
-                      const std::vector<int>& unindexed, Overlaps overlaps, std::vector<int>& out) {
+template <class Overlaps>
+void gatherCandidates(const BoxHierarchy& index, const std::vector<int>& unindexed, Overlaps overlaps,
+                      std::vector<int>& out) {
     out = unindexed;
-    int stack[64], depth = 0;
-    stack[depth++] = 0;
-    while (depth > 0) {
-        const int at = stack[--depth];
-        const Node& node = index[size_t(at)];
-        if (!overlaps(node.lower, node.upper)) continue;
-        if (node.count > 0) {
-            out.insert(out.end(), indexed.begin() + node.first, indexed.begin() + node.first + node.count);
-            continue;
-        }
-        stack[depth++] = node.second;
-        stack[depth++] = at + 1;
-    }
+    index.gather([&](int node) { return overlaps(index.nodes()[size_t(node)].lower, index.nodes()[size_t(node)].upper); },
+                 out);
     std::sort(out.begin(), out.end());
 }
 
@@ -178,7 +136,7 @@ const int* BlobGeometry::lineCandidates(const Vec3& o, const Vec3& d, std::vecto
     const double extent = line.originNorm + reach_;
     const double margin = 1e-6 * extent * (1 + extent / smallestRadius_);
     gatherCandidates(
-        index_, indexed_, unindexed_,
+        index_, unindexed_,
         [&](const Vec3& lower, const Vec3& upper) { return !lineMissesBox(line, lower, upper, margin); }, scratch);
     count = scratch.size();
     return scratch.data();
@@ -193,7 +151,7 @@ const int* BlobGeometry::pointCandidates(const Vec3& p, std::vector<int>& scratc
             if (!(p[axis] >= lower[axis] - margin && p[axis] <= upper[axis] + margin)) return false;
         return true;
     };
-    gatherCandidates(index_, indexed_, unindexed_, within, scratch);
+    gatherCandidates(index_, unindexed_, within, scratch);
     count = scratch.size();
     return scratch.data();
 }

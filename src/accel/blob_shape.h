@@ -9,6 +9,7 @@
 // Normals are minus the field's gradient.
 #pragma once
 
+#include "accel/line_cull.h"
 #include "accel/shapes.h"
 #include "scene/blob.h"
 
@@ -55,14 +56,8 @@ private:
     const int* lineCandidates(const Vec3& o, const Vec3& d, std::vector<int>& scratch, size_t& count) const;
     const int* pointCandidates(const Vec3& p, std::vector<int>& scratch, size_t& count) const;
     void buildIndex();
-    struct IndexNode {
-        Vec3 lower, upper;
-        int first = 0, count = 0; // a leaf: indexed_[first, first + count)
-        int second = 0;           // an inner node: its first child follows it, its second is here
-    };
-    std::vector<IndexNode> index_; // empty: every component is a candidate
-    std::vector<int> indexed_;     // the spheres in the hierarchy, by leaf
-    std::vector<int> unindexed_;   // the rest, in order
+    BoxHierarchy index_;         // over the untransformed spheres; empty: every component is a candidate
+    std::vector<int> unindexed_; // the rest, in order
     double reach_ = 0;             // max |coordinate| of the indexed boxes plus their largest side
     double smallestRadius_ = 0;    // of the indexed spheres
 

@@ -8,6 +8,7 @@
 // origin, and the instance's transform maps it to the top level at the ray's time.
 #pragma once
 
+#include "accel/line_cull.h"
 #include "accel/motion.h"
 #include "accel/shapes.h"
 #include "core/transform.h"
@@ -103,6 +104,15 @@ struct CsgPlan {
         double conditioning = 1; // |M| |M^-1| of toLevel's linear part, max-row-sum norms
     };
     std::vector<LeafBounds> leafBounds;
+    // With many boxed leaves, a hierarchy of their bounds (leafIndex) finds those
+    // a line may meet: each of its nodes has the bounds of its leaves and the
+    // worst of their margins' terms (largest conditioning and reach, smallest
+    // size), so that a line that misses a node's grown box misses every grown
+    // leaf box below it. The solid leaves outside the hierarchy are always
+    // visited (unindexedLeaves, in order). An empty leafIndex: every leaf is.
+    BoxHierarchy leafIndex;
+    std::vector<LeafBounds> indexBounds; // by leafIndex node
+    std::vector<int> unindexedLeaves;
     // A node's state along a line: its value (inside or not) and how many of its
     // children and clips are inside.
     struct NodeState {
@@ -113,7 +123,8 @@ struct CsgPlan {
     // inversion): where csgCrossings starts, changing only the leaves it meets.
     std::vector<NodeState> outside;
 };
-CsgPlan planCsg(const CsgNode& root);
+// `leafIndex` false builds no hierarchy: every leaf is visited (for tests).
+CsgPlan planCsg(const CsgNode& root, bool leafIndex = true);
 
 // One analytic Embree user-geometry primitive: a single shape or a CSG tree.
 struct Primitive {

@@ -27,6 +27,7 @@ using NodeState = CsgPlan::NodeState;
 // Scratch space kept per thread (no allocation per ray once warm:
 // accel/thread_scratch.h), one list per use.
 struct CrossingScratch {
+    std::vector<int> candidates;
     std::vector<LeafEvent> events;
     std::vector<NodeState> nodes;
     std::vector<Crossing> leafMany, closestMany;
@@ -175,9 +176,54 @@ bool lineMissesLeaf(const CsgPlan::LeafBounds& b, const CullLine& line) {
     return lineMissesBox(line, b.lower, b.upper, margin);
 }
 
+constexpr size_t kIndexedFrom = 16; // fewer boxed leaves: test them all
+
+void indexLeaves(CsgPlan& plan) {
+    std::vector<int> indexed, unindexed;
+    const size_t count = plan.leafBounds.size();
+    for (size_t i = 0; i < count; ++i) {
+        const CsgPlan::LeafBounds& b = plan.leafBounds[i];
+        if (b.boxed) indexed.push_back(int(i));
+        else if (!b.neverCrossed) unindexed.push_back(int(i));
+    }
+    if (indexed.size() < kIndexedFrom) return;
+    std::vector<Vec3> lower(count), upper(count), centre(count);
+    for (int i : indexed) {
+        lower[size_t(i)] = plan.leafBounds[size_t(i)].lower;
+        upper[size_t(i)] = plan.leafBounds[size_t(i)].upper;
+        centre[size_t(i)] = 0.5 * (lower[size_t(i)] + upper[size_t(i)]);
+    }
+    plan.leafIndex.build(std::move(indexed), lower, upper, centre);
+    plan.unindexedLeaves = std::move(unindexed);
+    // Children follow their parents: from the last node back, each node's
+    // children are done before it.
+    const std::vector<BoxHierarchy::Node>& nodes = plan.leafIndex.nodes();
+    plan.indexBounds.assign(nodes.size(), {});
+    for (size_t at = nodes.size(); at-- > 0;) {
+        CsgPlan::LeafBounds& b = plan.indexBounds[at];
+        b.boxed = true;
+        b.lower = nodes[at].lower;
+        b.upper = nodes[at].upper;
+        b.size = HUGE_VAL;
+        b.conditioning = 0;
+        const auto worst = [&](const CsgPlan::LeafBounds& part) {
+            b.reach = std::max(b.reach, part.reach);
+            b.size = std::min(b.size, part.size);
+            b.conditioning = std::max(b.conditioning, part.conditioning);
+        };
+        if (nodes[at].count > 0) {
+            for (int k = nodes[at].first; k < nodes[at].first + nodes[at].count; ++k)
+                worst(plan.leafBounds[size_t(plan.leafIndex.items()[size_t(k)])]);
+        } else {
+            worst(plan.indexBounds[at + 1]);
+            worst(plan.indexBounds[size_t(nodes[at].second)]);
+        }
+    }
+}
+
 } // namespace
 
-CsgPlan planCsg(const CsgNode& root) {
+CsgPlan planCsg(const CsgNode& root, bool leafIndex) {
     CsgPlan plan;
     planNode(root, -1, false, false, false, plan);
     std::vector<char> inversions;
@@ -186,6 +232,7 @@ CsgPlan planCsg(const CsgNode& root) {
         inversions.push_back(leaf->inverse);
     }
     evaluateAll(plan, inversions, plan.outside);
+    if (leafIndex) indexLeaves(plan);
     return plan;
 }
 
@@ -200,7 +247,19 @@ void csgCrossings(const CsgPlan& plan, const Vec3& o, const Vec3& d, std::vector
     events.clear();
     nodes = plan.outside;
     const CullLine line = cullLine(o, d);
-    for (size_t i = 0; i < leaves.size(); ++i) {
+    // The leaves the line may meet, in their order (so that events at equal t
+    // keep the order of visiting every leaf).
+    const bool indexed = !plan.leafIndex.empty() && line.usable;
+    std::vector<int>& candidates = scratch.candidates;
+    if (indexed) {
+        candidates = plan.unindexedLeaves;
+        plan.leafIndex.gather(
+            [&](int node) { return !lineMissesLeaf(plan.indexBounds[size_t(node)], line); }, candidates);
+        std::sort(candidates.begin(), candidates.end());
+    }
+    const size_t count = indexed ? candidates.size() : leaves.size();
+    for (size_t visit = 0; visit < count; ++visit) {
+        const size_t i = indexed ? size_t(candidates[visit]) : visit;
         const CsgNode& leaf = *leaves[i];
         const CsgPlan::LeafBounds& bounds = plan.leafBounds[i];
         if (bounds.neverCrossed || (bounds.boxed && line.usable && lineMissesLeaf(bounds, line)))

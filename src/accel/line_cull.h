@@ -1,14 +1,17 @@
 // A conservative test of whether a whole line o + t d (every t) misses a box,
 // for skipping parts of a shape that a line cannot meet (CSG leaves, blob
-// components). Callers grow the box by a margin far above their solvers'
-// rounding, so that a skipped part is one the solver would have found no
-// crossing with; the test's own rounding is of order 1e-16 |o|.
+// components), and a bounding-box hierarchy over such parts, so that a line
+// finds the few it may meet in about a logarithm of their number. Callers grow
+// the boxes by a margin far above their solvers' rounding, so that a skipped
+// part is one the solver would have found no crossing with; the test's own
+// rounding is of order 1e-16 |o|.
 #pragma once
 
 #include "core/vec.h"
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace drt::accel {
 
@@ -44,5 +47,80 @@ inline bool lineMissesBox(const CullLine& line, const Vec3& lower, const Vec3& u
     }
     return tNear > tFar;
 }
+
+// A bounding-box hierarchy over numbered items: median splits along the longest
+// side of the box of the items' centres, up to kLeafSize items a leaf.
+class BoxHierarchy {
+public:
+    static constexpr int kLeafSize = 4;
+    struct Node {
+        Vec3 lower, upper;        // the union of its items' boxes
+        int first = 0, count = 0; // a leaf: items()[first, first + count)
+        int second = 0;           // an inner node: its first child follows it, its second is here
+    };
+
+    // Builds over `items` (at least one), whose boxes and centres are
+    // lower[i], upper[i] and centre[i] for item i.
+    void build(std::vector<int> items, const std::vector<Vec3>& lower, const std::vector<Vec3>& upper,
+               const std::vector<Vec3>& centre) {
+        items_ = std::move(items);
+        nodes_.clear();
+        const auto split = [&](auto& self, int first, int count) -> void {
+            const size_t node = nodes_.size();
+            nodes_.push_back({});
+            Vec3 lo(HUGE_VAL), hi(-HUGE_VAL), centreLower(HUGE_VAL), centreUpper(-HUGE_VAL);
+            for (int k = first; k < first + count; ++k) {
+                const size_t item = size_t(items_[size_t(k)]);
+                lo = min(lo, lower[item]);
+                hi = max(hi, upper[item]);
+                centreLower = min(centreLower, centre[item]);
+                centreUpper = max(centreUpper, centre[item]);
+            }
+            nodes_[node].lower = lo;
+            nodes_[node].upper = hi;
+            if (count <= kLeafSize) {
+                nodes_[node].first = first;
+                nodes_[node].count = count;
+                return;
+            }
+            const Vec3 extent = centreUpper - centreLower;
+            const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+            const int half = count / 2;
+            std::nth_element(items_.begin() + first, items_.begin() + first + half, items_.begin() + first + count,
+                             [&](int a, int b) { return centre[size_t(a)][axis] < centre[size_t(b)][axis]; });
+            self(self, first, half);
+            nodes_[node].second = int(nodes_.size());
+            self(self, first + half, count - half);
+        };
+        split(split, 0, int(items_.size()));
+    }
+
+    bool empty() const { return nodes_.empty(); }
+    const std::vector<Node>& nodes() const { return nodes_; }
+    const std::vector<int>& items() const { return items_; }
+
+    // Appends to `out` the items of every leaf whose box and whose ancestors'
+    // boxes `overlaps(nodeIndex)` accepts, in no particular order.
+    template <class Overlaps>
+    void gather(Overlaps overlaps, std::vector<int>& out) const {
+        int stack[64], depth = 0; // the depth is about log2(items / kLeafSize)
+        stack[depth++] = 0;
+        while (depth > 0) {
+            const int at = stack[--depth];
+            const Node& node = nodes_[size_t(at)];
+            if (!overlaps(at)) continue;
+            if (node.count > 0) {
+                out.insert(out.end(), items_.begin() + node.first, items_.begin() + node.first + node.count);
+                continue;
+            }
+            stack[depth++] = node.second;
+            stack[depth++] = at + 1;
+        }
+    }
+
+private:
+    std::vector<Node> nodes_;
+    std::vector<int> items_;
+};
 
 } // namespace drt::accel

@@ -3,7 +3,9 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <map>
 
 namespace drt {
 
@@ -169,27 +171,19 @@ double run(const Function& f, const double* args, int channel, double* stack) {
             top[-1] = f.splines[i.index]->at(top[-1])[size_t(c >= 0 && c < 5 ? c : 0)];
             break;
         }
-        default: {
-            --top;
-            const double a = top[-1], b = top[0];
-            double r = 0;
-            switch (i.op) {
-            case FnOp::Add: r = a + b; break;
-            case FnOp::Sub: r = a - b; break;
-            case FnOp::Mul: r = a * b; break;
-            case FnOp::Div: r = a / b; break;
-            case FnOp::Lt: r = a < b; break;
-            case FnOp::Le: r = a <= b; break;
-            case FnOp::Eq: r = std::fabs(a - b) <= 1e-10; break;
-            case FnOp::Ne: r = std::fabs(a - b) > 1e-10; break;
-            case FnOp::Ge: r = a >= b; break;
-            case FnOp::Gt: r = a > b; break;
-            case FnOp::And: r = a != 0 && b != 0; break;
-            case FnOp::Or: r = a != 0 || b != 0; break;
-            default: break;
-            }
-            top[-1] = r;
-        }
+        // Binary operators: a b -> a op b.
+        case FnOp::Add: --top, top[-1] = top[-1] + top[0]; break;
+        case FnOp::Sub: --top, top[-1] = top[-1] - top[0]; break;
+        case FnOp::Mul: --top, top[-1] = top[-1] * top[0]; break;
+        case FnOp::Div: --top, top[-1] = top[-1] / top[0]; break;
+        case FnOp::Lt: --top, top[-1] = top[-1] < top[0]; break;
+        case FnOp::Le: --top, top[-1] = top[-1] <= top[0]; break;
+        case FnOp::Eq: --top, top[-1] = std::fabs(top[-1] - top[0]) <= 1e-10; break;
+        case FnOp::Ne: --top, top[-1] = std::fabs(top[-1] - top[0]) > 1e-10; break;
+        case FnOp::Ge: --top, top[-1] = top[-1] >= top[0]; break;
+        case FnOp::Gt: --top, top[-1] = top[-1] > top[0]; break;
+        case FnOp::And: --top, top[-1] = top[-1] != 0 && top[0] != 0; break;
+        case FnOp::Or: --top, top[-1] = top[-1] != 0 || top[0] != 0; break;
         }
     }
     return top > stack ? finiteOrZero(top[-1]) : 0.0;
@@ -213,8 +207,189 @@ int internalNamed(const std::string& name) {
     return -1;
 }
 
+// ---------------------------------------------------------------- compiled programs
+
+// A function's program as a list of its distinct subexpressions, each one's
+// operands before it: every value `code` computes, computed once into a slot of
+// its own. The operations, and the values they are given, are those of the
+// stack program, so every value is the same double.
+struct CompiledFunction {
+    std::vector<FnInstr> steps;
+    std::vector<int> operandStart; // step k's operand slots: operands[operandStart[k] .. operandStart[k + 1])
+    std::vector<int> operands;
+    int result = -1;      // the slot of the value; -1: an empty program, whose value is 0
+    int slots = 0;        // steps.size()
+    int need = 0;         // slots plus the most that a callee's evaluation needs
+    bool usable = false;  // else the stack program runs (few repeats, a short stack, a call of another count, too deep)
+    size_t codeSize = 0;  // code.size() when made: a function changed since runs its stack program
+};
+
+namespace {
+
+// How many values an instruction takes from the stack (it always leaves one).
+int operandCount(const FnInstr& i) {
+    switch (i.op) {
+    case FnOp::Const:
+    case FnOp::Param: return 0;
+    case FnOp::Neg:
+    case FnOp::Not:
+    case FnOp::Math1:
+    case FnOp::Spline: return 1;
+    case FnOp::Cond:
+    case FnOp::Pattern:
+    case FnOp::Colour:
+    case FnOp::Transform: return 3;
+    case FnOp::Select:
+    case FnOp::Call:
+    case FnOp::Internal: return i.count;
+    default: return 2; // Math2 and the binary operators
+    }
+}
+
+// The slots a function's evaluation needs: compiled, or as a stack program.
+int evaluationNeed(const Function& f) {
+    const CompiledFunction& c = f.compiled.get(f);
+    return c.usable ? c.need : f.totalStack;
+}
+
+const CompiledFunction* compile(const Function& f) {
+    auto* c = new CompiledFunction;
+    c->codeSize = f.code.size();
+    std::vector<int> stack;
+    std::map<std::vector<uint64_t>, int> seen; // a step and its operands' slots -> its slot
+    bool usable = true;
+    for (const FnInstr& i : f.code) {
+        const int count = operandCount(i);
+        if (count > int(stack.size())) {
+            usable = false;
+            break;
+        }
+        if (i.op == FnOp::Internal && count != internalArity(i.index)) usable = false;
+        if (i.op == FnOp::Call && count != int(f.callees[i.index]->params.size()) && !f.callees[i.index]->anyArity)
+            usable = false;
+        std::vector<uint64_t> key = {uint64_t(i.op) | uint64_t(i.count) << 8 | uint64_t(i.channel) << 16 |
+                                         uint64_t(i.index) << 32,
+                                     std::bit_cast<uint64_t>(i.value)};
+        key.insert(key.end(), stack.end() - count, stack.end());
+        stack.resize(stack.size() - size_t(count));
+        const auto [at, added] = seen.try_emplace(std::move(key), c->slots);
+        if (added) {
+            c->steps.push_back(i);
+            c->operandStart.push_back(int(c->operands.size()));
+            c->operands.insert(c->operands.end(), at->first.begin() + 2, at->first.end());
+            ++c->slots;
+        }
+        stack.push_back(at->second);
+    }
+    c->operandStart.push_back(int(c->operands.size()));
+    c->result = stack.empty() ? -1 : stack.back();
+    c->need = c->slots;
+    for (const FnInstr& i : c->steps)
+        if (i.op == FnOp::Call) c->need = std::max(c->need, c->slots + evaluationNeed(*f.callees[i.index]));
+    // A program of few repeats runs faster on the stack (values in order, no
+    // operand lists): the compiled one must save a quarter of the steps.
+    c->usable = usable && c->need <= kFunctionTotalStackLimit && 4 * size_t(c->slots) <= 3 * f.code.size();
+    return c;
+}
+
+double evaluate(const Function& f, const double* args, int channel, double* buffer);
+
+// Runs a compiled program with its slots at `slots` (callees use the part above them).
+double runCompiled(const Function& f, const CompiledFunction& c, const double* args, int channel, double* slots) {
+    const int* operands = c.operands.data();
+    const int* starts = c.operandStart.data();
+    for (int k = 0; k < c.slots; ++k) {
+        const FnInstr& i = c.steps[size_t(k)];
+        const int* in = operands + starts[k];
+        const auto a = [&](int n) { return slots[in[n]]; };
+        double v = 0;
+        switch (i.op) {
+        case FnOp::Const: v = i.value; break;
+        case FnOp::Param: v = args[i.index]; break;
+        case FnOp::Neg: v = -a(0); break;
+        case FnOp::Not: v = a(0) == 0 ? 1 : 0; break;
+        case FnOp::Math1: v = math1(FnMath1(i.index), a(0)); break;
+        case FnOp::Math2: v = math2(FnMath2(i.index), a(0), a(1)); break;
+        case FnOp::Cond: v = a(0) != 0 ? a(1) : a(2); break;
+        case FnOp::Select: v = a(0) < 0 ? a(1) : (i.count == 3 || a(0) == 0) ? a(2) : a(3); break;
+        case FnOp::Call:
+        case FnOp::Internal: {
+            double values[256]; // count is 8 bits
+            for (int n = 0; n < i.count; ++n) values[n] = a(n);
+            v = i.op == FnOp::Internal ? internal(FnInternal(i.index), values)
+                                       : evaluate(*f.callees[i.index], values, i.channel, slots + c.slots);
+            break;
+        }
+        case FnOp::Pattern:
+        case FnOp::Colour: {
+            const Vec3 p(a(0), a(1), a(2));
+            const Pigment& pattern = *f.patterns[i.index];
+            if (i.op == FnOp::Pattern) v = gHooks.pattern ? gHooks.pattern(pattern, p) : 0.0;
+            else v = gHooks.colour ? gHooks.colour(pattern, p, f.colour ? channel : i.channel) : 0.0;
+            break;
+        }
+        case FnOp::Transform: {
+            const int ch = f.vector ? channel : i.channel;
+            v = f.transforms[i.index].point(Vec3(a(0), a(1), a(2)))[ch >= 0 && ch < 3 ? ch : 0];
+            break;
+        }
+        case FnOp::Spline: {
+            const int ch = f.vector ? channel : i.channel;
+            v = f.splines[i.index]->at(a(0))[size_t(ch >= 0 && ch < 5 ? ch : 0)];
+            break;
+        }
+        case FnOp::Add: v = a(0) + a(1); break;
+        case FnOp::Sub: v = a(0) - a(1); break;
+        case FnOp::Mul: v = a(0) * a(1); break;
+        case FnOp::Div: v = a(0) / a(1); break;
+        case FnOp::Lt: v = a(0) < a(1); break;
+        case FnOp::Le: v = a(0) <= a(1); break;
+        case FnOp::Eq: v = std::fabs(a(0) - a(1)) <= 1e-10; break;
+        case FnOp::Ne: v = std::fabs(a(0) - a(1)) > 1e-10; break;
+        case FnOp::Ge: v = a(0) >= a(1); break;
+        case FnOp::Gt: v = a(0) > a(1); break;
+        case FnOp::And: v = a(0) != 0 && a(1) != 0; break;
+        case FnOp::Or: v = a(0) != 0 || a(1) != 0; break;
+        }
+        slots[k] = v;
+    }
+    return c.result >= 0 ? finiteOrZero(slots[c.result]) : 0.0;
+}
+
+// The compiled program where it can run, else the stack program; `buffer` holds
+// kFunctionTotalStackLimit values less what the callers use.
+double evaluate(const Function& f, const double* args, int channel, double* buffer) {
+    const CompiledFunction& c = f.compiled.get(f);
+    return c.usable ? runCompiled(f, c, args, channel, buffer) : run(f, args, channel, buffer);
+}
+
+} // namespace
+
+const CompiledFunction& CompiledFunctionCache::get(const Function& f) const {
+    const CompiledFunction* c = program_.load(std::memory_order_acquire);
+    if (c && c->codeSize == f.code.size()) return *c;
+    if (c) { // changed since: a stale program is never run
+        static const CompiledFunction unusable;
+        return unusable;
+    }
+    const CompiledFunction* made = compile(f);
+    if (program_.compare_exchange_strong(c, made, std::memory_order_acq_rel)) return *made;
+    delete made; // another thread's was kept
+    return *c;
+}
+
+bool CompiledFunctionCache::runs(const Function& f) const { return get(f).usable; }
+
+void CompiledFunctionCache::reset() { delete program_.exchange(nullptr); }
+
 double Function::operator()(const double* args, int channel) const {
-    // The front end keeps every function's totalStack within this.
+    // The front end keeps every function's totalStack within this, and a
+    // compiled program is run only when it needs no more.
+    double buffer[kFunctionTotalStackLimit];
+    return evaluate(*this, args, channel, buffer);
+}
+
+double Function::interpret(const double* args, int channel) const {
     double stack[kFunctionTotalStackLimit];
     return run(*this, args, channel, stack);
 }

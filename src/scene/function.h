@@ -2,8 +2,9 @@
 // expression of its parameters (x, y, z by default), evaluated by the
 // front end (a call in an expression) and by the renderer (function
 // patterns, isosurfaces, height fields). The program is a small postfix
-// code run on a fixed stack: evaluation allocates nothing and only reads the
-// program, so one Function serves every thread.
+// code run on a fixed stack, or, where it repeats subexpressions, its compiled
+// form (CompiledFunctionCache, below), made by the first evaluation: later ones
+// allocate nothing and only read, so one Function serves every thread.
 //
 // A function calls only functions declared before it (they are held here by
 // pointer), so no call can recurse. Its body may instead be a pattern or a
@@ -19,6 +20,7 @@
 #include "core/vec.h"
 #include "scene/spline.h"
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -79,6 +81,31 @@ struct FnInstr {
     double value = 0;    // Const
 };
 
+struct Function;
+struct CompiledFunction; // function.cpp
+
+// A function's program with each repeated subexpression computed once, made on
+// its first evaluation and kept with it (a copy of the function starts
+// without). Threads that evaluate a function first at once each make one; one
+// is kept, the others are freed.
+class CompiledFunctionCache {
+public:
+    CompiledFunctionCache() = default;
+    CompiledFunctionCache(const CompiledFunctionCache&) {}
+    CompiledFunctionCache& operator=(const CompiledFunctionCache&) {
+        reset();
+        return *this;
+    }
+    ~CompiledFunctionCache() { reset(); }
+    const CompiledFunction& get(const Function& f) const;
+    // Whether f's evaluation runs its compiled program (else its stack program).
+    bool runs(const Function& f) const;
+
+private:
+    void reset();
+    mutable std::atomic<const CompiledFunction*> program_{nullptr};
+};
+
 struct Function {
     std::vector<std::string> params; // names, in order (x y z for `function { }`)
     std::vector<FnInstr> code;
@@ -101,11 +128,16 @@ struct Function {
     // The value at `args` (params.size() of them): channel `channel` of a
     // colour function. Never NaN: a NaN result is 0, infinities are +-1e300.
     double operator()(const double* args, int channel = 0) const;
+    // The same value from `code` run as written, on a stack, each
+    // subexpression as often as it is written (tests compare the two).
+    double interpret(const double* args, int channel = 0) const;
     double at(const Vec3& p) const {
         const double a[3] = {p.x, p.y, p.z};
         return (*this)(a);
     }
     bool operator==(const Function& o) const; // the same program and operands
+
+    CompiledFunctionCache compiled;
 };
 
 // The most stack slots a function may need, its callees' included (the front
