@@ -111,6 +111,38 @@ double finiteOrZero(double v) {
     return std::clamp(v, -1e300, 1e300);
 }
 
+// The operations beyond arithmetic, as both evaluators do them (run: the stack
+// program; runCompiled), from the instruction's operands a(0), a(1), ...
+// Eq and Ne: within 1e-10 of each other, and beyond it (with a NaN, neither).
+bool nearlyEqual(double a, double b) { return std::fabs(a - b) <= 1e-10; }
+bool clearlyDiffer(double a, double b) { return std::fabs(a - b) > 1e-10; }
+
+template <class Operand>
+double selectValue(const FnInstr& i, const Operand& a) {
+    return a(0) < 0 ? a(1) : (i.count == 3 || a(0) == 0) ? a(2) : a(3);
+}
+
+// Pattern and Colour: a colour function's body takes the call's channel; a
+// pigment inside an expression its own.
+template <class Operand>
+double patternValue(const Function& f, const FnInstr& i, int channel, const Operand& a) {
+    const Vec3 p(a(0), a(1), a(2));
+    const Pigment& pattern = *f.patterns[i.index];
+    if (i.op == FnOp::Pattern) return gHooks.pattern ? gHooks.pattern(pattern, p) : 0.0;
+    return gHooks.colour ? gHooks.colour(pattern, p, f.colour ? channel : i.channel) : 0.0;
+}
+
+template <class Operand>
+double transformValue(const Function& f, const FnInstr& i, int channel, const Operand& a) {
+    const int c = f.vector ? channel : i.channel;
+    return f.transforms[i.index].point(Vec3(a(0), a(1), a(2)))[c >= 0 && c < 3 ? c : 0];
+}
+
+double splineValue(const Function& f, const FnInstr& i, int channel, double t) {
+    const int c = f.vector ? channel : i.channel;
+    return f.splines[i.index]->at(t)[size_t(c >= 0 && c < 5 ? c : 0)];
+}
+
 // Runs `f` with its stack at `stack` (callees use the part above it).
 double run(const Function& f, const double* args, int channel, double* stack) {
     double* top = stack; // one past the last value
@@ -131,8 +163,8 @@ double run(const Function& f, const double* args, int channel, double* stack) {
             break;
         case FnOp::Select: {
             top -= i.count;
-            const double s = top[0];
-            top[0] = s < 0 ? top[1] : (i.count == 3 || s == 0) ? top[2] : top[3];
+            const double* in = top;
+            top[0] = selectValue(i, [in](int n) { return in[n]; });
             ++top;
             break;
         }
@@ -149,28 +181,16 @@ double run(const Function& f, const double* args, int channel, double* stack) {
             ++top;
             break;
         case FnOp::Pattern:
-        case FnOp::Colour: {
-            top -= 3;
-            const Vec3 p(top[0], top[1], top[2]);
-            const Pigment& pattern = *f.patterns[i.index];
-            if (i.op == FnOp::Pattern) top[0] = gHooks.pattern ? gHooks.pattern(pattern, p) : 0.0;
-            else // a colour function's body takes the call's channel; a pigment inside an expression its own
-                top[0] = gHooks.colour ? gHooks.colour(pattern, p, f.colour ? channel : i.channel) : 0.0;
-            ++top;
-            break;
-        }
+        case FnOp::Colour:
         case FnOp::Transform: {
             top -= 3;
-            const int c = f.vector ? channel : i.channel;
-            top[0] = f.transforms[i.index].point(Vec3(top[0], top[1], top[2]))[c >= 0 && c < 3 ? c : 0];
+            const double* in = top;
+            const auto a = [in](int n) { return in[n]; };
+            top[0] = i.op == FnOp::Transform ? transformValue(f, i, channel, a) : patternValue(f, i, channel, a);
             ++top;
             break;
         }
-        case FnOp::Spline: {
-            const int c = f.vector ? channel : i.channel;
-            top[-1] = f.splines[i.index]->at(top[-1])[size_t(c >= 0 && c < 5 ? c : 0)];
-            break;
-        }
+        case FnOp::Spline: top[-1] = splineValue(f, i, channel, top[-1]); break;
         // Binary operators: a b -> a op b.
         case FnOp::Add: --top, top[-1] = top[-1] + top[0]; break;
         case FnOp::Sub: --top, top[-1] = top[-1] - top[0]; break;
@@ -178,8 +198,8 @@ double run(const Function& f, const double* args, int channel, double* stack) {
         case FnOp::Div: --top, top[-1] = top[-1] / top[0]; break;
         case FnOp::Lt: --top, top[-1] = top[-1] < top[0]; break;
         case FnOp::Le: --top, top[-1] = top[-1] <= top[0]; break;
-        case FnOp::Eq: --top, top[-1] = std::fabs(top[-1] - top[0]) <= 1e-10; break;
-        case FnOp::Ne: --top, top[-1] = std::fabs(top[-1] - top[0]) > 1e-10; break;
+        case FnOp::Eq: --top, top[-1] = nearlyEqual(top[-1], top[0]); break;
+        case FnOp::Ne: --top, top[-1] = clearlyDiffer(top[-1], top[0]); break;
         case FnOp::Ge: --top, top[-1] = top[-1] >= top[0]; break;
         case FnOp::Gt: --top, top[-1] = top[-1] > top[0]; break;
         case FnOp::And: --top, top[-1] = top[-1] != 0 && top[0] != 0; break;
@@ -311,7 +331,7 @@ double runCompiled(const Function& f, const CompiledFunction& c, const double* a
         case FnOp::Math1: v = math1(FnMath1(i.index), a(0)); break;
         case FnOp::Math2: v = math2(FnMath2(i.index), a(0), a(1)); break;
         case FnOp::Cond: v = a(0) != 0 ? a(1) : a(2); break;
-        case FnOp::Select: v = a(0) < 0 ? a(1) : (i.count == 3 || a(0) == 0) ? a(2) : a(3); break;
+        case FnOp::Select: v = selectValue(i, a); break;
         case FnOp::Call:
         case FnOp::Internal: {
             double values[256]; // count is 8 bits
@@ -321,31 +341,17 @@ double runCompiled(const Function& f, const CompiledFunction& c, const double* a
             break;
         }
         case FnOp::Pattern:
-        case FnOp::Colour: {
-            const Vec3 p(a(0), a(1), a(2));
-            const Pigment& pattern = *f.patterns[i.index];
-            if (i.op == FnOp::Pattern) v = gHooks.pattern ? gHooks.pattern(pattern, p) : 0.0;
-            else v = gHooks.colour ? gHooks.colour(pattern, p, f.colour ? channel : i.channel) : 0.0;
-            break;
-        }
-        case FnOp::Transform: {
-            const int ch = f.vector ? channel : i.channel;
-            v = f.transforms[i.index].point(Vec3(a(0), a(1), a(2)))[ch >= 0 && ch < 3 ? ch : 0];
-            break;
-        }
-        case FnOp::Spline: {
-            const int ch = f.vector ? channel : i.channel;
-            v = f.splines[i.index]->at(a(0))[size_t(ch >= 0 && ch < 5 ? ch : 0)];
-            break;
-        }
+        case FnOp::Colour: v = patternValue(f, i, channel, a); break;
+        case FnOp::Transform: v = transformValue(f, i, channel, a); break;
+        case FnOp::Spline: v = splineValue(f, i, channel, a(0)); break;
         case FnOp::Add: v = a(0) + a(1); break;
         case FnOp::Sub: v = a(0) - a(1); break;
         case FnOp::Mul: v = a(0) * a(1); break;
         case FnOp::Div: v = a(0) / a(1); break;
         case FnOp::Lt: v = a(0) < a(1); break;
         case FnOp::Le: v = a(0) <= a(1); break;
-        case FnOp::Eq: v = std::fabs(a(0) - a(1)) <= 1e-10; break;
-        case FnOp::Ne: v = std::fabs(a(0) - a(1)) > 1e-10; break;
+        case FnOp::Eq: v = nearlyEqual(a(0), a(1)); break;
+        case FnOp::Ne: v = clearlyDiffer(a(0), a(1)); break;
         case FnOp::Ge: v = a(0) >= a(1); break;
         case FnOp::Gt: v = a(0) > a(1); break;
         case FnOp::And: v = a(0) != 0 && a(1) != 0; break;
