@@ -216,6 +216,10 @@ TEST(Cli, RenderStatsJsonHasTheRayCountsAndRates) {
                   stats.at("secondary_rays").get<uint64_t>());
     const double trace = stats.at("trace_seconds"), rate = stats.at("mrays_per_second");
     EXPECT_NEAR(rate, stats.at("total_rays").get<double>() / trace / 1e6, 1e-6 * rate);
+    // The render threads' CPU: some, and no more than 2 threads can use in the render's time.
+    const double cpu = stats.at("trace_cpu_seconds");
+    EXPECT_GT(cpu, 0.0);
+    EXPECT_LE(cpu, 2 * trace + 0.002);
     EXPECT_GE(stats.at("total_seconds").get<double>(), stats.at("render_seconds").get<double>());
     EXPECT_FALSE(fs::exists(dir + "/stats.json.tmp"));
 

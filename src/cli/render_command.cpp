@@ -232,6 +232,7 @@ std::string writeStatsJson(const RenderCommand& command, const RenderOptions& op
         {"load_seconds", times.loadSeconds},
         {"build_seconds", s.buildSeconds},
         {"trace_seconds", traceSeconds},
+        {"trace_cpu_seconds", s.traceCpuSeconds},
         {"render_seconds", times.renderSeconds},
         {"total_seconds", times.totalSeconds},
         {"camera_rays", s.cameraRays},

@@ -89,6 +89,7 @@
 #include <memory>
 #include <variant>
 #include <chrono>
+#include <ctime>
 #include <mutex>
 #include <optional>
 
@@ -135,6 +136,13 @@ Filter sceneFilter(const Scene& scene) {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The CPU time the calling thread has used (0 where the clock is missing).
+double threadCpuSeconds() {
+    timespec now{};
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now) != 0) return 0;
+    return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
 }
 
 // (I - A)^2 / (I^2 + f^2), the mean over channels (see "Adaptive sampling").
@@ -385,6 +393,8 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
     };
 
     const auto renderStart = std::chrono::steady_clock::now();
+    std::mutex cpuMutex;
+    double cpuSeconds = 0;
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
         // Each worker takes tasks until the scheduler has none: it may hand
@@ -396,11 +406,16 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
             // buffers during that load would wait for all of it
             // (accel/thread_scratch.h).
             const InstalledScratchSet buffers = Integrator::installThreadBuffers();
+            const double cpuStart = threadCpuSeconds();
             while (const std::optional<TileTask> task = scheduler.next())
                 scheduler.done(renderTile(*task));
+            const double used = threadCpuSeconds() - cpuStart;
+            const std::lock_guard<std::mutex> lock(cpuMutex);
+            cpuSeconds += used;
         });
     });
     info.renderSeconds = secondsSince(renderStart);
+    info.traceCpuSeconds = cpuSeconds;
     return info;
 }
 
@@ -439,6 +454,7 @@ RenderResult finishRender(const Scene& scene, const RenderState& state, const Ti
     RenderStats& stats = result.stats;
     stats.buildSeconds = info.buildSeconds;
     stats.renderSeconds = info.renderSeconds;
+    stats.traceCpuSeconds = info.traceCpuSeconds;
     stats.cameraRays = state.counts().cameraRays;
     stats.shadowRays = state.counts().shadowRays;
     stats.secondaryRays = state.counts().secondaryRays;

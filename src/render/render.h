@@ -82,6 +82,10 @@ std::string describeEffects(const SceneEffects& effects);
 struct RenderStats {
     double buildSeconds = 0;  // Embree scene build
     double renderSeconds = 0; // tracing
+    // CPU time of the render's threads while they traced, summed: the tracing
+    // alone, without what other threads of the process (the image module's
+    // load) took from the same cores.
+    double traceCpuSeconds = 0;
     uint64_t cameraRays = 0;
     uint64_t shadowRays = 0;
     uint64_t secondaryRays = 0; // reflection + refraction

@@ -213,6 +213,7 @@ private:
 struct TileRenderInfo {
     double buildSeconds = 0;
     double renderSeconds = 0;
+    double traceCpuSeconds = 0; // the render threads' CPU time, summed (RenderStats)
     bool motionBlur = false;   // the accelerator has motion and the camera a shutter
     bool depthOfField = false; // the camera has a lens
 };

@@ -131,6 +131,7 @@ DrtRender runDrtRender(const DrtBinary& drt, const std::string& scene, const std
             render.loadSeconds = stats.at("load_seconds");
             render.buildSeconds = stats.at("build_seconds");
             render.traceSeconds = stats.at("trace_seconds");
+            render.traceCpuSeconds = stats.value("trace_cpu_seconds", -1.0);
             render.mraysPerSecond = stats.at("mrays_per_second");
             render.cameraRays = stats.at("camera_rays");
             render.shadowRays = stats.at("shadow_rays");

@@ -43,6 +43,7 @@ struct DrtRender {
     double loadSeconds = -1;   // parse + files (--stats only)
     double buildSeconds = 0;   // Embree build
     double traceSeconds = 0;   // tracing
+    double traceCpuSeconds = -1; // the render threads' CPU time, summed (--stats of a drt that has it)
     double mraysPerSecond = 0; // all rays / trace time
     uint64_t cameraRays = 0, shadowRays = 0, secondaryRays = 0;
     double renderSeconds() const { return buildSeconds + traceSeconds; }

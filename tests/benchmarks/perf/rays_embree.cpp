@@ -8,7 +8,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <fmt/format.h>
+#include <mutex>
 #include <stdexcept>
 
 namespace drt::perf {
@@ -236,6 +238,13 @@ RawEmbreeScene::~RawEmbreeScene() {
 
 namespace {
 
+// The CPU time the calling thread has used.
+double threadCpuSeconds() {
+    timespec now{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+}
+
 // Traces one block of `W` pixels (4 wide) at one sample index as a packet.
 template <int W, typename RayHitW, typename RayW>
 void tracePacket(RTCScene scene, const CameraFrame& camera, const Vec3& light, bool shadows, int x0, int y0,
@@ -360,16 +369,23 @@ RawRate RawEmbreeScene::trace(RayMix mix, RayWidth rayWidth, int width, int heig
     };
 
     tbb::task_arena arena(threads);
+    std::mutex cpuMutex;
+    double cpuSeconds = 0;
     const auto start = std::chrono::steady_clock::now();
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY),
                           [&](const tbb::blocked_range<int>& range) {
+                              const double cpuStart = threadCpuSeconds();
                               for (int tile = range.begin(); tile < range.end(); ++tile)
                                   traceTile(tile);
+                              const double used = threadCpuSeconds() - cpuStart;
+                              const std::lock_guard<std::mutex> lock(cpuMutex);
+                              cpuSeconds += used;
                           });
     });
     RawRate rate;
     rate.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    rate.cpuSeconds = cpuSeconds;
     rate.cameraRays = cameraTotal, rate.shadowRays = shadowTotal, rate.hits = hitTotal;
     return rate;
 }

@@ -20,7 +20,8 @@ enum class RayWidth { Single = 1, Packet8 = 8, Packet16 = 16 };
 
 struct RawRate {
     uint64_t cameraRays = 0, shadowRays = 0, hits = 0;
-    double seconds = 0; // tracing only (the BVH is built before the clock starts)
+    double seconds = 0;    // tracing only (the BVH is built before the clock starts)
+    double cpuSeconds = 0; // the tracing threads' CPU time, summed over them
     double mraysPerSecond() const {
         return seconds > 0 ? double(cameraRays + shadowRays) / seconds / 1e6 : 0;
     }
