@@ -187,6 +187,8 @@ TEST(ImageIo, CheckWritableCatchesProblemsEarly) {
 TEST(ImageIo, FormatsAcceptedBeforeTheModuleLoadsAreWritten) {
     loadImageIoInBackground(); // as a render does; the operations below wait for it
     loadImageIoInBackground(); // a second call changes nothing
+    waitForImageIoLoad();      // returns once it is loaded
+    EXPECT_FALSE(imageIoLoading());
     const std::string dir = test::tempDir();
     Image image(6, 4, 3);
     for (size_t i = 0; i < image.pixels.size(); ++i)

@@ -11,6 +11,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <future>
+#include <thread>
+
 namespace drt {
 namespace {
 
@@ -151,6 +157,97 @@ TEST(RenderState, CancelStopsHandingOutTilesAndRenderThrowsInterrupted) {
     EXPECT_FALSE(scheduler.next().has_value());
     EXPECT_TRUE(scheduler.over());
     EXPECT_EQ(state.tilesDoneThisRound(), 0);
+}
+
+// Hands out `count` tasks, from any thread.
+class CountedTasks final : public TileScheduler {
+public:
+    explicit CountedTasks(int count) : left_(count) {}
+    std::optional<TileTask> next() override {
+        if (left_.fetch_sub(1) <= 0) return std::nullopt;
+        ++handedOut;
+        return TileTask{0, 0};
+    }
+    void done(TileResult&&) override {}
+    std::atomic<int> handedOut{0};
+
+private:
+    std::atomic<int> left_;
+};
+
+// While busy, the first thread to ask waits and the others take every task;
+// when not busy, nobody waits.
+TEST(LendingScheduler, OneThreadWaitsWhileBusyAndTheOthersTakeEveryTask) {
+    constexpr int kTasks = 60, kThreads = 3;
+    for (const bool busy : {true, false}) {
+        SCOPED_TRACE(busy ? "busy" : "not busy");
+        CountedTasks inner(kTasks);
+        std::promise<void> release;
+        const std::shared_future<void> released = release.get_future().share();
+        std::atomic<int> waits{0};
+        std::thread::id held; // the thread that waited
+        LendingScheduler lending(inner, [busy] { return busy; }, [&] {
+            ++waits;
+            held = std::this_thread::get_id();
+            released.wait();
+        });
+        std::vector<int> taken(kThreads, 0);
+        std::vector<std::thread::id> ids(kThreads);
+        std::vector<std::thread> threads;
+        for (int i = 0; i < kThreads; ++i)
+            threads.emplace_back([&, i] {
+                ids[size_t(i)] = std::this_thread::get_id();
+                while (lending.next()) {
+                    ++taken[size_t(i)];
+                    lending.done(TileResult{});
+                }
+            });
+        // The held thread is released only once the others took every task.
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+        while (inner.handedOut < kTasks && std::chrono::steady_clock::now() < deadline)
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        EXPECT_EQ(inner.handedOut.load(), kTasks);
+        release.set_value();
+        for (std::thread& t : threads) t.join();
+        EXPECT_EQ(waits.load(), busy ? 1 : 0);
+        EXPECT_EQ(lending.lent(), busy);
+        // The held thread took none: it waited before its first task.
+        const auto heldAt = std::find(ids.begin(), ids.end(), held);
+        ASSERT_EQ(heldAt != ids.end(), busy);
+        if (busy) {
+            EXPECT_EQ(taken[size_t(heldAt - ids.begin())], 0);
+        }
+        int sum = 0;
+        for (int n : taken) sum += n;
+        EXPECT_EQ(sum, kTasks);
+    }
+}
+
+// A render with a thread held for a while gives the same pixels.
+TEST(LendingScheduler, ARenderWithAThreadHeldIsBitIdentical) {
+    const Scene scene = loadExample("soft_shadows.drt");
+    for (bool adaptive : {false, true}) {
+        SCOPED_TRACE(adaptive ? "adaptive" : "fixed");
+        const RenderOptions options = smallOptions(adaptive);
+        const RenderResult full = render(scene, options);
+        RenderState state(options);
+        LocalTileScheduler local(state, nullptr);
+        std::atomic<int> waits{0};
+        LendingScheduler lending(local, [] { return true; }, [&] {
+            ++waits;
+            // Until the other thread has finished, or a while if the arena runs one thread.
+            const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(300);
+            while (!local.over() && std::chrono::steady_clock::now() < deadline)
+                std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        });
+        const TileRenderInfo info = renderTiles(scene, options, state, lending);
+        ASSERT_TRUE(state.finished());
+        EXPECT_EQ(waits.load(), 1);
+        const RenderResult result = finishRender(scene, state, info);
+        EXPECT_TRUE(result.color.pixels == full.color.pixels);
+        EXPECT_TRUE(result.variance.pixels == full.variance.pixels);
+        EXPECT_TRUE(result.sampleCount.pixels == full.sampleCount.pixels);
+    }
 }
 
 TEST(RenderState, PacketsRoundTripAndMalformedOnesAreRefused) {

@@ -333,8 +333,19 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
     TileRenderInfo info;
     DistributedReport ranks;
     try {
-        info = mpi ? renderDistributed(*mpi, *p.scene, p.options, *state, rank0 ? &scheduler : nullptr, &ranks)
-                   : renderTiles(*p.scene, p.options, *state, scheduler);
+        if (mpi) {
+            info = renderDistributed(*mpi, *p.scene, p.options, *state, rank0 ? &scheduler : nullptr, &ranks);
+        } else {
+            // When the render's threads fill every core, one of them waits
+            // while the image module loads: the load has a core of its own
+            // and the render the others, rather than both sharing them all
+            // and the end of a short render waiting for the load.
+            const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+            const int threads = p.options.threads > 0 ? p.options.threads : int(cores);
+            const bool lend = threads >= 2 && unsigned(threads) >= cores;
+            LendingScheduler lending(scheduler, [lend] { return lend && imageIoLoading(); }, waitForImageIoLoad);
+            info = renderTiles(*p.scene, p.options, *state, lending);
+        }
     } catch (const RenderError& e) {
         saver.reset();
         if (progress) progress->finish();

@@ -21,6 +21,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <mutex>
+#include <condition_variable>
 #include <thread>
 #include <system_error>
 #include <unistd.h>
@@ -109,6 +110,17 @@ struct BackgroundLoad {
     }
 };
 
+// Whether a background load runs, for imageIoLoading and waitForImageIoLoad.
+struct LoadProgress {
+    std::mutex mutex;
+    std::condition_variable ended;
+    std::atomic<bool> running{false};
+};
+LoadProgress& loadProgress() {
+    static LoadProgress progress;
+    return progress;
+}
+
 // Formats that every OpenImageIO build writes (its core plugins): an output
 // with one of these extensions is accepted without asking the module, which
 // may still be loading. Any other extension is asked of the module.
@@ -176,7 +188,26 @@ std::string checkWritable(const std::string& path) {
 void loadImageIoInBackground() {
     static BackgroundLoad background;
     static std::once_flag once;
-    std::call_once(once, [] { background.thread = std::thread([] { imageIo(); }); });
+    std::call_once(once, [] {
+        LoadProgress& progress = loadProgress();
+        progress.running = true;
+        background.thread = std::thread([&progress] {
+            imageIo();
+            {
+                const std::lock_guard<std::mutex> lock(progress.mutex);
+                progress.running = false;
+            }
+            progress.ended.notify_all();
+        });
+    });
+}
+
+bool imageIoLoading() { return loadProgress().running.load(); }
+
+void waitForImageIoLoad() {
+    LoadProgress& progress = loadProgress();
+    std::unique_lock<std::mutex> lock(progress.mutex);
+    progress.ended.wait(lock, [&progress] { return !progress.running.load(); });
 }
 
 std::string writeImage(const std::string& path, const Image& image, const Metadata& metadata) {

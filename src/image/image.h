@@ -36,6 +36,10 @@ std::string checkWritable(const std::string& path);
 // the ~260 libraries it pulls in) overlaps a render instead of preceding it.
 // The first image operation waits for it. Calling it again does nothing.
 void loadImageIoInBackground();
+// True while a load that loadImageIoInBackground started is running.
+bool imageIoLoading();
+// Returns when no background load is running (at once if none was started).
+void waitForImageIoLoad();
 
 // Writes the image to a temporary file beside `path` and renames it over
 // `path` only when complete. 8-bit and 16-bit integer formats are sRGB-encoded

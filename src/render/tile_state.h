@@ -30,6 +30,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -166,6 +167,31 @@ public:
     virtual std::optional<TileTask> next() = 0;
     // A task is rendered.
     virtual void done(TileResult&& result) = 0;
+};
+
+// Another scheduler's tasks, with one render thread held back while `busy()`
+// says that other work of the process needs a core: the first thread to ask
+// for a task while it is busy calls `wait()` (which returns when that work is
+// done) before taking tasks again; the others go on. Only one thread is ever
+// held, once. A render whose threads fill every core uses it while the image
+// module loads (cli/render_run.cpp), so that the load, which the end of a
+// short render waits for, has a core of its own.
+class LendingScheduler final : public TileScheduler {
+public:
+    LendingScheduler(TileScheduler& inner, std::function<bool()> busy, std::function<void()> wait)
+        : inner_(inner), busy_(std::move(busy)), wait_(std::move(wait)) {}
+    std::optional<TileTask> next() override {
+        if (!lent_.load(std::memory_order_relaxed) && busy_() && !lent_.exchange(true)) wait_();
+        return inner_.next();
+    }
+    void done(TileResult&& result) override { inner_.done(std::move(result)); }
+    bool lent() const { return lent_.load(); } // a thread was held (or is)
+
+private:
+    TileScheduler& inner_;
+    std::function<bool()> busy_;
+    std::function<void()> wait_;
+    std::atomic<bool> lent_{false};
 };
 
 // Every tile of a state, round by round, to this process's threads: the
