@@ -104,6 +104,38 @@ void fillPacket(const Ray* rays, int count, const AcceleratorState& state, unsig
     }
 }
 
+// Every coordinate within Embree's range (false for NaN).
+inline bool withinEmbree(const Vec3& v) {
+    constexpr double kLargest = Accelerator::kLargestCoordinate;
+    return std::fabs(v.x) <= kLargest && std::fabs(v.y) <= kLargest && std::fabs(v.z) <= kLargest;
+}
+// Whether Embree can take the ray (Accelerator::kLargestCoordinate).
+inline bool traceable(const Ray& ray, const AcceleratorState& state) {
+    return withinEmbree(state.shifted ? ray.origin - state.frameOrigin : ray.origin) && withinEmbree(ray.direction);
+}
+// The ray with its direction divided and its interval multiplied by a power of
+// two until the direction is within range: the same points, exactly (a ray whose
+// origin is out of range, or that is not finite, stays untraceable).
+Ray shortened(const Ray& ray) {
+    Ray r = ray;
+    const double longest = std::fmax(std::fabs(r.direction.x), std::fmax(std::fabs(r.direction.y), std::fabs(r.direction.z)));
+    if (!std::isfinite(longest)) return r;
+    int exponent = 0;
+    std::frexp(longest / Accelerator::kLargestCoordinate, &exponent);
+    if (exponent <= 0) return r;
+    r.direction = Vec3(std::ldexp(r.direction.x, -exponent), std::ldexp(r.direction.y, -exponent),
+                       std::ldexp(r.direction.z, -exponent));
+    r.tMin = std::ldexp(r.tMin, exponent);
+    r.tMax = std::ldexp(r.tMax, exponent);
+    return r;
+}
+// True if every ray of the packet is traceable.
+inline bool allTraceable(const Ray* rays, int count, const AcceleratorState& state) {
+    bool all = true;
+    for (int i = 0; i < count; ++i) all &= traceable(rays[i], state);
+    return all;
+}
+
 Vec3 unitOr(const Vec3& v, const Vec3& fallback) {
     const double len = length(v);
     return len > 0 && std::isfinite(len) ? v / len : fallback;
@@ -407,6 +439,10 @@ void accel::hitFromEmbree(const AcceleratorState& state, RayQuery& query, const 
 }
 
 bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
+    if (!traceable(ray, *impl_)) [[unlikely]] {
+        ++impl_->untraceable;
+        return false;
+    }
     RayQuery query(*impl_, ray.origin, ray.direction);
     RTCRayHit rayhit;
     fillRay(ray, *impl_, rayhit.ray, 0xFFFFFFFFu);
@@ -427,6 +463,10 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
         return;
     }
     count = std::min(count, kPacketSize);
+    if (!allTraceable(rays, count, *impl_)) [[unlikely]] {
+        for (int i = 0; i < count; ++i) found[i] = intersect(rays[i], hits[i]);
+        return;
+    }
     // Each ray keeps its own query (its double-precision ray and crossing); the
     // callbacks find it by the ray's id through the first query's context.
     // Built in place for the rays there are (a zeroed array of 8 costs more).
@@ -485,6 +525,12 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
 // (offsetOrigin), and a sphere turning about a far pivot shadowed half of
 // itself. Other scenes' shadow rays take Embree's ray as they are.
 bool Accelerator::occluded(const Ray& ray) const {
+    if (!traceable(ray, *impl_)) [[unlikely]] {
+        const Ray shorter = shortened(ray);
+        if (traceable(shorter, *impl_)) return occluded(shorter);
+        ++impl_->untraceable;
+        return false;
+    }
     RTCRay r;
     fillRay(ray, *impl_, r, kShadowMask);
     if (impl_->anyMotion) { // a compact mesh's still instance holds only triangles
@@ -506,6 +552,10 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
         return;
     }
     count = std::min(count, kPacketSize);
+    if (!allTraceable(rays, count, *impl_)) [[unlikely]] {
+        for (int i = 0; i < count; ++i) blocked[i] = occluded(rays[i]);
+        return;
+    }
     // With moving objects each ray keeps its double-precision query, found by
     // its id through the first query's context (occluded; intersectPacket).
     static_assert(std::is_trivially_destructible_v<RayQuery>, "the queries are never destroyed");
@@ -536,6 +586,8 @@ void Accelerator::installThreadBuffers(InstalledScratchSet& into) {
 }
 
 bool Accelerator::hasMotion() const { return impl_->anyMotion; }
+
+uint64_t Accelerator::untraceableRays() const { return impl_->untraceable.load(); }
 
 Accelerator::MeshStats Accelerator::meshStats() const {
     MeshStats stats;

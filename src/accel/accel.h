@@ -143,6 +143,16 @@ public:
     // thread_local destructors, which waits for any dlopen in progress).
     static void installThreadBuffers(InstalledScratchSet& into);
 
+    // Embree takes a ray only if each coordinate of its origin (in the top
+    // level's frame) and of its direction lies within +-kLargestCoordinate in
+    // float; Debian's Embree asserts, ending the process, on any other. Such a
+    // ray is not given to Embree: a shadow ray whose direction alone is too
+    // long (a light very far away) is traced with its direction scaled down by
+    // a power of two (the same points, exactly); any other meets nothing and
+    // is counted here, for the render's warning.
+    static constexpr double kLargestCoordinate = 1.8e18;
+    uint64_t untraceableRays() const;
+
     // True if some object has Motion (the scene was built with time steps).
     bool hasMotion() const;
     // The map from a moving object's rest pose to the world at `time`, for a

@@ -6,6 +6,7 @@
 #include "accel/built_scene.h"
 
 #include <cstdint>
+#include <atomic>
 #include <map>
 #include <optional>
 
@@ -34,6 +35,8 @@ struct AcceleratorState {
     Vec3 frameOrigin;
     double sceneUnit = 1; // frameUnit for unbounded objects
     std::optional<double> onlyTime; // motion baked at this time (Accelerator(scene, onlyTime))
+    // Rays Embree could not take (Accelerator::untraceableRays).
+    mutable std::atomic<uint64_t> untraceable{0};
 };
 
 inline RayQuery::RayQuery(const AcceleratorState& accelerator, const Vec3& rayOrigin, const Vec3& rayDirection)

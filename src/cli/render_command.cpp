@@ -241,6 +241,7 @@ std::string writeStatsJson(const RenderCommand& command, const RenderOptions& op
         {"total_rays", s.totalRays()},
         {"mrays_per_second", traceSeconds > 0 ? double(s.totalRays()) / traceSeconds / 1e6 : 0.0},
         {"nonfinite_samples", s.nonFiniteSamples},
+        {"untraceable_rays", s.untraceableRays},
     };
     const std::string temporary = command.statsOutput + ".tmp";
     {

@@ -10,6 +10,7 @@
 // wire format, and parsing is deterministic. The ranks then check that they
 // parsed the same scene (its hash) and agree on the outcome, so an error on one
 // rank stops all of them with its message instead of leaving the others waiting.
+#include "accel/accel.h"
 #include "cli/commands.h"
 
 #include "cli/interrupt.h"
@@ -374,6 +375,11 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
         return interrupt.exitStatus();
     }
     RenderResult result = finishRender(*p.scene, *state, info);
+    if (result.stats.untraceableRays > 0)
+        err << fmt::format("drt: {}: warning: {} rays started or pointed beyond {:g} from the origin, farther than "
+                           "drt traces (Embree's single precision), and were taken to meet nothing; move the camera "
+                           "and the objects nearer the origin\n",
+                           command.scene, result.stats.untraceableRays, Accelerator::kLargestCoordinate);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     uint64_t nonFinitePixels = 0;
     if (int written = writeOutputs(command, p.options, p.identity, p.record, result, nonFinitePixels, err);

@@ -416,6 +416,7 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
     });
     info.renderSeconds = secondsSince(renderStart);
     info.traceCpuSeconds = cpuSeconds;
+    info.untraceableRays = accel.untraceableRays();
     return info;
 }
 
@@ -455,6 +456,7 @@ RenderResult finishRender(const Scene& scene, const RenderState& state, const Ti
     stats.buildSeconds = info.buildSeconds;
     stats.renderSeconds = info.renderSeconds;
     stats.traceCpuSeconds = info.traceCpuSeconds;
+    stats.untraceableRays = info.untraceableRays;
     stats.cameraRays = state.counts().cameraRays;
     stats.shadowRays = state.counts().shadowRays;
     stats.secondaryRays = state.counts().secondaryRays;

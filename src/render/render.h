@@ -90,6 +90,9 @@ struct RenderStats {
     uint64_t shadowRays = 0;
     uint64_t secondaryRays = 0; // reflection + refraction
     uint64_t nonFiniteSamples = 0; // NaN/Inf samples caught (and dropped) before the film
+    // Rays with a coordinate beyond Accelerator::kLargestCoordinate, taken to
+    // meet nothing (a camera or objects very far from the origin).
+    uint64_t untraceableRays = 0;
     uint64_t pixelSamples = 0;     // camera samples taken, over all pixels
     int minPixelSamples = 0;       // fewest / most samples any pixel took
     int maxPixelSamples = 0;

@@ -240,6 +240,7 @@ struct TileRenderInfo {
     double buildSeconds = 0;
     double renderSeconds = 0;
     double traceCpuSeconds = 0; // the render threads' CPU time, summed (RenderStats)
+    uint64_t untraceableRays = 0; // rays beyond Embree's range (Accelerator::untraceableRays)
     bool motionBlur = false;   // the accelerator has motion and the camera a shutter
     bool depthOfField = false; // the camera has a lens
 };
