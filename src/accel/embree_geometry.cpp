@@ -197,11 +197,85 @@ void intersectLanes(const RTCIntersectFunctionNArguments* args, const Primitive&
     }
 }
 
+// intersectLanes for a packet of 8 at the top level and a plain primitive
+// without a transform whose first crossing `solve` finds (a sphere or a
+// plane: what most camera rays meet): the same crossings, with the shape's
+// values held in `solve` and the per-lane tests of intersectLanes made once.
+template <class Solve>
+[[gnu::always_inline]] inline void intersectTopLanes8(const RTCIntersectFunctionNArguments* args, Solve solve) {
+    constexpr unsigned N = 8;
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, N);
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, N);
+    RayQuery& first = RayQuery::of(args->context);
+    RayQuery* const* const lanes = first.lanes;
+    const unsigned primID = args->primID, geomID = args->geomID;
+    const int* const valid = args->valid;
+    for (unsigned i = 0; i < N; ++i) {
+        if (!valid[i]) continue;
+        RayQuery& query = lanes ? *lanes[RTCRayN_id(ray, N, i)] : first;
+        float& tfar = RTCRayN_tfar(ray, N, i);
+        Crossing c;
+        if (!solve(query.origin, query.direction, RTCRayN_tnear(ray, N, i), tfar, c)) continue;
+        query.objectCrossing = c;
+        tfar = float(c.t);
+        query.hasCrossing = true;
+        query.objectSpace = true;
+        query.primID = primID;
+        query.instID = RTC_INVALID_GEOMETRY_ID;
+        RTCHitN_Ng_x(hit, N, i) = float(c.normal.x);
+        RTCHitN_Ng_y(hit, N, i) = float(c.normal.y);
+        RTCHitN_Ng_z(hit, N, i) = float(c.normal.z);
+        RTCHitN_u(hit, N, i) = RTCHitN_v(hit, N, i) = 0;
+        RTCHitN_primID(hit, N, i) = primID;
+        RTCHitN_geomID(hit, N, i) = geomID;
+        RTCHitN_instID(hit, N, i, 0) = RTC_INVALID_GEOMETRY_ID;
+    }
+}
+
+// The short way's solvers: a sphere's and a plane's first crossing, from
+// their values held in the solver.
+struct SphereSolver {
+    Vec3 center;
+    double radius;
+    bool operator()(const Vec3& o, const Vec3& d, double tMin, double tMax, Crossing& c) const {
+        return firstSphereCrossing(center, radius, o, d, tMin, tMax, c);
+    }
+};
+struct PlaneSolver {
+    Vec3 normal;
+    double distance;
+    bool operator()(const Vec3& o, const Vec3& d, double tMin, double tMax, Crossing& c) const {
+        return firstPlaneCrossing(normal, distance, o, d, tMin, tMax, c);
+    }
+};
+
+// The short way of the callbacks: a plain primitive without a transform
+// whose first crossing has a solver of its own (a sphere or a plane) calls
+// run(solver) and returns true; any other returns false.
+template <class Run>
+[[gnu::always_inline]] inline bool withShortWay(const Primitive& p, Run run) {
+    if (!p.plain || !p.identity) return false;
+    if (p.shape.kind == ShapeKind::Sphere) run(SphereSolver{p.shape.center, p.shape.radius});
+    else if (p.shape.kind == ShapeKind::Plane) run(PlaneSolver{p.shape.normal, p.shape.distance});
+    else return false;
+    return true;
+}
+
+// A callback's lanes: a packet of 8 at the top level takes the short way
+// where the primitive has one (top(solve)); the rest the general way
+// (lanes(n), n an integral_constant: 8, or 0 for Embree's N).
+template <class Args, class Top, class Lanes>
+[[gnu::always_inline]] inline void runLanes(const Args* args, const Primitive& p, Top top, Lanes lanes) {
+    if (args->N != 8) return lanes(std::integral_constant<unsigned, 0>{});
+    if (args->context->instID[0] == RTC_INVALID_GEOMETRY_ID && withShortWay(p, top)) return;
+    lanes(std::integral_constant<unsigned, 8>{});
+}
+
 static void intersectCallback(const RTCIntersectFunctionNArguments* args) {
     const auto* level = static_cast<const Level*>(args->geometryUserPtr);
     const Primitive& p = level->primitives[args->primID];
-    if (args->N == 8) intersectLanes<8>(args, p);
-    else intersectLanes<0>(args, p);
+    runLanes(args, p, [args](auto solve) { intersectTopLanes8(args, solve); },
+             [args, &p](auto n) { intersectLanes<decltype(n)::value>(args, p); });
 }
 
 // Inside a moving object the ray comes from its query, moved into this level
@@ -233,12 +307,29 @@ void occludedLanes(const RTCOccludedFunctionNArguments* args, const Primitive& p
     }
 }
 
+// occludedLanes for a packet of 8 at the top level and a plain primitive
+// without a transform (intersectTopLanes8).
+template <class Solve>
+[[gnu::always_inline]] inline void occludedTopLanes8(const RTCOccludedFunctionNArguments* args, Solve solve) {
+    constexpr unsigned N = 8;
+    RTCRayN* ray = args->ray;
+    const int* const valid = args->valid;
+    for (unsigned i = 0; i < N; ++i) {
+        if (!valid[i]) continue;
+        const Vec3 o{RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)};
+        const Vec3 d{RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)};
+        float& tfar = RTCRayN_tfar(ray, N, i);
+        Crossing c;
+        if (solve(o, d, RTCRayN_tnear(ray, N, i), tfar, c)) tfar = -INFINITY;
+    }
+}
+
 static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
     const auto* level = static_cast<const Level*>(args->geometryUserPtr);
     const Primitive& p = level->primitives[args->primID];
     if (p.noShadow) return;
-    if (args->N == 8) occludedLanes<8>(args, p);
-    else occludedLanes<0>(args, p);
+    runLanes(args, p, [args](auto solve) { occludedTopLanes8(args, solve); },
+             [args, &p](auto n) { occludedLanes<decltype(n)::value>(args, p); });
 }
 
 void attachPrimitives(RTCDevice device, Level& level) {

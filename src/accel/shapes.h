@@ -80,17 +80,45 @@ int allCrossings(const AnalyticShape& shape, const Vec3& o, const Vec3& d, Cross
 // Sphere: |o + t d - c|^2 = r^2. The discriminant is computed as
 // a (r^2 - |f - (f.d / d.d) d|^2) with f = o - c, which stays accurate when the
 // ray starts far away (Haines et al., Ray Tracing Gems ch. 7).
-inline bool sphereRoots(const AnalyticShape& s, const Vec3& o, const Vec3& d, double& t0, double& t1) {
-    const Vec3 f = o - s.center;
+inline bool sphereRoots(const Vec3& center, double radius, const Vec3& o, const Vec3& d, double& t0, double& t1) {
+    const Vec3 f = o - center;
     const double a = dot(d, d);
     const double b = dot(f, d);
     const Vec3 l = f - (b / a) * d;
-    const double discriminant = a * (s.radius * s.radius - dot(l, l));
+    const double discriminant = a * (radius * radius - dot(l, l));
     if (discriminant < 0) return false;
     const double q = -b - std::copysign(std::sqrt(discriminant), b);
-    const double c = dot(f, f) - s.radius * s.radius;
+    const double c = dot(f, f) - radius * radius;
     t0 = q / a;
     t1 = q != 0 ? c / q : t0;
+    return true;
+}
+inline bool sphereRoots(const AnalyticShape& s, const Vec3& o, const Vec3& d, double& t0, double& t1) {
+    return sphereRoots(s.center, s.radius, o, d, t0, t1);
+}
+
+// firstCrossing of a sphere and of a plane, from the values they use (so a
+// caller can hold them in registers across many rays).
+inline bool firstSphereCrossing(const Vec3& center, double radius, const Vec3& o, const Vec3& d, double tMin,
+                                double tMax, Crossing& out) {
+    // The same roots, in the same order, as intersectSphere.
+    double t0, t1;
+    if (!sphereRoots(center, radius, o, d, t0, t1)) return false;
+    if (std::isfinite(t0) && std::isfinite(t1) && t1 < t0) std::swap(t0, t1);
+    for (const double t : {t0, t1})
+        if (std::isfinite(t) && t > tMin && t < tMax) {
+            out = {t, o + t * d - center};
+            return true;
+        }
+    return false;
+}
+inline bool firstPlaneCrossing(const Vec3& normal, double distance, const Vec3& o, const Vec3& d, double tMin,
+                               double tMax, Crossing& out) {
+    const double dn = dot(normal, d);
+    if (dn == 0) return false;
+    const double t = (distance - dot(normal, o)) / dn;
+    if (!(std::isfinite(t) && t > tMin && t < tMax)) return false;
+    out = {t, normal};
     return true;
 }
 
@@ -104,27 +132,8 @@ bool firstCrossingListed(const AnalyticShape& shape, const Vec3& o, const Vec3& 
 // Inline: every ray that reaches a sphere or a plane comes here.
 inline bool firstCrossing(const AnalyticShape& s, const Vec3& o, const Vec3& d, double tMin, double tMax,
                           Crossing& out) {
-    const auto inside = [&](double t) { return std::isfinite(t) && t > tMin && t < tMax; };
-    if (s.kind == ShapeKind::Sphere) {
-        // The same roots, in the same order, as intersectSphere.
-        double t0, t1;
-        if (!sphereRoots(s, o, d, t0, t1)) return false;
-        if (std::isfinite(t0) && std::isfinite(t1) && t1 < t0) std::swap(t0, t1);
-        for (const double t : {t0, t1})
-            if (inside(t)) {
-                out = {t, o + t * d - s.center};
-                return true;
-            }
-        return false;
-    }
-    if (s.kind == ShapeKind::Plane) {
-        const double dn = dot(s.normal, d);
-        if (dn == 0) return false;
-        const double t = (s.distance - dot(s.normal, o)) / dn;
-        if (!inside(t)) return false;
-        out = {t, s.normal};
-        return true;
-    }
+    if (s.kind == ShapeKind::Sphere) return firstSphereCrossing(s.center, s.radius, o, d, tMin, tMax, out);
+    if (s.kind == ShapeKind::Plane) return firstPlaneCrossing(s.normal, s.distance, o, d, tMin, tMax, out);
     return firstCrossingListed(s, o, d, tMin, tMax, out);
 }
 

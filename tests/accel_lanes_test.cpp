@@ -1,0 +1,101 @@
+// The Embree callbacks take a short way for a packet of 8 rays at the top
+// level meeting a sphere or a plane without a transform (what most camera
+// and shadow rays meet): each lane must get the crossing the general way
+// gives it, so a full packet's hits and shadow answers must be those of each
+// ray traced alone (which takes the general way, one ray at a time).
+#include "accel/accel.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <random>
+
+namespace drt {
+namespace {
+
+using test::makeObject;
+using test::sceneOf;
+
+void expectSameBits(const Vec3& a, const Vec3& b, const char* what, int ray) {
+    for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(std::bit_cast<uint64_t>(a[k]), std::bit_cast<uint64_t>(b[k])) << what << " of ray " << ray;
+}
+
+// Spheres and planes with no transform (the short way), one that is inverted,
+// one that casts no shadow, and a transformed sphere beside them (the
+// general way, in the same packets).
+Scene spheresAndPlanes() {
+    std::vector<Object> objects;
+    objects.push_back(makeObject(Plane{{0, 1, 0}, 0}));
+    objects.push_back(makeObject(Plane{normalize(Vec3{1, 0.2, -0.3}), 6}));
+    for (int i = 0; i < 5; ++i) objects.push_back(makeObject(Sphere{{-4.0 + 2 * i, 0.8, 0}, 0.8}));
+    Object inverted = makeObject(Sphere{{0, 0.5, 3}, 0.5});
+    inverted.inverse = true;
+    objects.push_back(inverted);
+    Object shadowless = makeObject(Sphere{{-2, 1.5, -2}, 0.6});
+    shadowless.noShadow = true;
+    objects.push_back(shadowless);
+    objects.push_back(makeObject(Sphere{{0, 0, 0}, 1}, Transform::scale({1, 0.5, 1}).then(Transform::translate({3, 2, 2}))));
+    return sceneOf(std::move(objects));
+}
+
+TEST(AccelLanes, FullPacketsOfSpheresAndPlanesGetTheHitsOfRaysAlone) {
+    const Scene scene = spheresAndPlanes();
+    const Accelerator accel(scene);
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> u(0, 1);
+    constexpr int kN = Accelerator::kPacketSize;
+    int hits = 0, blocked = 0, rays = 0;
+    for (int packet = 0; packet < 500; ++packet) {
+        // Camera-like packets, some from inside a sphere (its far root), some
+        // starting past tMin > 0, some with a short tMax.
+        const Vec3 eye = packet % 7 == 0 ? Vec3{-2 + 0.2 * u(rng), 0.8, 0.1 * u(rng)}
+                                         : Vec3{-3 + 6 * u(rng), 0.5 + 4 * u(rng), -9 + 2 * u(rng)};
+        const Vec3 aim{-5 + 10 * u(rng), -1 + 3 * u(rng), 2 * u(rng)};
+        Ray batch[kN];
+        for (Ray& r : batch) {
+            r.origin = eye;
+            r.direction = aim + Vec3{0.2 * u(rng), 0.2 * u(rng), 0} - eye;
+            r.tMin = packet % 3 == 0 ? 0.25 : 0;
+            r.tMax = packet % 5 == 0 ? 6 : r.tMax;
+            r.time = 0;
+        }
+        Hit packed[kN];
+        bool found[kN];
+        accel.intersectPacket(batch, kN, packed, found);
+        // Shadow rays from the hits toward a light, as the renderer makes them.
+        const Vec3 light{-6 + 12 * u(rng), 3 + 6 * u(rng), -6 + 6 * u(rng)};
+        Ray shadows[kN];
+        int shadowCount = 0;
+        for (int i = 0; i < kN; ++i, ++rays) {
+            Hit alone;
+            ASSERT_EQ(accel.intersect(batch[i], alone), found[i]) << "ray " << rays;
+            if (!found[i]) continue;
+            ++hits;
+            EXPECT_EQ(std::bit_cast<uint64_t>(alone.t), std::bit_cast<uint64_t>(packed[i].t)) << "ray " << rays;
+            expectSameBits(alone.point, packed[i].point, "point", rays);
+            expectSameBits(alone.geometricNormal, packed[i].geometricNormal, "normal", rays);
+            EXPECT_EQ(alone.object, packed[i].object) << "ray " << rays;
+            const Vec3 toLight = light - packed[i].point;
+            Ray& s = shadows[shadowCount++];
+            s.origin = Accelerator::offsetOrigin(packed[i], toLight);
+            s.direction = light - s.origin;
+            s.tMax = 1;
+        }
+        // Fill the packet up so that Embree traces all 8 lanes.
+        for (int i = shadowCount; i < kN && shadowCount > 0; ++i) shadows[i] = shadows[i % shadowCount];
+        if (shadowCount == 0) continue;
+        bool shadowed[kN];
+        accel.occludedPacket(shadows, kN, shadowed);
+        for (int i = 0; i < kN; ++i) {
+            ASSERT_EQ(accel.occluded(shadows[i]), shadowed[i]) << "shadow ray " << i << " of packet " << packet;
+            blocked += shadowed[i];
+        }
+    }
+    EXPECT_GT(hits, rays / 2);
+    EXPECT_GT(blocked, 100);
+}
+
+} // namespace
+} // namespace drt
