@@ -74,41 +74,98 @@ void fillRay(const Ray& ray, const AcceleratorState& state, RTCRay& r, unsigned 
     r.flags = 0;
 }
 
+// Every coordinate within Embree's range (false for NaN).
+inline bool withinEmbree(const Vec3& v) {
+    constexpr double kLargest = Accelerator::kLargestCoordinate;
+    return (std::fabs(v.x) <= kLargest) & (std::fabs(v.y) <= kLargest) & (std::fabs(v.z) <= kLargest);
+}
+// withinEmbree of the origins and directions of many rays, all at once: with
+// SSE2 two coordinates a step (|x| <= kLargestCoordinate, false for NaN, as
+// withinEmbree compares them).
+class EmbreeRange {
+public:
+    void add(const Vec3& origin, const Vec3& direction) {
+#if defined(__SSE2__)
+        const __m128d largest = _mm_set1_pd(Accelerator::kLargestCoordinate);
+        const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffff));
+        const __m128d xy = _mm_cmple_pd(_mm_and_pd(_mm_set_pd(origin.y, origin.x), magnitude), largest);
+        const __m128d zx = _mm_cmple_pd(_mm_and_pd(_mm_set_pd(direction.x, origin.z), magnitude), largest);
+        const __m128d yz = _mm_cmple_pd(_mm_and_pd(_mm_set_pd(direction.z, direction.y), magnitude), largest);
+        within_ = _mm_and_pd(within_, _mm_and_pd(xy, _mm_and_pd(zx, yz)));
+#else
+        within_ &= withinEmbree(origin) & withinEmbree(direction);
+#endif
+    }
+    bool all() const {
+#if defined(__SSE2__)
+        return _mm_movemask_pd(within_) == 3;
+#else
+        return within_;
+#endif
+    }
+
+private:
+#if defined(__SSE2__)
+    __m128d within_ = _mm_castsi128_pd(_mm_set1_epi32(-1));
+#else
+    bool within_ = true;
+#endif
+};
+
 // A packet's rays in Embree's layout (RTCRay8, or the ray of an RTCRayHit8),
 // each lane what fillRay makes of its ray. The lanes past `count` repeat ray 0
 // (Embree ignores them). A packet's rays mostly share their interval and time
-// (a pixel's camera rays, the shadow rays to one light): those are converted
-// once, and a lane whose values have the bits of ray 0's takes its floats.
+// (a pixel's camera rays, the shadow rays to one light): when every lane's
+// have the bits of ray 0's, they are converted once and stored in every lane.
+// Returns whether Embree can take every ray (traceable): if not, the packet
+// is not to be traced.
 template <class Packet>
-void fillPacket(const Ray* rays, int count, const AcceleratorState& state, unsigned mask, Packet& packet) {
+bool fillPacket(const Ray* rays, int count, const AcceleratorState& state, unsigned mask, Packet& packet) {
+    constexpr int kN = Accelerator::kPacketSize;
     const Ray& first = rays[0];
     const uint64_t tMinBits = std::bit_cast<uint64_t>(first.tMin), tMaxBits = std::bit_cast<uint64_t>(first.tMax),
                    timeBits = std::bit_cast<uint64_t>(first.time);
-    const float tnear = atLeastZero(floatAtLeast(first.tMin)), tfar = floatAtMost(first.tMax),
-                time = float(clampToUnit(first.time));
-    for (int i = 0; i < Accelerator::kPacketSize; ++i) {
+    const bool shifted = state.shifted;
+    const Vec3 frameOrigin = state.frameOrigin;
+    EmbreeRange inRange;
+    bool shared = true;
+    for (int i = 0; i < kN; ++i) {
         const Ray& ray = rays[i < count ? i : 0];
-        const Vec3 origin = state.shifted ? ray.origin - state.frameOrigin : ray.origin;
+        const Vec3 origin = shifted ? ray.origin - frameOrigin : ray.origin;
+        inRange.add(origin, ray.direction);
+        shared &= (std::bit_cast<uint64_t>(ray.tMin) == tMinBits) & (std::bit_cast<uint64_t>(ray.tMax) == tMaxBits) &
+                  (std::bit_cast<uint64_t>(ray.time) == timeBits);
         packet.org_x[i] = float(origin.x);
         packet.org_y[i] = float(origin.y);
         packet.org_z[i] = float(origin.z);
         packet.dir_x[i] = float(ray.direction.x);
         packet.dir_y[i] = float(ray.direction.y);
         packet.dir_z[i] = float(ray.direction.z);
-        packet.tnear[i] = std::bit_cast<uint64_t>(ray.tMin) == tMinBits ? tnear : atLeastZero(floatAtLeast(ray.tMin));
-        packet.tfar[i] = std::bit_cast<uint64_t>(ray.tMax) == tMaxBits ? tfar : floatAtMost(ray.tMax);
-        packet.time[i] = std::bit_cast<uint64_t>(ray.time) == timeBits ? time : float(clampToUnit(ray.time));
+    }
+    if (shared) [[likely]] {
+        const float tnear = atLeastZero(floatAtLeast(first.tMin)), tfar = floatAtMost(first.tMax),
+                    time = float(clampToUnit(first.time));
+        for (int i = 0; i < kN; ++i) {
+            packet.tnear[i] = tnear;
+            packet.tfar[i] = tfar;
+            packet.time[i] = time;
+        }
+    } else {
+        for (int i = 0; i < kN; ++i) {
+            const Ray& ray = rays[i < count ? i : 0];
+            packet.tnear[i] = atLeastZero(floatAtLeast(ray.tMin));
+            packet.tfar[i] = floatAtMost(ray.tMax);
+            packet.time[i] = float(clampToUnit(ray.time));
+        }
+    }
+    for (int i = 0; i < kN; ++i) {
         packet.mask[i] = mask;
         packet.id[i] = static_cast<unsigned>(i);
         packet.flags[i] = 0;
     }
+    return inRange.all();
 }
 
-// Every coordinate within Embree's range (false for NaN).
-inline bool withinEmbree(const Vec3& v) {
-    constexpr double kLargest = Accelerator::kLargestCoordinate;
-    return std::fabs(v.x) <= kLargest && std::fabs(v.y) <= kLargest && std::fabs(v.z) <= kLargest;
-}
 // Whether Embree can take the ray (Accelerator::kLargestCoordinate).
 inline bool traceable(const Ray& ray, const AcceleratorState& state) {
     return withinEmbree(state.shifted ? ray.origin - state.frameOrigin : ray.origin) && withinEmbree(ray.direction);
@@ -129,13 +186,6 @@ Ray shortened(const Ray& ray) {
     r.tMax = std::ldexp(r.tMax, exponent);
     return r;
 }
-// True if every ray of the packet is traceable.
-inline bool allTraceable(const Ray* rays, int count, const AcceleratorState& state) {
-    bool all = true;
-    for (int i = 0; i < count; ++i) all &= traceable(rays[i], state);
-    return all;
-}
-
 Vec3 unitOr(const Vec3& v, const Vec3& fallback) {
     const double len = length(v);
     return len > 0 && std::isfinite(len) ? v / len : fallback;
@@ -463,7 +513,8 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
         return;
     }
     count = std::min(count, kPacketSize);
-    if (!allTraceable(rays, count, *impl_)) [[unlikely]] {
+    alignas(32) RTCRayHit8 packet;
+    if (!fillPacket(rays, count, *impl_, 0xFFFFFFFFu, packet.ray)) [[unlikely]] { // some ray beyond Embree's range
         for (int i = 0; i < count; ++i) found[i] = intersect(rays[i], hits[i]);
         return;
     }
@@ -476,9 +527,7 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
     for (int i = 0; i < count; ++i) lanes[i] = new (storage[i]) RayQuery(*impl_, rays[i].origin, rays[i].direction);
     lanes[0]->lanes = lanes;
     lanes[0]->context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(32) RTCRayHit8 packet;
     alignas(32) int valid[kPacketSize];
-    fillPacket(rays, count, *impl_, 0xFFFFFFFFu, packet.ray);
     for (int i = 0; i < kPacketSize; ++i) {
         valid[i] = i < count ? -1 : 0;
         packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
@@ -552,7 +601,8 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
         return;
     }
     count = std::min(count, kPacketSize);
-    if (!allTraceable(rays, count, *impl_)) [[unlikely]] {
+    alignas(32) RTCRay8 packet;
+    if (!fillPacket(rays, count, *impl_, kShadowMask, packet)) [[unlikely]] { // some ray beyond Embree's range
         for (int i = 0; i < count; ++i) blocked[i] = occluded(rays[i]);
         return;
     }
@@ -570,9 +620,7 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
     } else {
         rtcInitIntersectContext(&plain);
     }
-    alignas(32) RTCRay8 packet;
     alignas(32) int valid[kPacketSize];
-    fillPacket(rays, count, *impl_, kShadowMask, packet);
     for (int i = 0; i < kPacketSize; ++i) valid[i] = i < count ? -1 : 0;
     rtcOccluded8(valid, impl_->top.scene, context, &packet);
     impl_->device.throwIfFailed("tracing a shadow ray packet");
