@@ -130,6 +130,22 @@ TEST(HardeningPov, ALoopAddingBlobComponentsForeverStopsAtTheObjectLimit) {
     EXPECT_CONTAINS(c.err, "s.pov:7:12: error: the scene's objects and patterns number");
 }
 
+// A fuzzer's find: an object whose #while added a texture layer a pass. Each
+// layer copied the layers below it (10,000 layers: 280 s); layers now go on the
+// object's own texture, and a texture has at most 10,000 of them.
+TEST(HardeningPov, ALoopAddingTextureLayersForeverStopsAtTheLayerMaximum) {
+    const Outcome o = checkPov("sphere { 0, 1 texture { pigment { rgb 1 } }\n#while (1)\n  texture { pigment { rgbt 1 } }\n"
+                               "#end\n}\n");
+    EXPECT_EQ(o.exitCode, 1);
+    EXPECT_CONTAINS(o.err, "s.pov:3:3: error: a texture of 10001 layers is over drt's maximum of 10000 (a loop adding "
+                           "layers?)");
+    EXPECT_CONTAINS(o.err, "1 error");
+    // 10,000 layers are read, and the top one is the last given.
+    const Outcome many = checkPov("sphere { 0, 1 texture { pigment { rgb 1 } }\n#for (I, 2, 10000)\n"
+                                  "  texture { pigment { rgbt <I, 0, 0, 1> } }\n#end\n}\n");
+    EXPECT_EQ(many.exitCode, 0) << many.err;
+}
+
 TEST(HardeningPov, ConcatDoublingStopsAtTheStringLimit) {
     const Outcome o = checkPov("#declare S = \"ab\";\n#while (1)\n  #declare S = concat(S, S);\n#end\n");
     EXPECT_EQ(o.exitCode, 1);

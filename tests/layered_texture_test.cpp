@@ -315,6 +315,38 @@ TEST(LayeredTextureSyntax, SecondTextureIsALayerOnTop) {
     ASSERT_EQ(s.objects[1].texture->layersAbove.size(), 1u);
 }
 
+// A layer goes onto the object's own texture in place: the objects that use
+// the same declared texture or copy the same declared object keep theirs, and
+// the members of a CSG each get the layer.
+TEST(LayeredTextureSyntax, ALayerOnASharedTextureLeavesTheOtherHoldersAlone) {
+    const Scene s = loadDrt(std::string(kCamera) +
+                            "#declare T = texture { pigment { rgb y } }\n"
+                            "#declare S = sphere { 0, 1 texture { T } }\n"
+                            "sphere { 0, 1 texture { T } texture { pigment { rgbt 1 } } texture { pigment { rgbf 1 } } }\n"
+                            "sphere { 0, 1 texture { T } }\n"
+                            "object { S }\n"
+                            "object { S texture { pigment { rgbt 0.5 } } }\n"
+                            "union { sphere { 0, 1 } sphere { x, 1 } texture { T } texture { pigment { rgbt 0.25 } } }\n");
+    ASSERT_GE(s.objects.size(), 5u); // the union's members may be placed as objects of their own
+    ASSERT_EQ(s.objects[0].texture->layersAbove.size(), 2u);
+    EXPECT_EQ(s.objects[0].texture->layersAbove[1].pigment.color.filter, 1);
+    EXPECT_EQ(s.objects[1].texture->layersAbove.size(), 0u);
+    EXPECT_EQ(s.objects[2].texture->layersAbove.size(), 0u);
+    // object { S texture {...} } replaces S's texture, as in POV-Ray; S's other copy keeps its own.
+    EXPECT_EQ(s.objects[3].texture->layersAbove.size(), 0u);
+    EXPECT_EQ(s.objects[3].texture->pigment.color.transmit, 0.5);
+    int members = 0;
+    for (size_t i = 4; i < s.objects.size(); ++i) {
+        const Csg* csg = std::get_if<Csg>(&s.objects[i].shape);
+        for (const Object& member : csg ? csg->children : std::vector<Object>{s.objects[i]}) {
+            ++members;
+            ASSERT_EQ(member.texture->layersAbove.size(), 1u);
+            EXPECT_EQ(member.texture->layersAbove[0].pigment.color.transmit, 0.25);
+        }
+    }
+    EXPECT_EQ(members, 2);
+}
+
 TEST(LayeredTextureSyntax, TextureMapTilesAndPigmentMapParse) {
     const Scene s = loadDrt(std::string(kCamera) +
                             "plane { y, 0 texture { gradient x texture_map { [0.25 pigment { rgb 1 }] "

@@ -349,7 +349,12 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
         }
         const SourceLoc valueLoc = peek().loc;
         if (m == "texture") {
-            if (textures++ > 0) {
+            if (textures++ > 0 && po.children.empty()) {
+                // On the object's own texture (copied only if shared): a layer costs
+                // no copy of the layers below it.
+                Texture top = uvMap(texture(defaultTexture_));
+                layerOnTop(o.texture.edit(), std::move(top), t.loc);
+            } else if (textures > 1) {
                 Texture layered = o.texture;
                 layerOnTop(layered, uvMap(texture(defaultTexture_)), t.loc);
                 setTexture(po, layered);

@@ -24,6 +24,7 @@ std::shared_ptr<const Spline> Evaluator::splineBlock(SourceLoc keyword) {
     expectSymbol("{", "after 'spline'");
     BlockScope scope(*this, "spline", keyword);
     auto s = std::make_shared<Spline>();
+    std::vector<Spline::Entry> added; // inserted at the end, in one go
     bool first = true;
     for (;;) {
         const Token t = peek();
@@ -70,10 +71,11 @@ std::shared_ptr<const Spline> Evaluator::splineBlock(SourceLoc keyword) {
             fail(valueLoc, "a spline entry's value must be a number or a vector, not " + kindName(v));
         }
         if (!std::isfinite(time)) fail(at, "a spline entry's parameter must be finite" + got(time));
-        s->insert(time, values);
+        added.push_back({time, values});
         s->terms = std::max(s->terms, terms);
         acceptSymbol(",");
     }
+    s->insert(std::move(added));
     if (s->entries.empty()) fail(keyword, "spline has no entries");
     return s;
 }

@@ -6,11 +6,24 @@
 #include "lang/quilted.h"
 #include "lang/mesh_syntax.h"
 
+#include <fmt/format.h>
+
 namespace drt::lang {
+
+namespace {
+// Layers of one texture (POV-Ray scenes use a handful; 10,000 take about 0.1 s to read).
+constexpr size_t kMaxTextureLayers = 10000;
+} // namespace
 
 using Kind = Value::Kind;
 
 void Evaluator::layerOnTop(Texture& below, Texture top, SourceLoc loc) {
+    // Each layer added copies the layers below it, so a loop adding layers
+    // without end would take time quadratic in their number: stop it.
+    const size_t layers = below.layersAbove.size() + top.layersAbove.size() + 2;
+    if (layers > kMaxTextureLayers)
+        failLimit(loc, fmt::format("a texture of {} layers is over drt's maximum of {} (a loop adding layers?)",
+                                   layers, kMaxTextureLayers));
     if (hasPatternedLayer(below)) fail(loc, "cannot layer over a patterned texture (as POV-Ray)");
     if (hasPatternedLayer(top)) fail(loc, "cannot layer a patterned texture over another texture (as POV-Ray)");
     addLayerOnTop(below, std::move(top));

@@ -1,5 +1,6 @@
 #include "scene/spline.h"
 
+#include <algorithm>
 #include <cstddef>
 
 namespace drt {
@@ -69,11 +70,24 @@ std::vector<double> naturalCurvatures(const std::vector<Spline::Entry>& e, size_
 
 } // namespace
 
-void Spline::insert(double t, const Values& v) {
-    size_t i = 0;
-    while (i < entries.size() && entries[i].t < t) ++i;
-    if (i < entries.size() && entries[i].t == t) entries[i].v = v;
-    else entries.insert(entries.begin() + std::ptrdiff_t(i), Entry{t, v});
+void Spline::insert(std::vector<Entry> added) {
+    const auto earlier = [](const Entry& a, const Entry& b) { return a.t < b.t; };
+    std::stable_sort(added.begin(), added.end(), earlier); // equal t stay in the order given
+    std::vector<Entry> merged;
+    merged.reserve(entries.size() + added.size());
+    size_t old = 0;
+    for (size_t j = 0; j < added.size();) {
+        // A run of equal t: the first one's t (or the old entry's), the last one's value.
+        size_t last = j;
+        while (last + 1 < added.size() && added[last + 1].t == added[j].t) ++last;
+        while (old < entries.size() && entries[old].t < added[j].t) merged.push_back(entries[old++]);
+        Entry e{added[j].t, added[last].v};
+        if (old < entries.size() && entries[old].t == e.t) e.t = entries[old++].t;
+        merged.push_back(e);
+        j = last + 1;
+    }
+    merged.insert(merged.end(), entries.begin() + std::ptrdiff_t(old), entries.end());
+    entries = std::move(merged);
     for (size_t k = 0; k < 5; ++k) curvatures[k] = naturalCurvatures(entries, k);
 }
 

@@ -20,8 +20,13 @@ struct Spline {
     // The natural spline's second derivatives at the entries, per component (kept by insert).
     std::array<std::vector<double>, 5> curvatures;
 
-    // Adds an entry in order of t; an entry of the same t replaces the old one.
-    void insert(double t, const std::array<double, 5>& v);
+    // Adds entries in order of t, as if each were inserted in turn: an entry of
+    // the same t as one before it (given earlier or already there) replaces that
+    // one's value, which keeps its t. The entries are sorted and the curvatures
+    // solved once for the lot, so a scene's loop that adds entries one by one
+    // costs O(n log n), not O(n^2).
+    void insert(std::vector<Entry> added);
+    void insert(double t, const std::array<double, 5>& v) { insert(std::vector<Entry>{Entry{t, v}}); }
     // The value at t by `as`'s rules (POV-Ray 3.7's): outside the entries, the
     // end entry's value. linear: straight between neighbours. quadratic: the
     // parabola through the entry before, the two around t (the first three
