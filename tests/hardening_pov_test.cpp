@@ -111,6 +111,25 @@ TEST(HardeningPov, ALoopAddingSpheresForeverStopsAtTheObjectLimit) {
                            "20000 (limit objects = 20000; raise it with --limit objects=N)");
 }
 
+// A fuzzer's find: a blob whose #while adds components forever ran to the
+// loop limit (10M passes, 145 s and 5.4 GB) because components were not
+// counted as the objects they cost. Each is now one node of the object limit.
+TEST(HardeningPov, ALoopAddingBlobComponentsForeverStopsAtTheObjectLimit) {
+    const Outcome o = checkPov("blob { threshold 0.5\n#while (1)\n  sphere { 0, 1, 1 }\n  component 1, 1, <1, 0, 0>\n"
+                               "#end\n}\n",
+                               "--limit objects=20000");
+    EXPECT_EQ(o.exitCode, 1);
+    // 1 for the blob, then two components a pass: the 20001st node is a `component`.
+    EXPECT_CONTAINS(o.err, "s.pov:4:3: error: the scene's objects and patterns number 20001 is over the limit of "
+                           "20000 (limit objects = 20000; raise it with --limit objects=N)");
+    // Copies of a declared blob count its components too.
+    std::string copies = "#declare B = blob { threshold 0.5\n#for (I, 1, 1000)\n  sphere { <I, 0, 0>, 1, 1 }\n#end\n}\n";
+    copies += "#for (I, 1, 30)\n  object { B }\n#end\n";
+    const Outcome c = checkPov(copies, "--limit objects=20000");
+    EXPECT_EQ(c.exitCode, 1);
+    EXPECT_CONTAINS(c.err, "s.pov:7:12: error: the scene's objects and patterns number");
+}
+
 TEST(HardeningPov, ConcatDoublingStopsAtTheStringLimit) {
     const Outcome o = checkPov("#declare S = \"ab\";\n#while (1)\n  #declare S = concat(S, S);\n#end\n");
     EXPECT_EQ(o.exitCode, 1);

@@ -87,9 +87,11 @@ void ShapeSyntax<Blob>::read(Evaluator& e, const Token& keyword, ObjectValue& o)
             }
         } else if (item.isWord("sphere") || item.isWord("cylinder")) {
             e.next();
+            e.countBuilt(item.loc, 1); // a #while can add components without end
             blob.components.push_back(component(e, item));
         } else if (item.isWord("component")) {
             e.next();
+            e.countBuilt(item.loc, 1);
             BlobComponent c;
             c.strength = e.floatExpr("the component's strength");
             e.comma("strength");

@@ -35,6 +35,7 @@ void addWeight(SceneWeight& weight, const Object& object, int64_t cap) {
         weight.patterns += int64_t(triangles) / 16;
         for (const Texture& own : mesh->textures) addWeight(weight, own, cap);
     }
+    if (const Blob* blob = std::get_if<Blob>(&object.shape)) weight.objects += int64_t(blob->components.size());
     if (const Csg* csg = std::get_if<Csg>(&object.shape))
         for (const Object& child : csg->children) addWeight(weight, child, cap);
     for (const Object& clip : object.clippedBy) addWeight(weight, clip, cap);

@@ -13,7 +13,7 @@
 namespace drt {
 
 struct SceneWeight {
-    int64_t objects = 0;  // Object nodes
+    int64_t objects = 0;  // Object nodes and blob components
     int64_t patterns = 0; // Pigment, Texture, map-entry and Media nodes, mesh triangles / 16
     int64_t total() const { return objects + patterns; }
 };
