@@ -525,6 +525,43 @@ box { <1, 0, -1>, <2, 1.5, 0> pigment { color rgb 0.9 } }
     }
 }
 
+// ambientTerm and lightTerm (inline in shading.h, called at every shaded
+// point) against their formulas in shading.h, for random finishes without
+// highlights: the ambient and emission times the pigment and its opacity, and
+// (diffuse (N.L)^brilliance - U crand) alpha P I_L, black when N.L <= 0.
+TEST(Shading, AmbientAndDiffuseTermsFollowTheirFormulas) {
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> u(0, 1);
+    int lit = 0;
+    for (int i = 0; i < 500; ++i) {
+        Finish finish;
+        finish.ambient = Color(u(rng), u(rng), u(rng));
+        finish.emission = Color(0.3 * u(rng), 0.2 * u(rng), 0.1 * u(rng));
+        finish.diffuse = u(rng);
+        finish.brilliance = i % 2 ? 1.0 : 0.5 + 3 * u(rng);
+        finish.crand = i % 3 ? 0.3 * u(rng) : 0.0;
+        const ColorFT pigment{Color(u(rng), u(rng), u(rng)), 0.3 * u(rng), 0.2 * u(rng)};
+        const Color ambientLight(u(rng), u(rng), u(rng)), intensity(2 * u(rng), u(rng), u(rng));
+        const Vec3 normal = normalize(Vec3(u(rng) - 0.5, u(rng), u(rng) - 0.5));
+        const Vec3 toLight = normalize(Vec3(u(rng) - 0.5, u(rng) - 0.3, u(rng) - 0.5));
+        const Vec3 incoming = normalize(Vec3(u(rng) - 0.5, -u(rng), u(rng) - 0.5));
+        const double crandU = u(rng);
+        const double alpha = 1 - pigment.filter - pigment.transmit;
+        const Color ambient = ambientTerm(finish, pigment, ambientLight);
+        const Color light = lightTerm(finish, pigment, normal, incoming, toLight, intensity, crandU);
+        const double cosNL = dot(normal, toLight);
+        if (cosNL > 0) ++lit;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_DOUBLE_EQ(ambient[c],
+                             pigment.rgb[c] * (finish.ambient[c] * ambientLight[c] + finish.emission[c]) * alpha);
+            const double diffuse =
+                cosNL > 0 ? (finish.diffuse * std::pow(cosNL, finish.brilliance) - crandU * finish.crand) * alpha : 0.0;
+            EXPECT_DOUBLE_EQ(light[c], diffuse * pigment.rgb[c] * intensity[c]) << "case " << i << " channel " << c;
+        }
+    }
+    EXPECT_GT(lit, 100);
+}
+
 // shadeLayers takes a reflection whose min and max are equal, without a
 // metallic tint, as its value; reflectivity times the tint must give exactly
 // that, for any incidence, ior and pigment.
