@@ -168,21 +168,23 @@ void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const
     Vec3 normal = surface.entering ? hit.shadingNormal : -hit.shadingNormal;
     if (dot(normal, surface.incoming) >= 0) normal = surface.entering ? hit.geometricNormal : -hit.geometricNormal;
     surface.normal = normal;
-    const double ior = object.interior.ior > 0 && std::isfinite(object.interior.ior) ? object.interior.ior : 1.0;
-    surface.eta = surface.entering ? 1.0 / ior : ior; // n_incident / n_transmitted
 
     Color weight = seenWeight;
     if (!surface.entering) // the ray crossed the object's interior
         weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
     const auto& corners = hit.cornerTextures;
-    if (corners[0] == nullptr && corners[1] == nullptr && corners[2] == nullptr && object.texture->plain()) {
+    const bool plain =
+        corners[0] == nullptr && corners[1] == nullptr && corners[2] == nullptr && object.texture->plain();
+    if (plain && !scene_.global.radiosity && matteLayer(*object.texture)) { // (shadeMatte reads no eta)
+        shadeMatte(surface, *object.texture, weight, sampler, counts, result);
+        return;
+    }
+    const double ior = object.interior.ior > 0 && std::isfinite(object.interior.ior) ? object.interior.ior : 1.0;
+    surface.eta = surface.entering ? 1.0 / ior : ior; // n_incident / n_transmitted
+    if (plain) {
         // The object's own texture, one plain layer: what forEachSurfaceTexture
         // and shadeTexture come to (with a share of 1: weight * 1 == weight).
         const Texture* single = &*object.texture;
-        if (!scene_.global.radiosity && matteLayer(*single)) {
-            shadeMatte(surface, *single, weight, sampler, counts, result);
-            return;
-        }
         shadeLayers(surface, &single, 1, weight, sampler, counts, result, stack);
         return;
     }
