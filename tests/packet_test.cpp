@@ -12,8 +12,10 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <iomanip>
 #include <limits>
 #include <random>
+#include <sstream>
 
 namespace drt {
 namespace {
@@ -201,6 +203,18 @@ TEST(Packet, LanesWithTheirOwnIntervalAndTimeKeepThem) {
     EXPECT_GT(hits, 300);
 }
 
+// A packet of rays from `origin` along the directions from `eye` to `aim`
+// moved by up to 0.3 in x and 0.2 in y.
+void jitteredPacket(Ray (&rays)[Accelerator::kPacketSize], const Vec3& origin, const Vec3& eye, const Vec3& aim,
+                    std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0, 1);
+    for (Ray& r : rays) {
+        r.origin = origin;
+        r.direction = aim + Vec3{0.3 * u(rng), 0.2 * u(rng), 0} - eye;
+        r.time = 0;
+    }
+}
+
 // The renderer traces the shadow rays of a packet's camera hits ahead
 // (Integrator::traceCameraShadows) and the shading takes their answers: every
 // sample must be the bits, and count the rays, it gives with each shadow ray
@@ -229,7 +243,6 @@ box { <-2.5, 0, -1>, <-1.5, 1.2, 0> pigment { color rgb 0.9 } rotate y*20 }
     const Integrator integrator(*scene, accel);
     const std::unique_ptr<Sampler> sampler = makeSampler("sobol", 8, 3);
     std::mt19937 rng(5);
-    std::uniform_real_distribution<double> u(0, 1);
     const Vec3 eye{0, 2, -6};
     int samples = 0;
     RayCounts aheadCounts, aloneCounts;
@@ -237,11 +250,7 @@ box { <-2.5, 0, -1>, <-1.5, 1.2, 0> pigment { color rgb 0.9 } rotate y*20 }
         const int x = pixel % 20, y = pixel / 20;
         const Vec3 aim{-3.5 + 7 * (x + 0.5) / 20, 2.5 - 3 * (y + 0.5) / 15, 0};
         Ray rays[Accelerator::kPacketSize];
-        for (Ray& r : rays) {
-            r.origin = eye;
-            r.direction = aim + Vec3{0.3 * u(rng), 0.2 * u(rng), 0} - eye;
-            r.time = 0;
-        }
+        jitteredPacket(rays, eye, eye, aim, rng);
         Hit hits[Accelerator::kPacketSize];
         bool found[Accelerator::kPacketSize];
         accel.intersectPacket(rays, Accelerator::kPacketSize, hits, found);
@@ -334,6 +343,22 @@ sphere { <1.6, 0.5, 1>, 0.5 pigment { color rgb <0.2, 0.5, 0.8> } }
     EXPECT_GT(compared, options.width * options.height / 2);
 }
 
+// The scene with every object's texture wrapped in an `average` texture map of
+// one entry, which Integrator::shade shades through shadePatterned and
+// shadeTexture (with a weight of exactly 1): its general path, none of its
+// short ways for plain textures.
+Scene throughTheGeneralPath(const Scene& scene) {
+    Scene wrapped = scene;
+    for (Object& object : wrapped.objects) {
+        EXPECT_TRUE(object.texture->plain());
+        Texture map;
+        map.pigment.pattern = PatternKind::Average;
+        map.map.push_back({1.0, object.texture});
+        object.texture = std::move(map);
+    }
+    return wrapped;
+}
+
 // Integrator::shade takes a short way for the common surface (the object's own
 // plain texture, straight to shadeLayers). It must shade exactly as the general
 // way: the same scene with every texture wrapped in an `average` texture map of
@@ -360,15 +385,7 @@ sphere { <-0.5, 0.3, -1.5>, 0.3 pigment { color rgb 0.9 } finish { reflection { 
     ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
     const RenderOptions options = smallRender(*scene, 4);
     const RenderResult plain = render(*scene, options);
-    Scene wrapped = *scene;
-    for (Object& object : wrapped.objects) {
-        ASSERT_TRUE(object.texture->plain());
-        Texture map;
-        map.pigment.pattern = PatternKind::Average;
-        map.map.push_back({1.0, object.texture});
-        object.texture = std::move(map);
-    }
-    const RenderResult general = render(wrapped, options);
+    const RenderResult general = render(throughTheGeneralPath(*scene), options);
     EXPECT_EQ(plain.stats.shadowRays, general.stats.shadowRays);
     EXPECT_EQ(plain.stats.secondaryRays, general.stats.secondaryRays);
     EXPECT_GT(plain.stats.secondaryRays, 0u);
@@ -378,6 +395,108 @@ sphere { <-0.5, 0.3, -1.5>, 0.3 pigment { color rgb 0.9 } finish { reflection { 
                 ASSERT_EQ(std::bit_cast<uint32_t>(plain.color.at(x, y, c)),
                           std::bit_cast<uint32_t>(general.color.at(x, y, c)))
                     << "pixel " << x << ", " << y;
+}
+
+// Integrator::shade takes a shorter way still for a matte surface (a solid
+// pigment without filter or transmit, no bumps, no reflection: shadeMatte
+// adds its ambient and light terms and spawns nothing). Every sample must be
+// the bits, and count the rays, the general way gives: random matte finishes
+// (ambient, emission, diffuse, brilliance, phong, specular, metallic, crand),
+// colours beyond [0, 1], surfaces seen from inside, among surfaces that do
+// not qualify (a reflection, a filter, bumps), under point, spot, area,
+// fading and shadowless lights, and with no light at all. The general way is
+// the same scene with every texture an `average` map of one entry.
+TEST(Packet, MatteSurfacesShadeAsTheGeneralPathDoes) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    const auto number = [](double v) {
+        std::ostringstream out;
+        out << std::setprecision(17) << v;
+        return out.str();
+    };
+    const auto colour = [&] {
+        return "<" + number(1.4 * u(rng) - 0.1) + ", " + number(1.2 * u(rng)) + ", " + number(u(rng)) + ">";
+    };
+    std::string objects;
+    for (int i = 0; i < 14; ++i) {
+        std::string finish = "ambient " + number(0.3 * u(rng)) + " diffuse " + number(u(rng));
+        if (u(rng) < 0.4) finish += " brilliance " + number(0.5 + 3 * u(rng));
+        if (u(rng) < 0.4) finish += " phong " + number(u(rng)) + " phong_size " + number(1 + 80 * u(rng));
+        if (u(rng) < 0.4) finish += " specular " + number(u(rng)) + " roughness " + number(0.001 + 0.1 * u(rng));
+        if (u(rng) < 0.3) finish += " metallic " + number(u(rng));
+        if (u(rng) < 0.3) finish += " crand " + number(0.3 * u(rng));
+        if (u(rng) < 0.2) finish += " emission " + number(0.5 * u(rng));
+        std::string pigment = "color rgb " + colour();
+        std::string extra;
+        const int kind = i % 7; // 0-4 matte, 5 reflective, 6 filtering or bumped
+        if (kind == 5) finish += " reflection " + number(0.1 + 0.5 * u(rng));
+        if (kind == 6) {
+            if (i % 2) pigment = "color rgbf <0.9, 0.9, 0.9, 0.5>";
+            else extra = " normal { bumps 0.5 scale 0.2 }";
+        }
+        const double x = -4 + 8 * u(rng), z = -1 + 5 * u(rng), r = 0.3 + 0.6 * u(rng);
+        objects += "sphere { <" + number(x) + ", " + number(r) + ", " + number(z) + ">, " + number(r) +
+                   " pigment { " + pigment + " } finish { " + finish + " }" + extra + " }\n";
+    }
+    // A sphere around the camera's packet of rays at the top left: seen from inside.
+    objects += "sphere { <-3, 2.5, -5>, 0.8 pigment { color rgb <0.6, 0.7, 0.2> } finish { diffuse 0.7 } }\n";
+    objects += "plane { y, 0 pigment { color rgb " + colour() + " } finish { ambient 0.2 diffuse 0.6 } }\n";
+    const std::string lights = R"(
+light_source { <-4, 6, -4>, color rgb 0.8 }
+light_source { <3, 5, -3>, color rgb 0.5 spotlight point_at <0, 0, 0> radius 20 falloff 30 }
+light_source { <0, 8, 2>, color rgb 0.4 area_light <1, 0, 0>, <0, 0, 1>, 2, 2 }
+light_source { <2, 3, -5>, color rgb 0.3 shadowless }
+light_source { <5, 4, 0>, color rgb 0.6 fade_distance 3 fade_power 2 }
+)";
+    const std::string head = R"(
+global_settings { ambient_light rgb <0.9, 1, 1.2> }
+camera { location <0, 2, -6> look_at <0, 0.5, 0> angle 60 }
+background { color rgb <0.3, 0.4, 0.6> }
+)";
+    for (const bool lit : {true, false}) {
+        Diagnostics diagnostics;
+        std::optional<Scene> scene = loadSceneText(head + (lit ? lights : "") + objects, "matte.drt", diagnostics);
+        ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
+        const Scene wrapped = throughTheGeneralPath(*scene);
+        const Accelerator accel(*scene), wrappedAccel(wrapped);
+        const Integrator integrator(*scene, accel), general(wrapped, wrappedAccel);
+        const std::unique_ptr<Sampler> sampler = makeSampler("sobol", 8, 3);
+        const Vec3 eye{0, 2, -6};
+        int samples = 0, inside = 0;
+        RayCounts shortCounts, generalCounts;
+        for (int pixel = 0; pixel < 400; ++pixel) {
+            const int x = pixel % 20, y = pixel / 20;
+            const Vec3 aim{-4.5 + 9 * (x + 0.5) / 20, 3 - 4 * (y + 0.5) / 20, 0};
+            Ray rays[Accelerator::kPacketSize];
+            jitteredPacket(rays, pixel == 0 ? Vec3{-3, 2.5, -5} : eye, eye, aim, rng);
+            Hit hits[Accelerator::kPacketSize], wrappedHits[Accelerator::kPacketSize];
+            bool found[Accelerator::kPacketSize], wrappedFound[Accelerator::kPacketSize];
+            accel.intersectPacket(rays, Accelerator::kPacketSize, hits, found);
+            wrappedAccel.intersectPacket(rays, Accelerator::kPacketSize, wrappedHits, wrappedFound);
+            CameraShadows ahead, wrappedAhead;
+            integrator.traceCameraShadows(rays, hits, found, Accelerator::kPacketSize, ahead);
+            general.traceCameraShadows(rays, wrappedHits, wrappedFound, Accelerator::kPacketSize, wrappedAhead);
+            for (int k = 0; k < Accelerator::kPacketSize; ++k, ++samples) {
+                if (found[k] && dot(rays[k].direction, hits[k].geometricNormal) > 0) ++inside;
+                sampler->startPixelSample(x, y, k);
+                const Color fast = integrator.trace(rays[k], hits[k], found[k], *sampler, shortCounts, &ahead);
+                sampler->startPixelSample(x, y, k);
+                const Color slow =
+                    general.trace(rays[k], wrappedHits[k], wrappedFound[k], *sampler, generalCounts, &wrappedAhead);
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_EQ(std::bit_cast<uint64_t>(fast[c]), std::bit_cast<uint64_t>(slow[c]))
+                        << (lit ? "lit" : "unlit") << " sample " << samples << " channel " << c;
+            }
+        }
+        EXPECT_GT(inside, 0);
+        EXPECT_EQ(shortCounts.camera, generalCounts.camera);
+        EXPECT_EQ(shortCounts.shadow, generalCounts.shadow);
+        EXPECT_EQ(shortCounts.secondary, generalCounts.secondary);
+        EXPECT_GT(generalCounts.secondary, 0u); // the reflective and filtering spheres spawn rays
+        if (lit) {
+            EXPECT_GT(generalCounts.shadow, uint64_t(samples));
+        }
+    }
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 // The renderer end to end on scenes built in C++: hand-computed pixels, POV-Ray
 // trace-depth semantics, determinism across threads and tiles, and robustness.
+#include "lang/load.h"
 #include "render/render.h"
 
 #include "render/directions.h"
@@ -16,6 +17,8 @@
 #include <bit>
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <random>
 #include <vector>
 
 namespace drt {
@@ -427,6 +430,136 @@ TEST(Lighting, ALightWhoseConeMissesThePointDrawsNoSamples) {
     EXPECT_FALSE(both.wasAsked(lightDimension(0, 1))) << "the light that cannot reach the point drew a sample";
     EXPECT_EQ(bothCounts.shadow, aloneCounts.shadow);
     EXPECT_EQ(bothCounts.shadow, 1u);
+}
+
+// DirectLighting::shade takes a short way for a plain point light (still,
+// neither a spotlight nor an area or parallel light, not fading, not black).
+// Every shaded point must be the bits, and count the rays, the general way
+// gives (DirectLighting's shortWays off): random points, finishes and
+// pigments, two layers at a point (the second takes the first's shadows), at
+// depths 0 to 2, under plain lights of every colour, inverse_square and
+// shadowless among lights that are not plain, with the shadows traced ahead
+// (opaque casters) and traced through a filtering caster.
+TEST(Lighting, PlainPointLightsShadeAsTheGeneralWayDoes) {
+    const std::string lights = R"(
+camera { location <0, 2, -6> look_at <0, 0.5, 0> angle 60 }
+light_source { <-4, 6, -4>, color rgb <0.8, 0.7, 0.6> }
+light_source { <3, 5, -3>, color rgb 0.5 spotlight point_at <0, 0, 0> radius 20 falloff 30 }
+light_source { <1, 3, -2>, color rgb <2, 1.5, 1> inverse_square }
+light_source { <0, 8, 2>, color rgb 0.4 area_light <1, 0, 0>, <0, 0, 1>, 2, 2 }
+light_source { <2, 3, -5>, color rgb 0.3 shadowless }
+light_source { <5, 4, 0>, color rgb 0.6 fade_distance 3 fade_power 2 }
+light_source { <-5, 2, 1>, color rgb 0 }
+light_source { <0, 9, -9>, color rgb 0.5 parallel point_at <0, 0, 0> }
+light_source { <-2, 1.5, -1>, color rgb <-0.1, 0.4, 0.2> }
+plane { y, 0 pigment { color rgb 0.7 } }
+sphere { <0, 0.8, 0>, 0.8 pigment { color rgb <0.8, 0.3, 0.2> } }
+sphere { <-1.6, 0.5, 0.5>, 0.5 pigment { color rgb 0.6 } }
+box { <1, 0, -1>, <2, 1.5, 0> pigment { color rgb 0.9 } }
+)";
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (const bool filtering : {false, true}) {
+        Diagnostics diagnostics;
+        const std::optional<Scene> scene = loadSceneText(
+            lights + (filtering ? "sphere { <0.5, 2.2, -1.5>, 0.4 pigment { color rgbf <1, 0.8, 0.8, 0.7> } }\n" : ""),
+            "plain-lights.drt", diagnostics);
+        ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
+        const Accelerator accel(*scene);
+        const DirectLighting fast(*scene, accel), general(*scene, accel, false);
+        const std::unique_ptr<Sampler> fastSampler = makeSampler("sobol", 8, 3), generalSampler = fastSampler->clone();
+        PointLightSamples fastSamples, generalSamples;
+        RayCounts fastCounts, generalCounts;
+        int shaded = 0, lit = 0;
+        for (int packet = 0; packet < 150; ++packet) {
+            Ray rays[Accelerator::kPacketSize];
+            const Vec3 aim{-4 + 8 * u(rng), -0.5 + 3 * u(rng), 0};
+            for (Ray& r : rays) {
+                r.origin = {0, 2, -6};
+                r.direction = aim + Vec3{0.3 * u(rng), 0.3 * u(rng), 0} - r.origin;
+                r.time = 0;
+            }
+            Hit hits[Accelerator::kPacketSize];
+            bool found[Accelerator::kPacketSize];
+            accel.intersectPacket(rays, Accelerator::kPacketSize, hits, found);
+            CameraShadows fastAhead, generalAhead;
+            fast.traceCameraShadows(rays, hits, found, Accelerator::kPacketSize, fastAhead);
+            general.traceCameraShadows(rays, hits, found, Accelerator::kPacketSize, generalAhead);
+            for (int k = 0; k < Accelerator::kPacketSize; ++k) {
+                if (!found[k]) continue;
+                ShadingPoint fastPoint;
+                fastPoint.hit = &hits[k];
+                fastPoint.incoming = normalize(rays[k].direction);
+                fastPoint.normal = dot(fastPoint.incoming, hits[k].shadingNormal) < 0 ? hits[k].shadingNormal
+                                                                                       : -hits[k].shadingNormal;
+                fastPoint.depth = k % 3;
+                fastPoint.cameraShadows = fastPoint.depth == 0 ? &fastAhead : nullptr;
+                ShadingPoint generalPoint = fastPoint;
+                generalPoint.cameraShadows = fastPoint.depth == 0 ? &generalAhead : nullptr;
+                fastSamples.clear();
+                generalSamples.clear();
+                fastSampler->startPixelSample(packet % 16, packet / 16, k);
+                generalSampler->startPixelSample(packet % 16, packet / 16, k);
+                for (int layer = 0; layer < 2; ++layer, ++shaded) {
+                    Finish finish;
+                    finish.diffuse = u(rng);
+                    if (u(rng) < 0.4) finish.brilliance = 0.5 + 3 * u(rng);
+                    if (u(rng) < 0.4) finish.phong = u(rng), finish.phongSize = 1 + 80 * u(rng);
+                    if (u(rng) < 0.4) finish.specular = u(rng), finish.roughness = 0.001 + 0.1 * u(rng);
+                    if (u(rng) < 0.3) finish.metallic = u(rng);
+                    if (u(rng) < 0.3) finish.crand = 0.3 * u(rng);
+                    fastPoint.pigment = generalPoint.pigment = {Color(1.4 * u(rng) - 0.1, u(rng), u(rng)), 0.2 * u(rng), 0};
+                    fastPoint.finish = generalPoint.finish = &finish;
+                    const Color a = fast.shade(fastPoint, fastSamples, *fastSampler, fastCounts);
+                    const Color b = general.shade(generalPoint, generalSamples, *generalSampler, generalCounts);
+                    if (!isBlack(a)) ++lit;
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_EQ(std::bit_cast<uint64_t>(a[c]), std::bit_cast<uint64_t>(b[c]))
+                            << (filtering ? "filtering" : "opaque") << " point " << shaded << " channel " << c;
+                }
+            }
+        }
+        EXPECT_GT(lit, shaded / 2);
+        EXPECT_EQ(fastCounts.shadow, generalCounts.shadow);
+        EXPECT_GT(generalCounts.shadow, uint64_t(shaded));
+    }
+}
+
+// ambientTerm and lightTerm (inline in shading.h, called at every shaded
+// point) against their formulas in shading.h, for random finishes without
+// highlights: the ambient and emission times the pigment and its opacity, and
+// (diffuse (N.L)^brilliance - U crand) alpha P I_L, black when N.L <= 0.
+TEST(Shading, AmbientAndDiffuseTermsFollowTheirFormulas) {
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> u(0, 1);
+    int lit = 0;
+    for (int i = 0; i < 500; ++i) {
+        Finish finish;
+        finish.ambient = Color(u(rng), u(rng), u(rng));
+        finish.emission = Color(0.3 * u(rng), 0.2 * u(rng), 0.1 * u(rng));
+        finish.diffuse = u(rng);
+        finish.brilliance = i % 2 ? 1.0 : 0.5 + 3 * u(rng);
+        finish.crand = i % 3 ? 0.3 * u(rng) : 0.0;
+        const ColorFT pigment{Color(u(rng), u(rng), u(rng)), 0.3 * u(rng), 0.2 * u(rng)};
+        const Color ambientLight(u(rng), u(rng), u(rng)), intensity(2 * u(rng), u(rng), u(rng));
+        const Vec3 normal = normalize(Vec3(u(rng) - 0.5, u(rng), u(rng) - 0.5));
+        const Vec3 toLight = normalize(Vec3(u(rng) - 0.5, u(rng) - 0.3, u(rng) - 0.5));
+        const Vec3 incoming = normalize(Vec3(u(rng) - 0.5, -u(rng), u(rng) - 0.5));
+        const double crandU = u(rng);
+        const double alpha = 1 - pigment.filter - pigment.transmit;
+        const Color ambient = ambientTerm(finish, pigment, ambientLight);
+        const Color light = lightTerm(finish, pigment, normal, incoming, toLight, intensity, crandU);
+        const double cosNL = dot(normal, toLight);
+        if (cosNL > 0) ++lit;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_DOUBLE_EQ(ambient[c],
+                             pigment.rgb[c] * (finish.ambient[c] * ambientLight[c] + finish.emission[c]) * alpha);
+            const double diffuse =
+                cosNL > 0 ? (finish.diffuse * std::pow(cosNL, finish.brilliance) - crandU * finish.crand) * alpha : 0.0;
+            EXPECT_DOUBLE_EQ(light[c], diffuse * pigment.rgb[c] * intensity[c]) << "case " << i << " channel " << c;
+        }
+    }
+    EXPECT_GT(lit, 100);
 }
 
 // shadeLayers takes a reflection whose min and max are equal, without a

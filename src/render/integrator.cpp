@@ -117,6 +117,17 @@ int radiosityDimension(int depth) {
     return kFirstMediaDimension + 2 * kMaxLightDepth + 2 * std::clamp(depth, 0, kMaxLightDepth - 1);
 }
 
+// A layer whose whole shading is its ambient and light terms: a solid
+// pigment that lets nothing through (filter and transmit 0), no bump pattern
+// and no reflection (a constant black one, not metallic).
+bool matteLayer(const Texture& layer) {
+    const ColorFT& colour = layer.pigment.color;
+    const Finish& finish = layer.finish;
+    return layer.pigment.pattern == PatternKind::Solid && !layer.normal && colour.filter == 0 &&
+           colour.transmit == 0 && finish.reflectionMin == finish.reflectionMax && isBlack(finish.reflectionMin) &&
+           !(finish.reflectionMetallic > 0);
+}
+
 Ray spawn(const Hit& hit, const Vec3& direction, double time) {
     Ray ray;
     ray.origin = Accelerator::offsetOrigin(hit, direction);
@@ -157,14 +168,20 @@ void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const
     Vec3 normal = surface.entering ? hit.shadingNormal : -hit.shadingNormal;
     if (dot(normal, surface.incoming) >= 0) normal = surface.entering ? hit.geometricNormal : -hit.geometricNormal;
     surface.normal = normal;
-    const double ior = object.interior.ior > 0 && std::isfinite(object.interior.ior) ? object.interior.ior : 1.0;
-    surface.eta = surface.entering ? 1.0 / ior : ior; // n_incident / n_transmitted
 
     Color weight = seenWeight;
     if (!surface.entering) // the ray crossed the object's interior
         weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
     const auto& corners = hit.cornerTextures;
-    if (corners[0] == nullptr && corners[1] == nullptr && corners[2] == nullptr && object.texture->plain()) {
+    const bool plain =
+        corners[0] == nullptr && corners[1] == nullptr && corners[2] == nullptr && object.texture->plain();
+    if (plain && !scene_.global.radiosity && matteLayer(*object.texture)) { // (shadeMatte reads no eta)
+        shadeMatte(surface, *object.texture, weight, sampler, counts, result);
+        return;
+    }
+    const double ior = object.interior.ior > 0 && std::isfinite(object.interior.ior) ? object.interior.ior : 1.0;
+    surface.eta = surface.entering ? 1.0 / ior : ior; // n_incident / n_transmitted
+    if (plain) {
         // The object's own texture, one plain layer: what forEachSurfaceTexture
         // and shadeTexture come to (with a share of 1: weight * 1 == weight).
         const Texture* single = &*object.texture;
@@ -174,6 +191,29 @@ void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const
     forEachSurfaceTexture(hit, [&](const Texture& texture, double share) {
         shadeTexture(surface, texture, weight * share, sampler, counts, result, stack);
     });
+}
+
+// shadeLayers for one matte layer (matteLayer) in a scene without
+// radiosity: the same shading point, its ambient and light terms added with
+// the same weight (weight * filter with the filter still 1 is weight, x * 1
+// being x), and nothing else: every ray shadeLayers might spawn has a weight
+// that is a product with zero (the reflection, the filter rgb * 0 + 0), which
+// worthTracing refuses whatever the other factor (a NaN or a +-0 component
+// is never > 0).
+void Integrator::shadeMatte(const SurfaceHit& surface, const Texture& layer, const Color& weight, Sampler& sampler,
+                            RayCounts& counts, Color& result) const {
+    ShadingPoint sp;
+    sp.hit = &surface.hit;
+    sp.cameraShadows = surface.cameraShadows;
+    sp.normal = surface.normal;
+    sp.incoming = surface.incoming;
+    sp.pigment = layer.pigment.color; // evaluatePigment of a solid pigment
+    sp.finish = &layer.finish;
+    sp.time = surface.pending.ray.time;
+    sp.depth = surface.pending.depth;
+    // DirectLighting::shade of no lights is Color(0).
+    const Color lit = scene_.lights.empty() ? Color(0) : lighting_.shade(sp, *surface.lights, sampler, counts);
+    result += weight * (ambientTerm(layer.finish, sp.pigment, scene_.global.ambientLight) + lit);
 }
 
 void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,

@@ -84,6 +84,8 @@ private:
     void shade(const PendingRay& pending, const Color& seenWeight, const Hit& hit, Sampler& sampler,
                RayCounts& counts, Color& result, std::vector<PendingRay>& stack,
                const CameraShadows* cameraShadows) const;
+    void shadeMatte(const SurfaceHit& surface, const Texture& layer, const Color& weight, Sampler& sampler,
+                    RayCounts& counts, Color& result) const;
     void shadeTexture(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,
                       RayCounts& counts, Color& result, std::vector<PendingRay>& stack) const;
     void shadePatterned(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,

@@ -186,6 +186,28 @@ double crandNoise(const ShadingPoint& sp, int lightIndex, Sampler& sampler) {
     return sampler.get1D(crandDimension(sp.depth, lightIndex));
 }
 
+// Diffuse and highlights at sp from a point light at `position` whose colour
+// there is intensityAt() times `scale` (and 1/r^2 when `inverseSquare`), times
+// visible() when `shadowed`, added to `sum`; noise() is crand's U.
+template <class IntensityAt, class Visible, class Noise>
+[[gnu::always_inline]] inline void addPointLight(const ShadingPoint& sp, const Vec3& position, double scale,
+                                                 bool inverseSquare, IntensityAt&& intensityAt, bool shadowed,
+                                                 Visible&& visible, Noise&& noise, Color& sum) {
+    const Vec3 toLight = position - sp.hit->point;
+    const double distance = length(toLight);
+    if (!(distance > 0)) return;
+    const Vec3 l = toLight / distance;
+    if (!(dot(sp.normal, l) > 0)) return;
+    if (inverseSquare) scale /= distance * distance;
+    Color intensity = intensityAt() * scale;
+    if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
+    if (shadowed) {
+        intensity *= visible();
+        if (isBlack(intensity)) return;
+    }
+    sum += lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity, noise());
+}
+
 struct AreaFrame {
     Vec3 axis1, axis2;
 };
@@ -342,12 +364,17 @@ private:
 
 } // namespace
 
-DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel)
+DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel, bool shortWays)
     : scene_(scene), accel_(accel), opaqueCasters_(shadowsAreOpaque(scene)),
       hasMedia_(sceneHasMedia(scene) || !scene.fogs.empty()),
       anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)), projected_(scene) {
     cones_.reserve(scene.lights.size());
-    for (const Light& light : scene.lights) cones_.push_back(spotCones(light));
+    for (const Light& light : scene.lights) {
+        cones_.push_back(spotCones(light));
+        const bool fades = light.fadeDistance > 0 && light.fadePower > 0;
+        plainPoint_.push_back(shortWays && !light.area && !light.spotlight && !light.parallel && !lightMoves(light) &&
+                              !fades && !isBlack(light.color));
+    }
     // One occlusion query answers these lights' shadow rays (shadowTransmittance
     // with opaque casters and no media): they can be traced ahead in packets.
     if (opaqueCasters_)
@@ -418,15 +445,57 @@ uint8_t cameraShadow(const ShadingPoint& sp, size_t i) {
 
 } // namespace
 
+const Color& DirectLighting::visibility(const ShadingPoint& sp, size_t i, const Light& light,
+                                       PointLightSamples::Sample& s, RayCounts& counts) const {
+    if (!s.tested) {
+        const uint8_t answer = cameraShadow(sp, i);
+        if (answer != 0) { // traced ahead: the same ray, the same answer
+            ++counts.shadow;
+            s.visibility = Color(answer == 1 ? 1.0 : 0.0);
+        } else {
+            // Shadow rays through media: only for lights that interact with media (POV-Ray).
+            const Scene* media = hasMedia_ && light.mediaAttenuation && light.mediaInteraction ? &scene_ : nullptr;
+            s.visibility = lightTransmittance(accel_, projected_.of(i), light.shadowless, *sp.hit, s.position, sp.time,
+                                              counts, media, opaqueCasters_);
+        }
+        s.tested = true;
+    }
+    return s.visibility;
+}
+
 Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sampler& sampler,
                             RayCounts& counts) const {
     if (cache.lights_.size() != scene_.lights.size()) cache.lights_.assign(scene_.lights.size(), {});
     Color sum(0);
+    // Light i's samples as drawn for this point: none yet if it is a new one.
+    const auto rangeOf = [&cache](size_t i) -> PointLightSamples::Range& {
+        PointLightSamples::Range& range = cache.lights_[i];
+        if (range.generation != cache.generation_) { // the first layer at this point: no samples drawn yet
+            range.generation = cache.generation_;
+            range.count = 0;
+            range.single.tested = false;
+        }
+        return range;
+    };
     for (size_t i = 0; i < scene_.lights.size(); ++i) {
         // A moving light as it is at this point's time (render/light_path.h);
         // a still one as written, with no copy.
         const Light* light = &scene_.lights[i];
         if (sp.hit->object && !lightReaches(scene_, *light, *sp.hit->object)) continue; // light_group
+        const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
+        if (plainPoint_[i]) {
+            // What the general way below comes to for a plain point light: no
+            // copy, no cones, lightIntensityAt's colour times 1 * 1 (neither a
+            // spotlight nor fading), its one sample at its position.
+            PointLightSamples::Range& range = rangeOf(i);
+            range.single.position = light->position;
+            range.single.weight = 1.0;
+            addPointLight(
+                sp, light->position, 1.0, light->inverseSquare, [&]() -> const Color& { return light->color; }, true,
+                [&]() -> const Color& { return visibility(sp, i, *light, range.single, counts); },
+                [&] { return crandNoise(sp, index, sampler); }, sum);
+            continue;
+        }
         const bool moved = anyLightMoves_ && lightMoves(*light);
         if (moved) light = &(cache.moved_ = lightAt(*light, sp.time));
         if (light->parallel) { // it stands where this point's parallel ray from it starts (scene.h)
@@ -438,13 +507,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         const SpotCones& cones = !light->spotlight ? kNoCones
                                  : moved          ? (cache.movedCones_ = spotCones(*light))
                                                   : cones_[i];
-        const int index = static_cast<int>(std::min<size_t>(i, 1u << 20));
-        PointLightSamples::Range& range = cache.lights_[i];
-        if (range.generation != cache.generation_) { // the first layer at this point: no samples drawn yet
-            range.generation = cache.generation_;
-            range.count = 0;
-            range.single.tested = false;
-        }
+        PointLightSamples::Range& range = rangeOf(i);
         // The light's samples at this point, drawn the first time a layer needs
         // them: a light whose centre sends nothing here (a spotlight's cone, a
         // point facing away) draws none. Every value is a function of its
@@ -459,40 +522,18 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             }
             range.count = static_cast<int>(cache.samples_.size()) - range.begin;
         };
-        // Shadow rays through media: only for lights that interact with media (POV-Ray).
-        const Scene* media = hasMedia_ && light->mediaAttenuation && light->mediaInteraction ? &scene_ : nullptr;
-        const auto visibility = [&](PointLightSamples::Sample& s) -> const Color& {
-            if (!s.tested) {
-                const uint8_t answer = cameraShadow(sp, i);
-                if (answer != 0) { // traced ahead: the same ray, the same answer
-                    ++counts.shadow;
-                    s.visibility = Color(answer == 1 ? 1.0 : 0.0);
-                } else {
-                    s.visibility = lightTransmittance(accel_, projected_.of(i), light->shadowless, *sp.hit,
-                                                      s.position, sp.time, counts, media, opaqueCasters_);
-                }
-                s.tested = true;
-            }
-            return s.visibility;
+        const auto visible = [&](PointLightSamples::Sample& s) -> const Color& {
+            return visibility(sp, i, *light, s, counts);
         };
         // Diffuse and highlights from a point light at `position` whose colour
-        // is scaled by `scale` (and by 1/r^2 when `inverseSquare`), times `visible`.
+        // is scaled by `scale` (and by 1/r^2 when `inverseSquare`), times its visibility.
         const auto pointLight = [&](const Vec3& position, bool atCentre, double scale, bool inverseSquare,
                                     PointLightSamples::Sample* shadow) {
-            const Vec3 toLight = position - sp.hit->point;
-            const double distance = length(toLight);
-            if (!(distance > 0)) return;
-            const Vec3 l = toLight / distance;
-            if (!(dot(sp.normal, l) > 0)) return;
-            if (inverseSquare) scale /= distance * distance;
-            Color intensity = lightIntensityAt(*light, cones, position, sp.hit->point, atCentre) * scale;
-            if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
-            if (shadow) {
-                intensity *= visibility(*shadow);
-                if (isBlack(intensity)) return;
-            }
-            sum += lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity,
-                             crandNoise(sp, index, sampler));
+            addPointLight(
+                sp, position, scale, inverseSquare,
+                [&] { return lightIntensityAt(*light, cones, position, sp.hit->point, atCentre); }, shadow != nullptr,
+                [&]() -> const Color& { return visible(*shadow); }, [&] { return crandNoise(sp, index, sampler); },
+                sum);
         };
         if (!light->area) {
             // Its one sample, the light's position, lives in the range: nothing to draw.
@@ -518,9 +559,9 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             if (!light->shadowless) {
                 drawSamples();
                 PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
-                Color visible(0);
-                for (int k = 0; k < range.count; ++k) visible += visibility(samples[k]);
-                intensity *= visible / range.count;
+                Color seen(0);
+                for (int k = 0; k < range.count; ++k) seen += visible(samples[k]);
+                intensity *= seen / range.count;
                 if (isBlack(intensity)) continue;
             }
             sum += lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity,

@@ -195,7 +195,9 @@ private:
 // (whether shadows can be filtered) and the direct lighting at a shading point.
 class DirectLighting {
 public:
-    DirectLighting(const Scene& scene, const Accelerator& accel);
+    // shortWays: shade plain point lights (plainPoint_) the short way, the
+    // same bits as the general one (false: every light the general way, for tests).
+    DirectLighting(const Scene& scene, const Accelerator& accel, bool shortWays = true);
 
     // Sum over the scene's lights of the diffuse and highlight terms at
     // `point`. `samples` holds the point's light samples: cleared for each new
@@ -214,6 +216,11 @@ public:
     const ProjectedThrough& projectedThrough() const { return projected_; }
 
 private:
+    // The visibility of light i (as it is at sp: `light`) from sp at sample s,
+    // found once per sample: traced ahead, or traced now.
+    const Color& visibility(const ShadingPoint& sp, size_t i, const Light& light, PointLightSamples::Sample& s,
+                            RayCounts& counts) const;
+
     const Scene& scene_;
     const Accelerator& accel_;
     bool opaqueCasters_;
@@ -222,6 +229,9 @@ private:
     ProjectedThrough projected_;
     std::vector<SpotCones> cones_; // by light, as written (a moving light's are taken at each point)
     std::vector<int> packetLights_; // the lights whose camera shadow rays go in packets (CameraShadows)
+    // By light: a still point light, neither a spotlight nor an area or
+    // parallel light, not fading and not black, which shade takes a short way.
+    std::vector<uint8_t> plainPoint_;
 };
 
 // The shadow ray shadowTransmittance traces first from `from` to `target`.

@@ -25,38 +25,6 @@ Color metallicTint(double metallic, const ColorFT& pigment, double cosAngle) {
     return Color(1) + k * (pigment.rgb - Color(1));
 }
 
-Color ambientTerm(const Finish& finish, const ColorFT& pigment, const Color& ambientLight) {
-    return pigment.rgb * (finish.ambient * ambientLight + finish.emission) * pigment.opacity();
-}
-
-Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
-                const Vec3& toLight, const Color& lightIntensity, double crandU) {
-    const double cosNL = dot(normal, toLight);
-    if (!(cosNL > 0)) return Color(0);
-    Color result(0);
-    if (finish.diffuse != 0) {
-        // pow(x, 1) is x exactly: brilliance 1, the default, needs no pow.
-        const double shaped = finish.brilliance == 1 ? cosNL : std::pow(cosNL, finish.brilliance);
-        const double d = (finish.diffuse * shaped - crandU * finish.crand) * pigment.opacity();
-        result += d * pigment.rgb * lightIntensity;
-    }
-    double highlight = 0;
-    if (finish.phong > 0) {
-        const double cosRL = dot(reflect(incoming, normal), toLight);
-        if (cosRL > 0) highlight += finish.phong * std::pow(cosRL, finish.phongSize);
-    }
-    if (finish.specular > 0 && finish.roughness > 0) {
-        const Vec3 h = toLight - incoming;
-        const double len = length(h);
-        if (len > 0) {
-            const double cosNH = dot(normal, h / len);
-            if (cosNH > 0) highlight += finish.specular * std::pow(cosNH, 1.0 / finish.roughness);
-        }
-    }
-    if (highlight > 0) result += highlight * metallicTint(finish.metallic, pigment, cosNL) * lightIntensity;
-    return result;
-}
-
 Color reflectivity(const Finish& finish, double cosIncident, double eta) {
     // (reflection metallic, which needs the pigment, is applied by the integrator)
     const Color& lo = finish.reflectionMin;
