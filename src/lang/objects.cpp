@@ -349,17 +349,17 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
         }
         const SourceLoc valueLoc = peek().loc;
         if (m == "texture") {
-            if (textures++ > 0 && po.children.empty()) {
+            if (textures++ == 0) {
+                setTexture(po, uvMap(texture(topTexture())));
+            } else if (po.children.empty()) {
                 // On the object's own texture (copied only if shared): a layer costs
                 // no copy of the layers below it.
                 Texture top = uvMap(texture(defaultTexture_));
                 layerOnTop(o.texture.edit(), std::move(top), t.loc);
-            } else if (textures > 1) {
+            } else { // a CSG's members each get the layer
                 Texture layered = o.texture;
                 layerOnTop(layered, uvMap(texture(defaultTexture_)), t.loc);
                 setTexture(po, layered);
-            } else {
-                setTexture(po, uvMap(texture(topTexture())));
             }
         } else if (m == "pigment" || m == "finish" || m == "normal") {
             // Of the top layer (measured against POV-Ray); an untextured object starts from the default.

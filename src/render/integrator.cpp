@@ -128,6 +128,22 @@ bool matteLayer(const Texture& layer) {
            !(finish.reflectionMetallic > 0);
 }
 
+// The shading point of a layer at a surface hit, with the layer's normal
+// (bumped or not), its pigment's colour there and its finish.
+ShadingPoint shadingPointOf(const Hit& hit, double time, int depth, const CameraShadows* cameraShadows,
+                            const Vec3& normal, const Vec3& incoming, const ColorFT& pigment, const Finish& finish) {
+    ShadingPoint sp;
+    sp.hit = &hit;
+    sp.cameraShadows = cameraShadows;
+    sp.normal = normal;
+    sp.incoming = incoming;
+    sp.pigment = pigment;
+    sp.finish = &finish;
+    sp.time = time;
+    sp.depth = depth;
+    return sp;
+}
+
 Ray spawn(const Hit& hit, const Vec3& direction, double time) {
     Ray ray;
     ray.origin = Accelerator::offsetOrigin(hit, direction);
@@ -202,15 +218,9 @@ void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const
 // is never > 0).
 void Integrator::shadeMatte(const SurfaceHit& surface, const Texture& layer, const Color& weight, Sampler& sampler,
                             RayCounts& counts, Color& result) const {
-    ShadingPoint sp;
-    sp.hit = &surface.hit;
-    sp.cameraShadows = surface.cameraShadows;
-    sp.normal = surface.normal;
-    sp.incoming = surface.incoming;
-    sp.pigment = layer.pigment.color; // evaluatePigment of a solid pigment
-    sp.finish = &layer.finish;
-    sp.time = surface.pending.ray.time;
-    sp.depth = surface.pending.depth;
+    // layer.pigment.color: evaluatePigment of a solid pigment.
+    const ShadingPoint sp = shadingPointOf(surface.hit, surface.pending.ray.time, surface.pending.depth, surface.cameraShadows, surface.normal,
+                                           surface.incoming, layer.pigment.color, layer.finish);
     // DirectLighting::shade of no lights is Color(0).
     const Color lit = scene_.lights.empty() ? Color(0) : lighting_.shade(sp, *surface.lights, sampler, counts);
     result += weight * (ambientTerm(layer.finish, sp.pigment, scene_.global.ambientLight) + lit);
@@ -269,16 +279,10 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         }
         if (i == 0) topNormal = normal;
 
-        ShadingPoint sp;
-        sp.hit = &hit;
-        sp.cameraShadows = surface.cameraShadows;
-        sp.normal = normal;
-        sp.incoming = incoming;
         // Textures move with their object (restPoint); uv_mapping reads the surface's uv.
-        sp.pigment = evaluatePigment(layer.pigment, hit.restPoint, hit.hasUv ? &hit.uv : nullptr);
-        sp.finish = &finish;
-        sp.time = pending.ray.time;
-        sp.depth = pending.depth;
+        const ShadingPoint sp =
+            shadingPointOf(hit, pending.ray.time, pending.depth, surface.cameraShadows, normal, incoming,
+                           evaluatePigment(layer.pigment, hit.restPoint, hit.hasUv ? &hit.uv : nullptr), finish);
 
         const Color local = ambientTerm(finish, sp.pigment, scene_.global.ambientLight) +
                             lighting_.shade(sp, *surface.lights, sampler, counts);
