@@ -46,58 +46,66 @@ Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraF
                         RayCounts& counts, const CameraShadows* cameraShadows) const {
     std::vector<PendingRay>& stack = scratch().stack;
     stack.clear();
-    // The camera ray is traced first without going through the stack.
-    PendingRay pending{cameraRay, Color(1), 0};
     Color result(0);
     int shaded = 0;
-    for (bool first = true;; first = false) {
-        if (!first) {
-            if (stack.empty()) break;
-            pending = stack.back();
-            stack.pop_back();
-        }
-        if (pending.depth == 0)
+    // What a ray sees, given its hit (if found): false once the sample has
+    // shaded all it may. Inlined in both places it is called (the camera ray,
+    // the stack's rays): a call would pass all it captures through memory.
+    const auto see = [&](const Ray& ray, const RayPlace& place, const Color& weight, bool found, const Hit& hit,
+                         const CameraShadows* shadows) __attribute__((always_inline)) {
+        if (place.depth == 0)
             ++counts.camera;
         else
             ++counts.secondary;
-        // The camera ray's hit was found by the caller. `traced` is one record
-        // per thread, not one per loop pass: a Hit is about 230 bytes of
-        // initialised members, and Accelerator::intersect writes every field
-        // a found hit is read by.
-        static_assert(std::is_trivially_destructible_v<Hit>, "no destructor to register (accel/thread_scratch.h)");
-        thread_local Hit traced;
-        const bool found = first ? cameraFound : accel_.intersect(pending.ray, traced);
-        const Hit& hit = first ? cameraHit : traced;
-        Color seen = pending.weight; // what reaches the eye of what the ray sees
+        Color seen = weight; // what reaches the eye of what the ray sees
         if (!scene_.fogs.empty()) { // the fog in front of what the ray sees
-            const double speed = length(pending.ray.direction);
-            const FogEffect fog = fogEffect(scene_.fogs, pending.ray.origin, pending.ray.direction / speed,
+            const double speed = length(ray.direction);
+            const FogEffect fog = fogEffect(scene_.fogs, ray.origin, ray.direction / speed,
                                             found ? hit.t * speed : kFogMissDistance);
-            result += pending.weight * fog.add;
-            seen = pending.weight * fog.scale;
+            result += weight * fog.add;
+            seen = weight * fog.scale;
         }
         if (hasMedia_) { // the media in front of what the ray sees
             MediaList& media = scratch().media;
             media.clear();
-            segmentMedia(scene_, pending.medium, found ? &hit : nullptr, pending.ray.direction, media);
-            const double speed = length(pending.ray.direction);
-            const Vec3 unit = pending.ray.direction / speed;
+            segmentMedia(scene_, place.medium, found ? &hit : nullptr, ray.direction, media);
+            const double speed = length(ray.direction);
+            const Vec3 unit = ray.direction / speed;
             const double distance =
-                found ? hit.t * speed : mediaMissDistance(mediaLower_, mediaUpper_, pending.ray.origin, unit);
-            const MediaEffect effect = integrateMedia(media, pending.ray.origin, unit, distance,
-                                                      {&scene_, &accel_, pending.ray.time, &lighting_.projectedThrough()},
-                                                      sampler, mediaDimension(pending.depth), counts);
+                found ? hit.t * speed : mediaMissDistance(mediaLower_, mediaUpper_, ray.origin, unit);
+            const MediaEffect effect = integrateMedia(media, ray.origin, unit, distance,
+                                                      {&scene_, &accel_, ray.time, &lighting_.projectedThrough()},
+                                                      sampler, mediaDimension(place.depth), counts);
             result += seen * effect.add;
             seen *= effect.scale;
         }
         if (!found) {
-            const Color sky = scene_.sky.empty() ? scene_.background
-                                                 : skyColor(scene_, normalize(pending.ray.direction));
+            const Color sky =
+                scene_.sky.empty() ? scene_.background : skyColor(scene_, normalize(ray.direction));
             result += seen * sky;
-            continue;
+            return true;
         }
-        if (++shaded > kMaxRaysPerSample) break;
-        shade(pending, seen, hit, sampler, counts, result, stack, first ? cameraShadows : nullptr);
+        if (++shaded > kMaxRaysPerSample) return false;
+        shade(ray, place, seen, hit, sampler, counts, result, stack, shadows);
+        return true;
+    };
+    // The camera ray, whose hit the caller found, is read where the caller
+    // has it. A copy into a PendingRay would be read back at once by loads
+    // that straddle the copy's stores, which the store buffer cannot forward:
+    // each such load waits for the stores to reach the cache.
+    if (see(cameraRay, RayPlace{}, Color(1), cameraFound, cameraHit, cameraShadows)) {
+        while (!stack.empty()) {
+            const PendingRay pending = stack.back();
+            stack.pop_back();
+            // `traced` is one record per thread, not one per ray: a Hit is
+            // about 230 bytes of initialised members, and
+            // Accelerator::intersect writes every field a found hit is read by.
+            static_assert(std::is_trivially_destructible_v<Hit>,
+                          "no destructor to register (accel/thread_scratch.h)");
+            thread_local Hit traced;
+            const bool found = accel_.intersect(pending.ray, traced);
+            if (!see(pending.ray, pending.place, pending.weight, found, traced, nullptr)) break;
+        }
     }
     stack.clear();
     return result;
@@ -172,14 +180,14 @@ Vec3 Integrator::bumpNormal(const Normal& bumps, const Hit& hit, double time, co
     return normalize(toWorld.normal(perturb(hit.restPoint, restNormal)));
 }
 
-void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const Hit& hit, Sampler& sampler,
-                       RayCounts& counts, Color& result, std::vector<PendingRay>& stack,
+void Integrator::shade(const Ray& ray, const RayPlace& place, const Color& seenWeight, const Hit& hit,
+                       Sampler& sampler, RayCounts& counts, Color& result, std::vector<PendingRay>& stack,
                        const CameraShadows* cameraShadows) const {
     const Object& object = *hit.object;
     PointLightSamples& lights = scratch().lights;
     lights.clear();
-    SurfaceHit surface{pending, hit, Vec3(), true, Vec3(), 1.0, &lights, cameraShadows};
-    surface.incoming = normalize(pending.ray.direction);
+    SurfaceHit surface{ray, place, hit, Vec3(), true, Vec3(), 1.0, &lights, cameraShadows};
+    surface.incoming = normalize(ray.direction);
     surface.entering = dot(surface.incoming, hit.geometricNormal) < 0;
     Vec3 normal = surface.entering ? hit.shadingNormal : -hit.shadingNormal;
     if (dot(normal, surface.incoming) >= 0) normal = surface.entering ? hit.geometricNormal : -hit.geometricNormal;
@@ -187,7 +195,7 @@ void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const
 
     Color weight = seenWeight;
     if (!surface.entering) // the ray crossed the object's interior
-        weight *= interiorAttenuation(object.interior, hit.t * length(pending.ray.direction));
+        weight *= interiorAttenuation(object.interior, hit.t * length(ray.direction));
     const auto& corners = hit.cornerTextures;
     const bool plain =
         corners[0] == nullptr && corners[1] == nullptr && corners[2] == nullptr && object.texture->plain();
@@ -219,8 +227,8 @@ void Integrator::shade(const PendingRay& pending, const Color& seenWeight, const
 void Integrator::shadeMatte(const SurfaceHit& surface, const Texture& layer, const Color& weight, Sampler& sampler,
                             RayCounts& counts, Color& result) const {
     // layer.pigment.color: evaluatePigment of a solid pigment.
-    const ShadingPoint sp = shadingPointOf(surface.hit, surface.pending.ray.time, surface.pending.depth, surface.cameraShadows, surface.normal,
-                                           surface.incoming, layer.pigment.color, layer.finish);
+    const ShadingPoint sp = shadingPointOf(surface.hit, surface.ray.time, surface.place.depth, surface.cameraShadows,
+                                           surface.normal, surface.incoming, layer.pigment.color, layer.finish);
     // DirectLighting::shade of no lights is Color(0).
     const Color lit = scene_.lights.empty() ? Color(0) : lighting_.shade(sp, *surface.lights, sampler, counts);
     result += weight * (ambientTerm(layer.finish, sp.pigment, scene_.global.ambientLight) + lit);
@@ -256,10 +264,11 @@ void Integrator::shadePatterned(const SurfaceHit& surface, const Texture& textur
 void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* layers, size_t count,
                              const Color& weight, Sampler& sampler, RayCounts& counts, Color& result,
                              std::vector<PendingRay>& stack) const {
-    const PendingRay& pending = surface.pending;
+    const Ray& ray = surface.ray;
+    const RayPlace& place = surface.place;
     const Hit& hit = surface.hit;
     const Vec3& incoming = surface.incoming;
-    const int childDepth = pending.depth + 1;
+    const int childDepth = place.depth + 1;
     const bool traceChildren = childDepth < maxTraceLevel_; // deeper rays are black (POV-Ray)
     const auto worthTracing = [&](const Color& w) { return maxComponent(w) > 0 && maxComponent(w) >= adcBailout_; };
 
@@ -274,14 +283,14 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         const Finish& finish = layer.finish;
         Vec3 normal = surface.normal;
         if (layer.normal) { // bump pattern; kept only while it still faces the viewer
-            const Vec3 bumped = bumpNormal(*layer.normal, hit, pending.ray.time, normal);
+            const Vec3 bumped = bumpNormal(*layer.normal, hit, ray.time, normal);
             if (dot(bumped, incoming) < 0) normal = bumped;
         }
         if (i == 0) topNormal = normal;
 
         // Textures move with their object (restPoint); uv_mapping reads the surface's uv.
         const ShadingPoint sp =
-            shadingPointOf(hit, pending.ray.time, pending.depth, surface.cameraShadows, normal, incoming,
+            shadingPointOf(hit, ray.time, place.depth, surface.cameraShadows, normal, incoming,
                            evaluatePigment(layer.pigment, hit.restPoint, hit.hasUv ? &hit.uv : nullptr), finish);
 
         const Color local = ambientTerm(finish, sp.pigment, scene_.global.ambientLight) +
@@ -289,14 +298,14 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         result += weight * filter * local;
         // Radiosity (scene.h): one cosine-distributed ray about the unbumped normal carries the layer's diffuse share.
         if (const std::optional<Radiosity>& radiosity = scene_.global.radiosity;
-            radiosity && pending.diffuseDepth < radiosity->recursionLimit && childDepth < kTraceLevelLimit &&
+            radiosity && place.diffuseDepth < radiosity->recursionLimit && childDepth < kTraceLevelLimit &&
             finish.diffuse > 0) {
             const Color gathered = weight * filter * sp.pigment.rgb *
                                    (finish.diffuse * radiosity->brightness * sp.pigment.opacity());
             if (worthTracing(gathered))
-                stack.push_back({spawn(hit, sampleCosineAround(surface.normal, sampler.get2D(radiosityDimension(pending.depth))),
-                                       pending.ray.time),
-                                 gathered, childDepth, pending.medium, pending.diffuseDepth + 1});
+                stack.push_back({spawn(hit, sampleCosineAround(surface.normal, sampler.get2D(radiosityDimension(place.depth))),
+                                       ray.time),
+                                 gathered, childDepth, place.medium, place.diffuseDepth + 1});
         }
 
         const double cosIncident = std::clamp(-dot(incoming, normal), 0.0, 1.0);
@@ -312,10 +321,10 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         const Color reflectedWeight = weight * reflected;
         if (traceChildren && worthTracing(reflectedWeight)) {
             const Vec3 direction = lobeDirection(reflect(incoming, normal), finish.reflectionBlur, sampler,
-                                                 bounceDimension(pending.depth, kOffsetLobe));
+                                                 bounceDimension(place.depth, kOffsetLobe));
             if (dot(direction, normal) > 0) // below the surface: weight 0
-                stack.push_back({spawn(hit, direction, pending.ray.time), reflectedWeight, childDepth, pending.medium,
-                                 pending.diffuseDepth});
+                stack.push_back({spawn(hit, direction, ray.time), reflectedWeight, childDepth, place.medium,
+                                 place.diffuseDepth});
         }
 
         filter *= sp.pigment.rgb * sp.pigment.filter + Color(sp.pigment.transmit);
@@ -339,13 +348,13 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
             internalReflection = true;
         }
         const Vec3 direction = lobeDirection(ideal, top.refractionBlur, sampler,
-                                             bounceDimension(pending.depth, kOffsetRefractionLobe));
+                                             bounceDimension(place.depth, kOffsetRefractionLobe));
         const double side = dot(direction, topNormal);
         if (internalReflection ? side > 0 : side < 0)
-            stack.push_back({spawn(hit, direction, pending.ray.time), transmittedWeight, childDepth,
-                             internalReflection ? pending.medium
-                                                : mediumAfterCrossing(pending.medium, *hit.object, surface.entering),
-                             pending.diffuseDepth});
+            stack.push_back({spawn(hit, direction, ray.time), transmittedWeight, childDepth,
+                             internalReflection ? place.medium
+                                                : mediumAfterCrossing(place.medium, *hit.object, surface.entering),
+                             place.diffuseDepth});
     }
 }
 

@@ -62,16 +62,21 @@ public:
     static InstalledScratchSet installThreadBuffers();
 
 private:
-    struct PendingRay {
-        Ray ray;
-        Color weight;
+    // Where a ray stands in its sample's tree of rays.
+    struct RayPlace {
         int depth = 0;
         const Object* medium = nullptr; // the media-holding object the ray is inside (render/media.h)
         int diffuseDepth = 0;           // radiosity bounces on the way (scene.h Radiosity)
     };
+    struct PendingRay {
+        Ray ray;
+        Color weight;
+        RayPlace place;
+    };
     // The surface point a ray hit, before any texture layer's bump normal.
     struct SurfaceHit {
-        const PendingRay& pending;
+        const Ray& ray;
+        const RayPlace& place;
         const Hit& hit;
         Vec3 incoming; // unit
         bool entering = true;
@@ -81,7 +86,7 @@ private:
         const CameraShadows* cameraShadows = nullptr; // the camera hit's shadow answers traced ahead
     };
     // seenWeight: the ray's weight after the fog and media in front of the hit.
-    void shade(const PendingRay& pending, const Color& seenWeight, const Hit& hit, Sampler& sampler,
+    void shade(const Ray& ray, const RayPlace& place, const Color& seenWeight, const Hit& hit, Sampler& sampler,
                RayCounts& counts, Color& result, std::vector<PendingRay>& stack,
                const CameraShadows* cameraShadows) const;
     void shadeMatte(const SurfaceHit& surface, const Texture& layer, const Color& weight, Sampler& sampler,
