@@ -393,6 +393,108 @@ TEST(Sobol, ValuesAreTheXorOfTheDirectionNumbers) {
     }
 }
 
+// Sixteen samples at once (jointLanes: AVX2 where the processor has it) against
+// the one-sample functions lane by lane (jointLanesScalar), on random seeds,
+// shuffle masks, indices of every size and every choice of dimensions.
+TEST(Sobol, SixteenLanesAreTheOneSampleValues) {
+    uint64_t state = 977;
+    const auto next = [&] { return state = mix64(state + 0x9e3779b97f4a7c15ULL); };
+    for (int n = 0; n < 20000; ++n) {
+        const int maskBits = int(next() % 33);
+        const uint32_t mask = maskBits == 32 ? ~0u : (1u << maskBits) - 1u;
+        uint32_t index[sobol_detail::kLanes];
+        for (int lane = 0; lane < sobol_detail::kLanes; ++lane) {
+            const uint64_t r = next();
+            // Small indices (a pixel's usual samples), then any 32-bit value.
+            index[lane] = static_cast<uint32_t>(n < 5000 ? (r & 255u) >> (r >> 60) : r >> (r & 31));
+        }
+        const OwenSeed shuffle(static_cast<uint32_t>(next()));
+        OwenSeed seeds[kSobolDimensions];
+        for (OwenSeed& seed : seeds) seed = OwenSeed(static_cast<uint32_t>(next() >> 32));
+        const unsigned dimensions = static_cast<unsigned>(next() % 32);
+        uint32_t joint[sobol_detail::kLanes], expectedJoint[sobol_detail::kLanes];
+        uint32_t values[kSobolDimensions][sobol_detail::kLanes]{}, expected[kSobolDimensions][sobol_detail::kLanes]{};
+        sobol_detail::jointLanes(index, mask, shuffle, seeds, dimensions, joint, values);
+        sobol_detail::jointLanesScalar(index, mask, shuffle, seeds, dimensions, expectedJoint, expected);
+        for (int lane = 0; lane < sobol_detail::kLanes; ++lane) {
+            ASSERT_EQ(joint[lane], expectedJoint[lane]) << "index " << index[lane] << " mask " << mask;
+            for (int d = 0; d < kSobolDimensions; ++d)
+                if ((dimensions >> d) & 1u) {
+                    ASSERT_EQ(values[d][lane], expected[d][lane]) << "index " << index[lane] << " dimension " << d;
+                }
+        }
+    }
+}
+
+// The reference itself: for masks of a power-of-two sample count, the
+// shuffled index is the sampler's own (its one-sample draws), and the values
+// are the definitions composed in full (owenScramble of sobolValue).
+TEST(Sobol, TheOneSampleLanesAreTheSamplersShuffleAndValues) {
+    for (const int spp : {1, 2, 16, 256, 1024}) {
+        const uint32_t mask = uint32_t(spp) - 1u;
+        const OwenSeed shuffle(0x1234567u), seeds[kSobolDimensions] = {OwenSeed(1), OwenSeed(2), OwenSeed(3),
+                                                                        OwenSeed(4), OwenSeed(5)};
+        for (uint32_t first = 0; first < uint32_t(spp); first += sobol_detail::kLanes) {
+            uint32_t index[sobol_detail::kLanes], joint[sobol_detail::kLanes], values[kSobolDimensions][sobol_detail::kLanes];
+            for (int lane = 0; lane < sobol_detail::kLanes; ++lane) index[lane] = first + uint32_t(lane);
+            sobol_detail::jointLanesScalar(index, mask, shuffle, seeds, 0b11111u, joint, values);
+            for (int lane = 0; lane < sobol_detail::kLanes; ++lane) {
+                const uint32_t i = index[lane];
+                const uint32_t expectedJoint = (i & ~mask) | (owenScramble(i, shuffle.seed) & mask);
+                ASSERT_EQ(joint[lane], expectedJoint);
+                if (i < uint32_t(spp)) {
+                    ASSERT_LT(joint[lane], uint32_t(spp)) << "a shuffle within the pixel's samples";
+                }
+                for (int d = 0; d < kSobolDimensions; ++d)
+                    ASSERT_EQ(values[d][lane], owenScramble(sobolValue(expectedJoint, d), seeds[d].seed));
+            }
+        }
+    }
+}
+
+// The sampler drawing a packet's camera dimensions sixteen at a time gives the
+// values of the one drawing them one sample at a time, and leaves the same
+// state behind (the next draws of the pixel agree too).
+TEST(SobolSampler, CameraDimensionsInLanesAreThoseOneByOne) {
+    const auto same = [](double a, double b) { return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b); };
+    for (const int spp : {1, 5, 16, 64, 1000})
+        for (int effects = 0; effects < 4; ++effects) {
+            const auto lanes = makeSobolSampler(spp, 2024, true)->clone(), oneByOne = makeSobolSampler(spp, 2024, false);
+            for (const auto& [x, y] : {std::pair{0, 0}, std::pair{7, 1}, std::pair{-3, 12}})
+                for (int first = 0; first < spp; first += 11) {
+                    // Packets of 11 (one group of sixteen serves parts of two),
+                    // asking for time and lens in turn (a group worked out
+                    // without them cannot serve a packet that asks).
+                    const int count = std::min(11, spp - first), asked = (effects + first / 11) % 4;
+                    const bool withTime = asked & 1, withLens = asked & 2;
+                    Vec2 pixel[2][11], lens[2][11];
+                    double time[2][11];
+                    lanes->getCameraDimensions(x, y, first, count, pixel[0], withTime ? time[0] : nullptr,
+                                               withLens ? lens[0] : nullptr);
+                    oneByOne->getCameraDimensions(x, y, first, count, pixel[1], withTime ? time[1] : nullptr,
+                                                  withLens ? lens[1] : nullptr);
+                    for (int j = 0; j < count; ++j) {
+                        ASSERT_TRUE(same(pixel[0][j].x, pixel[1][j].x) && same(pixel[0][j].y, pixel[1][j].y))
+                            << "spp " << spp << " sample " << first + j;
+                        if (withTime) {
+                            ASSERT_TRUE(same(time[0][j], time[1][j]));
+                        }
+                        if (withLens) {
+                            ASSERT_TRUE(same(lens[0][j].x, lens[1][j].x) && same(lens[0][j].y, lens[1][j].y));
+                        }
+                    }
+                    for (int j = 0; j < count; ++j) {
+                        lanes->startPixelSample(x, y, first + j);
+                        oneByOne->startPixelSample(x, y, first + j);
+                        for (const int d : {kDimPixel, kDimTime, kDimLens, kDimFirstBounce, 8197}) {
+                            const Vec2 a = lanes->get2D(d), b = oneByOne->get2D(d);
+                            ASSERT_TRUE(same(a.x, b.x) && same(a.y, b.y)) << "dimension " << d;
+                        }
+                    }
+                }
+        }
+}
+
 // Quick checks of the warps and filters; the chi-square tests are in tests/statistical.
 TEST(Warp, MapsIntoTheirDomains) {
     for (int i = 0; i < 64; ++i) {

@@ -185,9 +185,29 @@ constexpr uint32_t owenScrambledSobol(uint32_t index, int dimension, const OwenS
         sobol_detail::scrambleReversed(sobol_detail::sobolReversed(index, dimension), key));
 }
 
+// Sixteen samples at once (sobol_lanes.cpp). For the sample indices index[l]
+// of one pixel: joint[l], the index shuffled as the sampler shuffles it,
+// (i & ~mask) | (owenScramble(i, shuffle) & mask), and for every dimension d
+// whose bit is set in `dimensions`, values[d][l], that joint index's point in
+// dimension d scrambled with seeds[d] (scrambledSobol0 for d = 0, else
+// owenScrambledSobol). With AVX2 the lanes are worked out side by side, as the
+// same integer arithmetic, in two groups of eight whose steps interleave;
+// elsewhere one after another (jointLanesScalar).
+namespace sobol_detail {
+inline constexpr int kLanes = 16;
+bool haveJointLanes(); // the processor runs the AVX2 lanes
+void jointLanes(const uint32_t index[kLanes], uint32_t mask, const OwenSeed& shuffle, const OwenSeed* seeds,
+                unsigned dimensions, uint32_t joint[kLanes], uint32_t values[][kLanes]);
+void jointLanesScalar(const uint32_t index[kLanes], uint32_t mask, const OwenSeed& shuffle, const OwenSeed* seeds,
+                      unsigned dimensions, uint32_t joint[kLanes], uint32_t values[][kLanes]);
+} // namespace sobol_detail
+
 // A double in [0, 1) from a 32-bit fraction.
 inline double fractionToUnit(uint32_t v) { return v * 0x1.0p-32; }
 
-std::unique_ptr<Sampler> makeSobolSampler(int samplesPerPixel, uint64_t seed);
+// `lanes`: a packet's camera dimensions are drawn eight samples at once
+// (sobol_detail::jointLanes); false draws them one sample at a time, the same
+// values (the tests compare the two).
+std::unique_ptr<Sampler> makeSobolSampler(int samplesPerPixel, uint64_t seed, bool lanes = true);
 
 } // namespace drt

@@ -22,14 +22,16 @@ namespace {
 
 class SobolSampler final : public Sampler {
 public:
-    SobolSampler(int spp, uint64_t seed) : Sampler(spp, seed) {
+    SobolSampler(int spp, uint64_t seed, bool lanes) : Sampler(spp, seed), lanes_(lanes) {
         // The shuffle permutes the low `bits` bits: enough for every index < spp.
         int bits = 0;
         while (bits < 31 && (1u << bits) < static_cast<uint32_t>(spp)) ++bits;
         mask_ = (1u << bits) - 1u;
     }
     // A fresh sampler: the per-pixel cache is not copied.
-    std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(samplesPerPixel_, seed_); }
+    std::unique_ptr<Sampler> clone() const override {
+        return std::make_unique<SobolSampler>(samplesPerPixel_, seed_, lanes_);
+    }
 
     void startPixelSample(int x, int y, int index) override {
         startPixel(x, y);
@@ -46,6 +48,10 @@ public:
         // Time's and the lens's seeds, made once for the pixel when asked.
         for (int d = kDimTime; d < kSobolDimensions; ++d)
             if (d == kDimTime ? time != nullptr : lens != nullptr) jointSeed(d);
+        if (lanes_) {
+            cameraLanes(first, count, pixel, time, lens);
+            return;
+        }
         if (time && lens) cameraDimensions<true, true>(first, count, pixel, time, lens);
         else if (time) cameraDimensions<true, false>(first, count, pixel, time, lens);
         else if (lens) cameraDimensions<false, true>(first, count, pixel, time, lens);
@@ -107,6 +113,40 @@ private:
             if constexpr (kLens)
                 lens[j] = {fractionToUnit(owenScrambledSobol(i, kDimLens, jointSeeds_[kDimLens])),
                            fractionToUnit(owenScrambledSobol(i, kDimLens + 1, jointSeeds_[kDimLens + 1]))};
+        }
+    }
+    // The same, sixteen samples at a time (sobol_detail::jointLanes): a
+    // packet of eight and the pixel's next eight, which are kept for the next
+    // packet. Each sample's joint index is kept for startPixelSample as
+    // recentJointIndex keeps it.
+    void cameraLanes(int first, int count, Vec2* pixel, double* time, Vec2* lens) {
+        using sobol_detail::kLanes;
+        const unsigned dimensions = 0b11u | (time ? 1u << kDimTime : 0u) | (lens ? 0b11u << kDimLens : 0u);
+        for (int start = 0; start < count;) {
+            const int sample = first + start;
+            const bool ahead = ahead_.generation == generation_ && ahead_.first <= sample &&
+                               (ahead_.dimensions & dimensions) == dimensions && sample < ahead_.first + kLanes;
+            if (!ahead) {
+                uint32_t index[kLanes];
+                for (int j = 0; j < kLanes; ++j) index[j] = static_cast<uint32_t>(sample + j);
+                sobol_detail::jointLanes(index, mask_, jointShuffle_, jointSeeds_, dimensions, ahead_.joint,
+                                         ahead_.values);
+                ahead_.generation = generation_;
+                ahead_.first = sample;
+                ahead_.dimensions = dimensions;
+            }
+            const int from = sample - ahead_.first, n = std::min(count - start, kLanes - from);
+            for (int j = 0; j < n; ++j) {
+                const int k = start + j, lane = from + j;
+                Recent& r = recent_[static_cast<unsigned>(first + k) % kRecent];
+                r.index = first + k;
+                r.jointIndex = ahead_.joint[lane];
+                const auto& v = ahead_.values;
+                pixel[k] = {fractionToUnit(v[0][lane]), fractionToUnit(v[1][lane])};
+                if (time) time[k] = fractionToUnit(v[kDimTime][lane]);
+                if (lens) lens[k] = {fractionToUnit(v[kDimLens][lane]), fractionToUnit(v[kDimLens + 1][lane])};
+            }
+            start += n;
         }
     }
     // The joint (shuffled) index of sample `index` of the current pixel, kept
@@ -199,12 +239,21 @@ private:
     uint32_t mask_ = 0;
     uint64_t pixelKey_ = 0;
     uint32_t jointIndex_ = 0;
+    bool lanes_ = true;
+    // The camera values of the last sixteen samples cameraLanes worked out.
+    struct Ahead {
+        uint64_t generation = 0; // the pixel they are for (generation_ starts at 1)
+        int first = 0;           // the first sample's index
+        unsigned dimensions = 0; // bit d: values[d] holds dimension d
+        uint32_t joint[sobol_detail::kLanes];
+        uint32_t values[kSobolDimensions][sobol_detail::kLanes];
+    } ahead_;
 };
 
 } // namespace
 
-std::unique_ptr<Sampler> makeSobolSampler(int samplesPerPixel, uint64_t seed) {
-    return std::make_unique<SobolSampler>(samplesPerPixel, seed);
+std::unique_ptr<Sampler> makeSobolSampler(int samplesPerPixel, uint64_t seed, bool lanes) {
+    return std::make_unique<SobolSampler>(samplesPerPixel, seed, lanes);
 }
 
 } // namespace drt
