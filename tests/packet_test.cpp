@@ -216,9 +216,10 @@ void jitteredPacket(Ray (&rays)[Accelerator::kPacketSize], const Vec3& origin, c
 }
 
 // The renderer traces the shadow rays of a packet's camera hits ahead
-// (Integrator::traceCameraShadows) and the shading takes their answers: every
-// sample must be the bits, and count the rays, it gives with each shadow ray
-// traced alone. The scene has what may and what may not go in packets (a
+// (Integrator::traceCameraShadows) and the shading takes their answers and
+// the hits' facings worked out for them: every sample must be the bits, and
+// count the rays, it gives with each shadow ray traced alone and each facing
+// worked out by the shading. The scene has what may and what may not go in packets (a
 // point light, a spotlight, an area light, a shadowless light), a bumped
 // surface whose normal is not the one the rays were planned with, layers, and
 // camera rays that miss.

@@ -186,12 +186,10 @@ void Integrator::shade(const Ray& ray, const RayPlace& place, const Color& seenW
     const Object& object = *hit.object;
     PointLightSamples& lights = scratch().lights;
     lights.clear();
-    SurfaceHit surface{ray, place, hit, Vec3(), true, Vec3(), 1.0, &lights, cameraShadows};
-    surface.incoming = normalize(ray.direction);
-    surface.entering = dot(surface.incoming, hit.geometricNormal) < 0;
-    Vec3 normal = surface.entering ? hit.shadingNormal : -hit.shadingNormal;
-    if (dot(normal, surface.incoming) >= 0) normal = surface.entering ? hit.geometricNormal : -hit.geometricNormal;
-    surface.normal = normal;
+    // A camera hit's facing, if its shadow rays were traced ahead, was worked out for them.
+    const int ahead = cameraShadows ? cameraShadows->indexOf(hit) : -1;
+    const Facing facing = ahead >= 0 ? cameraShadows->facings_[ahead] : facingOf(ray.direction, hit);
+    SurfaceHit surface{ray, place, hit, facing.incoming, facing.entering, facing.normal, 1.0, &lights, cameraShadows};
 
     Color weight = seenWeight;
     if (!surface.entering) // the ray crossed the object's interior

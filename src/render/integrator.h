@@ -42,12 +42,14 @@ public:
     // renderer traces camera rays in packets). The sampler must already be at
     // the pixel sample (startPixelSample). Thread-safe: the only mutable state
     // is the sampler and `counts`, which each thread owns.
-    // cameraShadows: the camera hit's shadow rays traced ahead
-    // (traceCameraShadows), or null.
+    // cameraShadows: what traceCameraShadows worked out ahead for the packet
+    // of rays and hits that cameraRay and cameraHit are in (the hit's facing,
+    // its shadow rays), or null.
     Color trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraFound, Sampler& sampler,
                 RayCounts& counts, const CameraShadows* cameraShadows = nullptr) const;
 
-    // DirectLighting::traceCameraShadows for a camera packet's hits.
+    // DirectLighting::traceCameraShadows for a camera packet's hits: their
+    // facings and the shadow rays that go in packets.
     void traceCameraShadows(const Ray* rays, const Hit* hits, const bool* found, int count,
                             CameraShadows& out) const {
         lighting_.traceCameraShadows(rays, hits, found, count, out);
@@ -83,7 +85,7 @@ private:
         Vec3 normal;       // facing the incoming ray
         double eta = 1;    // n_incident / n_transmitted
         PointLightSamples* lights = nullptr; // the point's light samples, shared by its layers
-        const CameraShadows* cameraShadows = nullptr; // the camera hit's shadow answers traced ahead
+        const CameraShadows* cameraShadows = nullptr; // the camera packet's work ahead (lighting.h)
     };
     // seenWeight: the ray's weight after the fog and media in front of the hit.
     void shade(const Ray& ray, const RayPlace& place, const Color& seenWeight, const Hit& hit, Sampler& sampler,

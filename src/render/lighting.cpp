@@ -397,17 +397,9 @@ void DirectLighting::traceCameraShadows(const Ray* rays, const Hit* hits, const 
         return;
     }
     out.answers_.assign(scene_.lights.size() * kPacket, 0);
-    // Each hit's normal as the integrator turns it to the viewer (Integrator::shade).
-    Vec3 normals[kPacket];
-    for (int k = 0; k < out.count_; ++k) {
-        if (!found[k]) continue;
-        const Hit& hit = hits[k];
-        const Vec3 incoming = normalize(rays[k].direction);
-        const bool entering = dot(incoming, hit.geometricNormal) < 0;
-        Vec3 normal = entering ? hit.shadingNormal : -hit.shadingNormal;
-        if (dot(normal, incoming) >= 0) normal = entering ? hit.geometricNormal : -hit.geometricNormal;
-        normals[k] = normal;
-    }
+    // Which way each hit's shadow rays may go: the side its normal faces.
+    for (int k = 0; k < out.count_; ++k)
+        if (found[k]) out.facings_[k] = facingOf(rays[k].direction, hits[k]);
     // The rays are made in place below, the array left unset: a default Ray is
     // 72 bytes of stores, and an assignment a copy of as many.
     static_assert(std::is_trivially_destructible_v<Ray> && std::is_trivially_copyable_v<Ray>);
@@ -420,7 +412,7 @@ void DirectLighting::traceCameraShadows(const Ray* rays, const Hit* hits, const 
         for (int k = 0; k < out.count_; ++k) {
             if (!found[k]) continue;
             const Vec3 toLight = position - hits[k].point;
-            if (!(dot(normals[k], toLight) > 0)) continue; // facing away: the shading sends no ray
+            if (!(dot(out.facings_[k].normal, toLight) > 0)) continue; // facing away: the shading sends no ray
             ::new (storage[n]) Ray(shadowRay(hits[k], position, rays[k].time));
             lane[n++] = k;
         }
@@ -437,10 +429,8 @@ namespace {
 uint8_t cameraShadow(const ShadingPoint& sp, size_t i) {
     const CameraShadows* pre = sp.cameraShadows;
     if (!pre) return 0;
-    // Compared as addresses: sp.hit need not be one of the packet's.
-    const auto at = reinterpret_cast<uintptr_t>(sp.hit), first = reinterpret_cast<uintptr_t>(pre->hits_);
-    if (at < first || at >= first + sizeof(Hit) * size_t(pre->count_)) return 0;
-    return pre->answers_[i * Accelerator::kPacketSize + (at - first) / sizeof(Hit)];
+    const int k = pre->indexOf(*sp.hit);
+    return k < 0 ? 0 : pre->answers_[i * Accelerator::kPacketSize + size_t(k)];
 }
 
 } // namespace

@@ -122,6 +122,26 @@ Color lightTransmittance(const Accelerator& accel, const Accelerator* projected,
 // light through (filter or transmit anywhere, image maps counted as able to).
 bool shadowsAreOpaque(const Scene& scene);
 
+// How a surface hit faces the ray that found it, as the shading takes it:
+// the ray's unit direction, whether the ray enters the object (meets the
+// outside of the geometric normal), and the shading normal turned to the
+// ray's side, or the geometric normal so turned where the shading normal
+// would then face away from the ray.
+struct Facing {
+    Vec3 incoming; // unit
+    Vec3 normal;   // unit, facing the incoming ray
+    bool entering = true;
+};
+
+inline Facing facingOf(const Vec3& direction, const Hit& hit) {
+    Facing f;
+    f.incoming = normalize(direction);
+    f.entering = dot(f.incoming, hit.geometricNormal) < 0;
+    f.normal = f.entering ? hit.shadingNormal : -hit.shadingNormal;
+    if (dot(f.normal, f.incoming) >= 0) f.normal = f.entering ? hit.geometricNormal : -hit.geometricNormal;
+    return f;
+}
+
 // The shadow rays of a camera packet's hits, traced ahead of their shading
 // as packets (one per light: DirectLighting::traceCameraShadows). Only for
 // what one occlusion query answers exactly (a point light that neither moves
@@ -129,12 +149,24 @@ bool shadowsAreOpaque(const Scene& scene);
 // shadow caster that lets light through); the shading then takes the answer
 // instead of tracing the same ray alone, and counts the ray when it does.
 // A shadow ray the shading does not ask for is traced and not counted.
+// The hits' facings, which decide the rays, are kept for the shading too.
 struct CameraShadows {
-    // Written by traceCameraShadows, read by DirectLighting::shade.
+    // Written by traceCameraShadows, read by DirectLighting::shade and Integrator::shade.
     const Hit* hits_ = nullptr; // the packet's hits
-    int count_ = 0;
+    int count_ = 0;             // 0 if no light's shadow rays go in packets
+    Facing facings_[Accelerator::kPacketSize]; // by hit, set for the found ones
     // By light * Accelerator::kPacketSize + hit: 0 not traced, 1 visible, 2 blocked.
     std::vector<uint8_t> answers_;
+
+    // Nothing was worked out ahead (no light's shadow rays go in packets).
+    bool empty() const { return count_ == 0; }
+    // The index of `hit` in the packet, or -1 if it is not one of the packet's
+    // hits (compared as addresses: a shading point's hit need not be one).
+    int indexOf(const Hit& hit) const {
+        const auto at = reinterpret_cast<uintptr_t>(&hit), first = reinterpret_cast<uintptr_t>(hits_);
+        if (at < first || at >= first + sizeof(Hit) * size_t(count_)) return -1;
+        return static_cast<int>((at - first) / sizeof(Hit));
+    }
 };
 
 struct ShadingPoint {

@@ -339,13 +339,15 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
             }
             accel.intersectPacket(rays, traced, hits, found);
             integrator.traceCameraShadows(rays, hits, found, traced, packet.shadows);
+            // Null where nothing went ahead: the shading then looks for nothing there.
+            const CameraShadows* const ahead = packet.shadows.empty() ? nullptr : &packet.shadows;
             for (int j = 0, k = 0; j < n; ++j) {
                 if (!covered[j]) {
                     pixel.add(Color(0));
                     continue;
                 }
                 sampler.startPixelSample(x, y, start + j);
-                pixel.add(integrator.trace(rays[k], hits[k], found[k], sampler, counts, &packet.shadows));
+                pixel.add(integrator.trace(rays[k], hits[k], found[k], sampler, counts, ahead));
                 ++k;
             }
         }
