@@ -500,5 +500,41 @@ background { color rgb <0.3, 0.4, 0.6> }
     }
 }
 
+// The rays a hit spawns are traced at the camera ray's time: a mirror seen
+// straight down reflects a glowing ball that moves away over the shutter
+// (x = 2 t), so the ball is in the mirror at times 0 and 0.1 and gone by 0.4
+// and 0.9. A spawned ray at another time (half the camera ray's, or 0) sees
+// it at 0.4 too. Also checks what the spawned ray carries besides: its weight
+// (the mirror's reflection 0.5) and its depth (one secondary ray).
+TEST(Integrator, SpawnedRaysKeepTheCameraRaysTime) {
+    Diagnostics diagnostics;
+    std::optional<Scene> scene = loadSceneText(R"(
+camera { location <0, 1, -5> look_at <0, 0, 0> }
+background { color rgb 0 }
+plane { y, 0 pigment { color rgb 0 } finish { ambient 0 diffuse 0 reflection 0.5 } }
+sphere { <0, 2, 0>, 0.5 pigment { color rgb 1 } finish { ambient 1 diffuse 0 } motion { translate <2, 0, 0> } }
+)", "spawned-time.drt", diagnostics);
+    ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
+    const Accelerator accel(*scene);
+    const Integrator integrator(*scene, accel);
+    const std::unique_ptr<Sampler> sampler = makeSampler("sobol", 1, 3);
+    for (const double time : {0.0, 0.1, 0.4, 0.9}) {
+        Ray ray;
+        ray.origin = {0, 1, 0}; // between the mirror and the ball
+        ray.direction = {0, -1, 0};
+        ray.time = time;
+        Hit hit;
+        const bool found = accel.intersect(ray, hit);
+        ASSERT_TRUE(found);
+        sampler->startPixelSample(0, 0, 0);
+        RayCounts counts;
+        const Color c = integrator.trace(ray, hit, found, *sampler, counts);
+        const Color expected(time < 0.25 ? 0.5 : 0.0); // the ball's ambient 1 through the reflection 0.5
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], expected[k], 1e-12) << "time " << time;
+        EXPECT_EQ(counts.camera, 1u);
+        EXPECT_EQ(counts.secondary, 1u);
+    }
+}
+
 } // namespace
 } // namespace drt

@@ -95,15 +95,18 @@ Color Integrator::trace(const Ray& cameraRay, const Hit& cameraHit, bool cameraF
     // each such load waits for the stores to reach the cache.
     if (see(cameraRay, RayPlace{}, Color(1), cameraFound, cameraHit, cameraShadows)) {
         while (!stack.empty()) {
+            // The copy (shading pushes onto the stack) is made before the
+            // intersection, which reads the ray where it lies: by the time
+            // the copy is read, its stores have reached the cache.
             const PendingRay pending = stack.back();
-            stack.pop_back();
             // `traced` is one record per thread, not one per ray: a Hit is
             // about 230 bytes of initialised members, and
             // Accelerator::intersect writes every field a found hit is read by.
             static_assert(std::is_trivially_destructible_v<Hit>,
                           "no destructor to register (accel/thread_scratch.h)");
             thread_local Hit traced;
-            const bool found = accel_.intersect(pending.ray, traced);
+            const bool found = accel_.intersect(stack.back().ray, traced);
+            stack.pop_back();
             if (!see(pending.ray, pending.place, pending.weight, found, traced, nullptr)) break;
         }
     }
@@ -152,16 +155,19 @@ ShadingPoint shadingPointOf(const Hit& hit, double time, int depth, const Camera
     return sp;
 }
 
-Ray spawn(const Hit& hit, const Vec3& direction, double time) {
-    Ray ray;
+} // namespace
+
+// Written where the ray lies on the stack (emplace_back): a PendingRay built
+// aside and then copied in is read back by the copy at once, in widths its
+// stores do not match, which the store buffer cannot forward (the copy waits).
+Integrator::PendingRay::PendingRay(const Hit& hit, const Vec3& direction, double time, const Color& weight,
+                                   const RayPlace& place)
+    : weight(weight), place(place) {
     ray.origin = Accelerator::offsetOrigin(hit, direction);
     ray.direction = direction;
     ray.tMin = 0;
     ray.time = time;
-    return ray;
 }
-
-} // namespace
 
 // A bump pattern moves with its object: on a moving object it tilts the
 // normal in the object's rest pose, which is then turned to the world at the
@@ -301,9 +307,9 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
             const Color gathered = weight * filter * sp.pigment.rgb *
                                    (finish.diffuse * radiosity->brightness * sp.pigment.opacity());
             if (worthTracing(gathered))
-                stack.push_back({spawn(hit, sampleCosineAround(surface.normal, sampler.get2D(radiosityDimension(place.depth))),
-                                       ray.time),
-                                 gathered, childDepth, place.medium, place.diffuseDepth + 1});
+                stack.emplace_back(hit,
+                                   sampleCosineAround(surface.normal, sampler.get2D(radiosityDimension(place.depth))),
+                                   ray.time, gathered, RayPlace{childDepth, place.medium, place.diffuseDepth + 1});
         }
 
         const double cosIncident = std::clamp(-dot(incoming, normal), 0.0, 1.0);
@@ -321,8 +327,8 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
             const Vec3 direction = lobeDirection(reflect(incoming, normal), finish.reflectionBlur, sampler,
                                                  bounceDimension(place.depth, kOffsetLobe));
             if (dot(direction, normal) > 0) // below the surface: weight 0
-                stack.push_back({spawn(hit, direction, ray.time), reflectedWeight, childDepth, place.medium,
-                                 place.diffuseDepth});
+                stack.emplace_back(hit, direction, ray.time, reflectedWeight,
+                                   RayPlace{childDepth, place.medium, place.diffuseDepth});
         }
 
         filter *= sp.pigment.rgb * sp.pigment.filter + Color(sp.pigment.transmit);
@@ -349,10 +355,12 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
                                              bounceDimension(place.depth, kOffsetRefractionLobe));
         const double side = dot(direction, topNormal);
         if (internalReflection ? side > 0 : side < 0)
-            stack.push_back({spawn(hit, direction, ray.time), transmittedWeight, childDepth,
-                             internalReflection ? place.medium
-                                                : mediumAfterCrossing(place.medium, *hit.object, surface.entering),
-                             place.diffuseDepth});
+            stack.emplace_back(hit, direction, ray.time, transmittedWeight,
+                               RayPlace{childDepth,
+                                        internalReflection
+                                            ? place.medium
+                                            : mediumAfterCrossing(place.medium, *hit.object, surface.entering),
+                                        place.diffuseDepth});
     }
 }
 

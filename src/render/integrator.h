@@ -71,6 +71,9 @@ private:
         int diffuseDepth = 0;           // radiosity bounces on the way (scene.h Radiosity)
     };
     struct PendingRay {
+        // The ray spawned at `hit` along `direction` (from the surface:
+        // Accelerator::offsetOrigin), at `time`.
+        PendingRay(const Hit& hit, const Vec3& direction, double time, const Color& weight, const RayPlace& place);
         Ray ray;
         Color weight;
         RayPlace place;
