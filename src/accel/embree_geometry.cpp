@@ -197,13 +197,13 @@ void intersectLanes(const RTCIntersectFunctionNArguments* args, const Primitive&
     }
 }
 
-// intersectLanes for a packet of 8 at the top level and a plain primitive
-// without a transform whose first crossing `solve` finds (a sphere or a
-// plane: what most camera rays meet): the same crossings, with the shape's
-// values held in `solve` and the per-lane tests of intersectLanes made once.
-template <class Solve>
-[[gnu::always_inline]] inline void intersectTopLanes8(const RTCIntersectFunctionNArguments* args, Solve solve) {
-    constexpr unsigned N = 8;
+// intersectLanes for N rays (a packet of 8, or one) at the top level and a
+// plain primitive without a transform whose first crossing `solve` finds (a
+// sphere or a plane: what most rays meet): the same crossings, with the
+// shape's values held in `solve` and the per-lane tests of intersectLanes made
+// once.
+template <unsigned N, class Solve>
+[[gnu::always_inline]] inline void intersectTopLanes(const RTCIntersectFunctionNArguments* args, Solve solve) {
     RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, N);
     RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, N);
     RayQuery& first = RayQuery::of(args->context);
@@ -261,20 +261,27 @@ template <class Run>
     return true;
 }
 
-// A callback's lanes: a packet of 8 at the top level takes the short way
-// where the primitive has one (top(solve)); the rest the general way
-// (lanes(n), n an integral_constant: 8, or 0 for Embree's N).
+// A callback's lanes: a packet of 8 or a single ray (shadow and secondary
+// rays) at the top level takes the short way where the primitive has one
+// (top(n, solve)); the rest the general way (lanes(n)); n an
+// integral_constant: 8, 1, or 0 for Embree's N.
 template <class Args, class Top, class Lanes>
 [[gnu::always_inline]] inline void runLanes(const Args* args, const Primitive& p, Top top, Lanes lanes) {
-    if (args->N != 8) return lanes(std::integral_constant<unsigned, 0>{});
-    if (args->context->instID[0] == RTC_INVALID_GEOMETRY_ID && withShortWay(p, top)) return;
-    lanes(std::integral_constant<unsigned, 8>{});
+    const auto run = [&](auto n) {
+        if (args->context->instID[0] == RTC_INVALID_GEOMETRY_ID &&
+            withShortWay(p, [&](auto solve) { top(n, solve); }))
+            return;
+        lanes(n);
+    };
+    if (args->N == 8) return run(std::integral_constant<unsigned, 8>{});
+    if (args->N == 1) return run(std::integral_constant<unsigned, 1>{});
+    lanes(std::integral_constant<unsigned, 0>{});
 }
 
 static void intersectCallback(const RTCIntersectFunctionNArguments* args) {
     const auto* level = static_cast<const Level*>(args->geometryUserPtr);
     const Primitive& p = level->primitives[args->primID];
-    runLanes(args, p, [args](auto solve) { intersectTopLanes8(args, solve); },
+    runLanes(args, p, [args](auto n, auto solve) { intersectTopLanes<decltype(n)::value>(args, solve); },
              [args, &p](auto n) { intersectLanes<decltype(n)::value>(args, p); });
 }
 
@@ -307,11 +314,10 @@ void occludedLanes(const RTCOccludedFunctionNArguments* args, const Primitive& p
     }
 }
 
-// occludedLanes for a packet of 8 at the top level and a plain primitive
-// without a transform (intersectTopLanes8).
-template <class Solve>
-[[gnu::always_inline]] inline void occludedTopLanes8(const RTCOccludedFunctionNArguments* args, Solve solve) {
-    constexpr unsigned N = 8;
+// occludedLanes for N rays at the top level and a plain primitive without a
+// transform (intersectTopLanes).
+template <unsigned N, class Solve>
+[[gnu::always_inline]] inline void occludedTopLanes(const RTCOccludedFunctionNArguments* args, Solve solve) {
     RTCRayN* ray = args->ray;
     const int* const valid = args->valid;
     for (unsigned i = 0; i < N; ++i) {
@@ -328,7 +334,7 @@ static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
     const auto* level = static_cast<const Level*>(args->geometryUserPtr);
     const Primitive& p = level->primitives[args->primID];
     if (p.noShadow) return;
-    runLanes(args, p, [args](auto solve) { occludedTopLanes8(args, solve); },
+    runLanes(args, p, [args](auto n, auto solve) { occludedTopLanes<decltype(n)::value>(args, solve); },
              [args, &p](auto n) { occludedLanes<decltype(n)::value>(args, p); });
 }
 
