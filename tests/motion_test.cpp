@@ -228,6 +228,40 @@ TEST(InstanceMotion, PivotedSpinsAndOrbitsAreExact) {
     }
 }
 
+// A motion that only translates (whatever the object's own rotation and
+// scale) is handed to Embree as matrices, which it interpolates linearly: the
+// same motion, cheaper per ray than its quaternion steps. Each step's rows are
+// the exact path at the step's time, in the frame's coordinates; a motion
+// that turns or scales keeps its quaternion steps.
+TEST(InstanceMotion, TranslationsAloneAreLinearMatrixSteps) {
+    const Vec3 lo{-1, -1, -1}, hi{1, 1, 1};
+    const Transform rest = Transform::scale({1, 2, 0.5}).then(Transform::rotate({30, -20, 10}));
+    Motion keyed; // a piecewise-linear translation with a key inside the shutter
+    keyed.keys = {MotionKey{0}, MotionKey{0.3, {1, 2, 0}}, MotionKey{1, {-1, 3, 4}}};
+    for (const Motion& m : {motionTo({5, 0, -2}), keyed}) {
+        const accel::InstanceMotion path(rest, chainOf(m), lo, hi);
+        ASSERT_TRUE(path.translationOnly());
+        const int steps = path.timeStepCount();
+        for (const Vec3 f : {Vec3{}, Vec3{5e4, -2e3, 1e4}}) // the frame origin of a far scene
+            for (int i = 0; i < steps; ++i) {
+                float rows[12];
+                path.stepRows(i, f, rows);
+                const Transform exact = path.at(double(i) / (steps - 1));
+                for (const Vec3 x : {Vec3{0.5, -0.25, 1}, Vec3{-1, 1, 0}}) { // rest-world points
+                    const Vec3 level = x - f; // what Embree's rows take, and give back minus f
+                    const Vec3 mapped{rows[0] * level.x + rows[1] * level.y + rows[2] * level.z + rows[3],
+                                      rows[4] * level.x + rows[5] * level.y + rows[6] * level.z + rows[7],
+                                      rows[8] * level.x + rows[9] * level.y + rows[10] * level.z + rows[11]};
+                    expectNear(mapped + f, exact.point(x), 1e-6 * (1 + length(f)));
+                }
+            }
+    }
+    EXPECT_FALSE(accel::InstanceMotion(rest, chainOf(motionTo({1, 0, 0}, {0, 90, 0})), lo, hi).translationOnly());
+    Motion grows; // a scale between the keys
+    grows.keys = {MotionKey{0}, MotionKey{1, {}, {}, {2, 2, 2}}};
+    EXPECT_FALSE(accel::InstanceMotion(rest, chainOf(grows), lo, hi).translationOnly());
+}
+
 TEST(InstanceMotion, CurvedPathsStayWithinTheTolerance) {
     // A spline translation with a multi-axis turn: not representable exactly,
     // so steps are added until the midpoints are within 1e-4 of the size.
@@ -355,6 +389,25 @@ TEST(MovingObjects, MembersOfTransformedUnionsMoveInTheUnionsSpace) {
             EXPECT_EQ(hit.object, &std::get<Csg>(scene.objects[0].shape).children[0]);
         }
     }
+}
+
+// Every kind of shape moving by translation alone (Embree's linear matrix
+// steps), with its own rotation and scale, near the origin and far from it:
+// hit where the still placement at the ray's time puts it.
+TEST(MovingObjects, EveryShapeKindTranslates) {
+    std::vector<Object> kinds = {
+        makeObject(Sphere{{0, 0, 0}, 0.5}),        makeObject(Box{{-0.4, -0.4, -0.4}, {0.4, 0.4, 0.4}}),
+        makeObject(Cylinder{{0, -0.4, 0}, {0, 0.4, 0}, 0.4}), makeObject(Torus{0.4, 0.1}),
+        makeObject(Mesh{nullptr, {{-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0, 0.5, 0}}, {{0, 1, 2}}, {}, {}, {}, {}, {}})};
+    for (const double far : {0.0, 2e4})
+        for (size_t i = 0; i < kinds.size(); ++i) {
+            Object o = kinds[i];
+            o.transform = o.transform.then(Transform::scale({1, 1.5, 1}))
+                              .then(Transform::rotate({-20, 10, 0}))
+                              .then(Transform::translate({1.5 + far, 0, 0}));
+            o.motion = chainOf(motionTo({0.8, 0.3, -0.1}));
+            for (const double time : {0.0, 0.35, 1.0}) expectTracesAsStillAt(sceneOf({o}), time, int(i));
+        }
 }
 
 TEST(MovingObjects, EveryShapeKindMoves) {

@@ -399,7 +399,14 @@ struct Builder {
         rtcSetGeometryInstancedScene(instance, moving.level->scene);
         const int steps = moving.motion->timeStepCount();
         rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(steps));
+        const bool linear = moving.motion->translationOnly();
         for (int i = 0; i < steps; ++i) {
+            if (linear) {
+                float rows[12];
+                moving.motion->stepRows(i, impl.frameOrigin, rows);
+                rtcSetGeometryTransform(instance, static_cast<unsigned>(i), RTC_FORMAT_FLOAT3X4_ROW_MAJOR, rows);
+                continue;
+            }
             const RTCQuaternionDecomposition step = moving.motion->timeStep(i, impl.frameOrigin);
             rtcSetGeometryTransformQuaternion(instance, static_cast<unsigned>(i), &step);
         }

@@ -124,4 +124,27 @@ RTCQuaternionDecomposition InstanceMotion::timeStep(int index, const Vec3& frame
     return d;
 }
 
+bool InstanceMotion::translationOnly() const {
+    const AffineParts& first = steps_.front();
+    return std::all_of(steps_.begin(), steps_.end(), [&](const AffineParts& p) {
+        return p.rotation == first.rotation && p.upper == first.upper && p.shift == first.shift;
+    });
+}
+
+void InstanceMotion::stepRows(int index, const Vec3& frameOrigin, float rows[12]) const {
+    const Transform step = composeParts(steps_.at(size_t(index)));
+    const Mat4& m = step.matrix();
+    // Level points are rest-world points minus f, mapped to world minus f:
+    // x -> M (x + f) - f.
+    const double f[3] = {frameOrigin.x, frameOrigin.y, frameOrigin.z};
+    for (int r = 0; r < 3; ++r) {
+        double t = m.m[r][3] - f[r];
+        for (int c = 0; c < 3; ++c) {
+            rows[4 * r + c] = float(m.m[r][c]);
+            t += m.m[r][c] * f[c];
+        }
+        rows[4 * r + 3] = float(t);
+    }
+}
+
 } // namespace drt::accel

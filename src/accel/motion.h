@@ -41,6 +41,12 @@ public:
     // With a frame origin f (accel.h "Frame"), the step maps level space (rest
     // world minus f) to the top level (world minus f).
     RTCQuaternionDecomposition timeStep(int index, const Vec3& frameOrigin = {}) const;
+    // Whether every step has the same rotation, scale, skew and shift, so
+    // that only the translation moves: interpolating the steps' matrices
+    // linearly is then the same motion.
+    bool translationOnly() const;
+    // Step `index` as a 3x4 row-major matrix from level space to the top level.
+    void stepRows(int index, const Vec3& frameOrigin, float rows[12]) const;
     const Vec3& pivot() const { return pivot_; }
 
 private:
