@@ -231,11 +231,14 @@ void Integrator::shade(const Ray& ray, const RayPlace& place, const Color& seenW
 void Integrator::shadeMatte(const SurfaceHit& surface, const Texture& layer, const Color& weight, Sampler& sampler,
                             RayCounts& counts, Color& result) const {
     // layer.pigment.color: evaluatePigment of a solid pigment.
-    const ShadingPoint sp = shadingPointOf(surface.hit, surface.ray.time, surface.place.depth, surface.cameraShadows,
-                                           surface.normal, surface.incoming, layer.pigment.color, layer.finish);
-    // DirectLighting::shade of no lights is Color(0).
-    const Color lit = scene_.lights.empty() ? Color(0) : lighting_.shade(sp, *surface.lights, sampler, counts);
-    result += weight * (ambientTerm(layer.finish, sp.pigment, scene_.global.ambientLight) + lit);
+    const ColorFT& pigment = layer.pigment.color;
+    // DirectLighting::shade of no lights is Color(0): no shading point to make.
+    Color lit(0);
+    if (!scene_.lights.empty())
+        lit = lighting_.shade(shadingPointOf(surface.hit, surface.ray.time, surface.place.depth, surface.cameraShadows,
+                                             surface.normal, surface.incoming, pigment, layer.finish),
+                              *surface.lights, sampler, counts);
+    result += weight * (ambientTerm(layer.finish, pigment, scene_.global.ambientLight) + lit);
 }
 
 void Integrator::shadeTexture(const SurfaceHit& surface, const Texture& texture, const Color& weight, Sampler& sampler,
