@@ -205,9 +205,10 @@ void jointLanesScalar(const uint32_t index[kLanes], uint32_t mask, const OwenSee
 // A double in [0, 1) from a 32-bit fraction.
 inline double fractionToUnit(uint32_t v) { return v * 0x1.0p-32; }
 
-// `lanes`: a packet's camera dimensions are drawn eight samples at once
-// (sobol_detail::jointLanes); false draws them one sample at a time, the same
-// values (the tests compare the two).
+// `lanes`: a packet's camera dimensions are drawn sixteen samples at once
+// (sobol_detail::jointLanes) where the processor has AVX2 and the packet is
+// not tiny; false draws them one sample at a time, the same values (the tests
+// compare the two).
 std::unique_ptr<Sampler> makeSobolSampler(int samplesPerPixel, uint64_t seed, bool lanes = true);
 
 } // namespace drt

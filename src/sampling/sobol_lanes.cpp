@@ -1,7 +1,8 @@
 // The joint Sobol values of sixteen pixel samples at once, with AVX2 (see
-// sobol.h, "Eight samples at once"). Every step is the integer arithmetic of
-// the one-sample functions in sobol.h on eight 32-bit lanes, so each lane is
-// bit for bit the value those give; tests/sampler_test.cpp checks it.
+// sobol.h, "Sixteen samples at once"). Every step is the integer arithmetic of
+// the one-sample functions in sobol.h on 32-bit lanes, two groups of eight, so
+// each lane is bit for bit the value those give; tests/sampler_test.cpp
+// checks it.
 //
 // Only the functions marked with the avx2 target use AVX2 instructions, and
 // they run only where the processor reports AVX2: the rest of the program is
