@@ -170,6 +170,13 @@ int lightDimension(int depth, int lightIndex) {
     return kFirstExtraLightDimension + static_cast<int>((2 * slot) % (int64_t(1) << 30));
 }
 
+int highlightDimension(int depth, int lightIndex) {
+    // Past radiosity's dimensions (integrator.cpp), two per (light, depth) pair.
+    constexpr int first = kFirstMediaDimension + 4 * kMaxLightDepth;
+    const int64_t slot = int64_t(std::max(lightIndex, 0)) * kMaxLightDepth + std::clamp(depth, 0, kMaxLightDepth - 1);
+    return first + static_cast<int>((2 * slot) % (int64_t(1) << 29));
+}
+
 int crandDimension(int depth, int lightIndex) {
     const int64_t slot = int64_t(std::max(lightIndex, 0)) * kMaxLightDepth + std::clamp(depth, 0, kMaxLightDepth - 1);
     return kFirstExtraLightDimension + (1 << 30) + static_cast<int>(slot % (int64_t(1) << 29));
@@ -192,7 +199,8 @@ double crandNoise(const ShadingPoint& sp, int lightIndex, Sampler& sampler) {
 template <class IntensityAt, class Visible, class Noise>
 [[gnu::always_inline]] inline void addPointLight(const ShadingPoint& sp, const Vec3& position, double scale,
                                                  bool inverseSquare, IntensityAt&& intensityAt, bool shadowed,
-                                                 Visible&& visible, Noise&& noise, Color& sum) {
+                                                 Visible&& visible, Noise&& noise, Color& sum,
+                                                 double highlightScale = 1) {
     const Vec3 toLight = position - sp.hit->point;
     const double distance = length(toLight);
     if (!(distance > 0)) return;
@@ -205,7 +213,51 @@ template <class IntensityAt, class Visible, class Noise>
         intensity *= visible();
         if (isBlack(intensity)) return;
     }
-    sum += lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity, noise());
+    sum += lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity, noise(), highlightScale);
+}
+
+// Whether the finish's highlight can be more than a thousandth of its peak
+// anywhere on the area light as seen from `point`: decided from the light's
+// bounding cone and the highlight's, both about their axes. Only the cost of
+// multiple importance sampling depends on it (either way the estimate is
+// unbiased); where it is false the light's sample point alone takes the
+// highlight, and no lobe direction is drawn.
+//   Phong's term falls below 1e-3 of its peak beyond the angle c_p from R
+//   with cos c_p = 1e-3^(1/phong_size). Blinn's is a function of the angle
+//   between H and N, and L and R are V mirrored about H and about N, so the
+//   angle from L to R is at most twice that between H and N: beyond 2 c_b
+//   from R, cos c_b = 1e-3^(1/e), it is below 1e-3 too.
+// The cosine of the widest angle from R at which the finish's highlight is
+// above the cut.
+double highlightCosReach(const Finish& finish) {
+    constexpr double kLog = -6.907755278982137; // ln 1e-3
+    double cosReach = 1;
+    if (finish.phong > 0) cosReach = std::min(cosReach, finish.phongSize > 0 ? std::exp(kLog / finish.phongSize) : 0.0);
+    if (finish.specular > 0 && finish.roughness > 0) {
+        const double c = std::exp(kLog * finish.roughness);
+        cosReach = std::min(cosReach, 2 * c * c - 1);
+    }
+    return cosReach;
+}
+
+// `cosReach` is highlightCosReach(finish).
+bool highlightMayReach(double cosReach, const Vec3& normal, const Vec3& incoming, const Light& light,
+                       const Vec3& point) {
+    const AreaLight& area = *light.area;
+    const Vec3 toCentre = light.position - point;
+    const double distance = length(toCentre);
+    const double radius = 0.5 * (length(area.axis1) + length(area.axis2)); // at least half the diagonal
+    if (!(distance > radius)) return true;
+    // The smallest angle from R to a direction within the light's cone:
+    // alpha - beta, from their cosines.
+    const Vec3 mirror = reflect(incoming, normal);
+    const double cosAlpha = std::clamp(dot(mirror, toCentre) / distance, -1.0, 1.0);
+    const double sinBeta = radius / distance;
+    const double cosBeta = std::sqrt(std::max(0.0, 1 - sinBeta * sinBeta));
+    if (cosAlpha >= cosBeta) return true; // R lies within the cone
+    const double sinAlpha = std::sqrt(std::max(0.0, 1 - cosAlpha * cosAlpha));
+    const double cosGap = cosAlpha * cosBeta + sinAlpha * sinBeta;
+    return cosGap >= cosReach;
 }
 
 struct AreaFrame {
@@ -250,7 +302,8 @@ struct AreaSample {
 // The K sample points of an area light seen from `point` at one camera sample.
 class AreaSampler {
 public:
-    AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex)
+    // `highlights`: the area and normal are wanted for continuous() and what follows it.
+    AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex, bool highlights = false)
         : light_(light), area_(*light.area), point_(point),
           frame_(areaFrame(area_, light.position, point)), n1_(std::max(1, area_.size1)),
           n2_(std::max(1, area_.size2)), dimension_(lightDimension(depth, lightIndex)) {
@@ -262,7 +315,7 @@ public:
         if (sampling_ == AreaSampling::PovGrid)
             count_ = static_cast<int>(std::min<int64_t>(int64_t(n1_) * n2_, std::numeric_limits<int>::max()));
         // The area and the emitter's normal weigh solid-angle and inverse-square samples only.
-        if (sampling_ != AreaSampling::SolidAngle && !light.inverseSquare) return;
+        if (sampling_ != AreaSampling::SolidAngle && !light.inverseSquare && !highlights) return;
         const Vec3 normal = cross(frame_.axis1, frame_.axis2);
         areaMeasure_ = length(normal);
         if (area_.circular) areaMeasure_ *= kPi / 4;
@@ -281,6 +334,57 @@ public:
     }
 
     int count() const { return count_; }
+
+    // Whether the sample points have a density over the light's area (one
+    // point a camera sample, stratified or uniform in solid angle), which a
+    // direction drawn from a highlight's lobe can meet: not a grid of points,
+    // nor a light without area.
+    bool continuous() const {
+        return count_ == 1 && (sampling_ == AreaSampling::Stratified || sampling_ == AreaSampling::SolidAngle) &&
+               areaMeasure_ > 0 && std::isfinite(areaMeasure_) && dot(normal_, normal_) > 0;
+    }
+
+    // For a continuous() light, with the sample point `position` on it, seen
+    // from the shaded point: the density per steradian with which sample()
+    // draws that direction.
+    double solidAnglePdf(const Vec3& position) const {
+        if (sampling_ == AreaSampling::SolidAngle) return 1.0 / rectangle_->solidAngle();
+        const Vec3 d = point_ - position;
+        const double r2 = dot(d, d);
+        const double cosEmitter = std::fabs(dot(normal_, d)) / std::sqrt(r2);
+        return cosEmitter > 0 && r2 > 0 ? r2 / (areaMeasure_ * cosEmitter) : 0.0;
+    }
+
+    // What the light's colour is multiplied by per steradian at `position`:
+    // sample()'s weight times solidAnglePdf (lighting.h: 1/A with
+    // inverse_square, else r^2 / (A |cos theta_e|), the mean over the area).
+    double perSteradian(const Vec3& position) const {
+        if (light_.inverseSquare) return 1.0 / areaMeasure_;
+        const Vec3 d = point_ - position;
+        const double r2 = dot(d, d);
+        const double cosEmitter = std::fabs(dot(normal_, d)) / std::sqrt(r2);
+        return cosEmitter > 0 ? r2 / (areaMeasure_ * cosEmitter) : 0.0;
+    }
+
+    // Where the ray from the shaded point in unit `direction` meets a
+    // continuous() light: the rectangle, or the ellipse of a circular one.
+    bool meet(const Vec3& direction, Vec3& position) const {
+        const double facing = dot(direction, normal_);
+        if (facing == 0 || !std::isfinite(facing)) return false;
+        const double t = dot(light_.position - point_, normal_) / facing;
+        if (!(t > 0) || !std::isfinite(t)) return false;
+        position = point_ + direction * t;
+        // position - centre = s axis1 + q axis2, solved with the axes' Gram matrix.
+        const Vec3 d = position - light_.position;
+        const Vec3 &a1 = frame_.axis1, &a2 = frame_.axis2;
+        const double g11 = dot(a1, a1), g12 = dot(a1, a2), g22 = dot(a2, a2);
+        const double det = g11 * g22 - g12 * g12;
+        if (!(det > 0)) return false;
+        const double b1 = dot(d, a1), b2 = dot(d, a2);
+        const double s = (b1 * g22 - b2 * g12) / det, q = (b2 * g11 - b1 * g12) / det;
+        if (area_.circular) return 4 * (s * s + q * q) <= 1;
+        return std::fabs(s) <= 0.5 && std::fabs(q) <= 0.5;
+    }
 
     AreaSample sample(Sampler& sampler, int k) const {
         const bool inverseSquare = light_.inverseSquare;
@@ -502,15 +606,21 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         // them: a light whose centre sends nothing here (a spotlight's cone, a
         // point facing away) draws none. Every value is a function of its
         // sampler dimension alone, so when they are drawn changes none.
-        const auto drawSamples = [&] {
-            if (range.count > 0) return;
+        // (only area lights draw samples; `made`: the light's AreaSampler at this point, if made already)
+        const auto drawSamplesWith = [&](const AreaSampler& points) {
             range.begin = static_cast<int>(cache.samples_.size());
-            const AreaSampler points(*light, sp.hit->point, sp.depth, index); // (only area lights draw samples)
             for (int k = 0; k < points.count(); ++k) {
                 const AreaSample a = points.sample(sampler, k);
                 cache.samples_.push_back({a.position, a.weight, false, Color(0)});
             }
             range.count = static_cast<int>(cache.samples_.size()) - range.begin;
+        };
+        const auto drawSamples = [&](const AreaSampler* made) {
+            if (range.count > 0) return;
+            if (made)
+                drawSamplesWith(*made);
+            else
+                drawSamplesWith(AreaSampler(*light, sp.hit->point, sp.depth, index));
         };
         const auto visible = [&](PointLightSamples::Sample& s) -> const Color& {
             return visibility(sp, i, *light, s, counts);
@@ -531,9 +641,63 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             range.single.weight = 1.0;
             pointLight(light->position, true, 1.0, light->inverseSquare, &range.single);
         } else if (light->areaIllumination) {
-            // Each sample point shades as a weighted point light.
-            drawSamples();
+            // Each sample point shades as a weighted point light; a highlight
+            // is also sampled from its own lobe (highlights below).
+            std::optional<AreaSampler> points;
+            if (hasHighlight(*sp.finish)) {
+                if (cache.reachOf_ != sp.finish) cache.reachOf_ = sp.finish, cache.cosReach_ = highlightCosReach(*sp.finish);
+            }
+            if (hasHighlight(*sp.finish) &&
+                highlightMayReach(cache.cosReach_, sp.normal, sp.incoming, *light, sp.hit->point)) {
+                points.emplace(*light, sp.hit->point, sp.depth, index, true);
+                if (!points->continuous()) points.reset();
+            }
+            drawSamples(points ? &*points : nullptr);
             PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
+            if (points) {
+                // Multiple importance sampling of the highlights (lighting.h):
+                // the light's sample point and a direction drawn from the
+                // highlight's lobe each estimate the highlight, weighted by
+                // the power heuristic p^2 / (p_light^2 + p_lobe^2) in solid angle;
+                // the diffuse term takes the light's sample alone.
+                const Vec3& p = sp.hit->point;
+                if (samples[0].weight > 0) {
+                    const Vec3 position = samples[0].position;
+                    const double lobe = [&] {
+                        const Vec3 toLight = position - p;
+                        const double distance = length(toLight);
+                        return distance > 0 ? highlightLobePdf(*sp.finish, sp.normal, sp.incoming, toLight / distance)
+                                            : 0.0;
+                    }();
+                    const double own = points->solidAnglePdf(position);
+                    const double share = own > 0 && std::isfinite(lobe) ? own * own / (own * own + lobe * lobe) : 1.0;
+                    addPointLight(
+                        sp, position, samples[0].weight, false,
+                        [&] { return lightIntensityAt(*light, cones, position, p, false); }, true,
+                        [&]() -> const Color& { return visible(samples[0]); },
+                        [&] { return crandNoise(sp, index, sampler); }, sum, share);
+                }
+                Vec3 direction, position;
+                if (sampleHighlightLobe(*sp.finish, sp.normal, sp.incoming,
+                                        sampler.get2D(highlightDimension(sp.depth, index)), direction) &&
+                    dot(sp.normal, direction) > 0 && points->meet(direction, position)) {
+                    const double lobe = highlightLobePdf(*sp.finish, sp.normal, sp.incoming, direction);
+                    const double own = points->solidAnglePdf(position);
+                    const double scale = points->perSteradian(position) * lobe / (own * own + lobe * lobe);
+                    if (lobe > 0 && std::isfinite(scale) && scale > 0) {
+                        Color seen = highlightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, direction) *
+                                     lightIntensityAt(*light, cones, position, p, false) * scale;
+                        if (!isBlack(seen) && std::isfinite(maxComponent(seen))) {
+                            const Scene* media =
+                                hasMedia_ && light->mediaAttenuation && light->mediaInteraction ? &scene_ : nullptr;
+                            seen *= lightTransmittance(accel_, projected_.of(i), light->shadowless, *sp.hit, position,
+                                                       sp.time, counts, media, opaqueCasters_);
+                            sum += seen;
+                        }
+                    }
+                }
+                continue;
+            }
             for (int k = 0; k < range.count; ++k)
                 if (samples[k].weight > 0) pointLight(samples[k].position, false, samples[k].weight, false, samples + k);
         } else {
@@ -547,7 +711,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             if (light->inverseSquare) intensity = intensity / (distance * distance);
             if (isBlack(intensity)) continue;
             if (!light->shadowless) {
-                drawSamples();
+                drawSamples(nullptr);
                 PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
                 Color seen(0);
                 for (int k = 0; k < range.count; ++k) seen += visible(samples[k]);

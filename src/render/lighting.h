@@ -45,6 +45,16 @@
 //        theta_e is the angle at the emitter between its normal axis1 x axis2
 //        and the direction to the shaded point; a degenerate (zero-area) light
 //        uses |cos theta_e| = 1, i.e. K point lights of colour C/K.
+//        Highlights (phong, specular) of such a light, when its points have
+//        a density over its area (stratified or solid_angle, not a grid):
+//        multiple importance sampling (Veach's power heuristic). Besides
+//        the light's point, one direction is drawn from the finish's
+//        highlight lobe (shading.h) in highlightDimension; where it meets
+//        the light it is a second estimate with its own shadow ray. Each of
+//        the two is weighted p^2 / (p_light^2 + p_lobe^2), densities per
+//        steradian, so together they estimate the same integral as the
+//        light's point alone, and a narrow highlight that the point seldom
+//        finds is found by its lobe. The diffuse term takes the point alone.
 //   `circular` maps the unit square onto the inscribed ellipse (concentric map,
 //   area pi A / 4); `orient` turns the axes to face the shaded point, keeping
 //   their lengths; `adaptive` is ignored.
@@ -192,6 +202,10 @@ int lightDimension(int depth, int lightIndex);
 // The 1D sampler dimension of crand's noise for light `lightIndex` at depth
 // `depth`: past every lightDimension (which span 2^30 from kFirstExtraLightDimension).
 int crandDimension(int depth, int lightIndex);
+// The 2D sampler dimension of the direction drawn from a highlight's lobe
+// toward area light `lightIndex` at depth `depth` (DirectLighting::shade):
+// past every other dimension, radiosity's included.
+int highlightDimension(int depth, int lightIndex);
 
 // The light samples of one surface point and their shadows, shared by every
 // layer and pattern entry of its texture: all of them shade the same point at
@@ -221,6 +235,9 @@ private:
     std::vector<Sample> samples_;
     Light moved_; // a moving light as it is at the shaded point's time (render/light_path.h)
     SpotCones movedCones_; // its cones, if a spotlight
+    // The last finish whose highlight met an area light, and how far its highlight reaches (lighting.cpp).
+    const Finish* reachOf_ = nullptr;
+    double cosReach_ = 1;
 };
 
 // The scene's lights as one render sees them: what is known before tracing

@@ -1,6 +1,7 @@
 #include "render/shading.h"
 
 #include "render/directions.h"
+#include "sampling/warp.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +24,65 @@ Color metallicTint(double metallic, const ColorFT& pigment, double cosAngle) {
     if (!(metallic > 0)) return Color(1);
     const double k = metallic * (1.0 - metallicFresnel(cosAngle));
     return Color(1) + k * (pigment.rgb - Color(1));
+}
+
+Color highlightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
+                    const Vec3& toLight) {
+    const double cosNL = dot(normal, toLight);
+    if (!(cosNL > 0)) return Color(0);
+    const double highlight = highlightFactor(finish, normal, incoming, toLight);
+    if (!(highlight > 0)) return Color(0);
+    return highlight * metallicTint(finish.metallic, pigment, cosNL);
+}
+
+namespace {
+
+// The mixture's share of Phong's lobe (the rest is Blinn's).
+double phongShare(const Finish& finish) {
+    const bool phong = finish.phong > 0 && finish.phongSize >= 0;
+    const bool blinn = finish.specular > 0 && finish.roughness > 0;
+    if (!blinn) return phong ? 1.0 : 0.0;
+    if (!phong) return 0.0;
+    return finish.phong / (finish.phong + finish.specular);
+}
+
+// Blinn's density per steradian of the direction to the light l.
+double blinnPdf(const Finish& finish, const Vec3& normal, const Vec3& view, const Vec3& l) {
+    const Vec3 sum = view + l;
+    const double len = length(sum);
+    if (!(len > 0)) return 0;
+    const Vec3 h = sum / len;
+    const double cosVH = dot(view, h);
+    if (!(cosVH > 0)) return 0;
+    return lobeAroundPdf(normal, 1.0 / finish.roughness, h) / (4 * cosVH);
+}
+
+} // namespace
+
+bool sampleHighlightLobe(const Finish& finish, const Vec3& normal, const Vec3& incoming, Vec2 u, Vec3& direction) {
+    const double share = phongShare(finish);
+    // One value picks the lobe and, stretched back to [0, 1), places the direction.
+    if (u.x < share) {
+        u.x = std::min(u.x / share, std::nextafter(1.0, 0.0));
+        direction = sampleLobeAround(reflect(incoming, normal), finish.phongSize, u);
+        return true;
+    }
+    if (!(finish.specular > 0 && finish.roughness > 0)) return false;
+    u.x = std::min((u.x - share) / (1 - share), std::nextafter(1.0, 0.0));
+    const Vec3 h = sampleLobeAround(normal, 1.0 / finish.roughness, u);
+    const Vec3 view = -incoming;
+    const double cosVH = dot(view, h);
+    if (!(cosVH > 0)) return false;
+    direction = normalize(2 * cosVH * h - view);
+    return true;
+}
+
+double highlightLobePdf(const Finish& finish, const Vec3& normal, const Vec3& incoming, const Vec3& direction) {
+    const double share = phongShare(finish);
+    double pdf = 0;
+    if (share > 0) pdf += share * lobeAroundPdf(reflect(incoming, normal), finish.phongSize, direction);
+    if (share < 1) pdf += (1 - share) * blinnPdf(finish, normal, -incoming, direction);
+    return pdf;
 }
 
 Color reflectivity(const Finish& finish, double cosIncident, double eta) {

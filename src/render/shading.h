@@ -25,8 +25,35 @@ Color ambientTerm(const Finish& finish, const ColorFT& pigment, const Color& amb
 // Diffuse + Phong + specular from one light, or black when N.L <= 0.
 // `crandU` in [0, 1): POV-Ray's crand noise, the diffuse factor becomes
 // (diffuse (N.L)^brilliance - crandU crand) alpha (it may go negative, as in POV-Ray).
+// `highlightScale` multiplies the highlights alone (an area light's
+// multiple importance weight, lighting.cpp).
 Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
-                const Vec3& toLight, const Color& lightIntensity, double crandU = 0);
+                const Vec3& toLight, const Color& lightIntensity, double crandU = 0, double highlightScale = 1);
+
+// ---------------------------------------------------------------- highlights as a lobe
+// For multiple importance sampling of area lights' highlights (lighting.h):
+// the highlight factor of lightTerm alone, and a density of directions that
+// follows it. With both highlights the density is their mixture, weighted by
+// phong and specular: Phong's lobe cos^phong_size about the mirror direction
+// R, and Blinn's about the normal, (e + 1)/(2 pi) (N.H)^e per steradian of
+// the half vector H, e = 1/roughness, which is (e + 1)/(2 pi) (N.H)^e / (4 V.H)
+// per steradian of L = 2 (V.H) H - V, V = -I (zero where V.H <= 0).
+
+// Whether the finish has a highlight (phong, or specular with a roughness).
+inline bool hasHighlight(const Finish& finish) {
+    return (finish.phong > 0 && finish.phongSize >= 0) || (finish.specular > 0 && finish.roughness > 0);
+}
+
+// lightTerm's highlights for a light of intensity 1 in unit direction
+// toLight: (Phong + specular) times the metallic tint, black when N.L <= 0.
+Color highlightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
+                    const Vec3& toLight);
+
+// A unit direction drawn from the finish's highlight lobe with u in
+// [0,1)^2, and its density per steradian (highlightLobePdf). False where the
+// draw gives no direction (Blinn's half vector facing away from the viewer).
+bool sampleHighlightLobe(const Finish& finish, const Vec3& normal, const Vec3& incoming, Vec2 u, Vec3& direction);
+double highlightLobePdf(const Finish& finish, const Vec3& normal, const Vec3& incoming, const Vec3& direction);
 
 // How much of a ray is reflected: reflection min..max blended by Fresnel
 // (reflection_fresnel, with eta = n_incident / n_transmitted) or by
@@ -71,17 +98,8 @@ inline Color ambientTerm(const Finish& finish, const ColorFT& pigment, const Col
     return pigment.rgb * (finish.ambient * ambientLight + finish.emission) * pigment.opacity();
 }
 
-inline Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
-                       const Vec3& toLight, const Color& lightIntensity, double crandU) {
-    const double cosNL = dot(normal, toLight);
-    if (!(cosNL > 0)) return Color(0);
-    Color result(0);
-    if (finish.diffuse != 0) {
-        // pow(x, 1) is x exactly: brilliance 1, the default, needs no pow.
-        const double shaped = finish.brilliance == 1 ? cosNL : std::pow(cosNL, finish.brilliance);
-        const double d = (finish.diffuse * shaped - crandU * finish.crand) * pigment.opacity();
-        result += d * pigment.rgb * lightIntensity;
-    }
+// Phong + specular for unit toLight, before the tint and the light's colour.
+inline double highlightFactor(const Finish& finish, const Vec3& normal, const Vec3& incoming, const Vec3& toLight) {
     double highlight = 0;
     if (finish.phong > 0) {
         const double cosRL = dot(reflect(incoming, normal), toLight);
@@ -95,7 +113,24 @@ inline Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3&
             if (cosNH > 0) highlight += finish.specular * std::pow(cosNH, 1.0 / finish.roughness);
         }
     }
-    if (highlight > 0) result += highlight * metallicTint(finish.metallic, pigment, cosNL) * lightIntensity;
+    return highlight;
+}
+
+inline Color lightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,
+                       const Vec3& toLight, const Color& lightIntensity, double crandU, double highlightScale) {
+    const double cosNL = dot(normal, toLight);
+    if (!(cosNL > 0)) return Color(0);
+    Color result(0);
+    if (finish.diffuse != 0) {
+        // pow(x, 1) is x exactly: brilliance 1, the default, needs no pow.
+        const double shaped = finish.brilliance == 1 ? cosNL : std::pow(cosNL, finish.brilliance);
+        const double d = (finish.diffuse * shaped - crandU * finish.crand) * pigment.opacity();
+        result += d * pigment.rgb * lightIntensity;
+    }
+    const double highlight = highlightFactor(finish, normal, incoming, toLight);
+    // (x * 1 is x: a scale of 1 leaves the bits as they were)
+    if (highlight > 0)
+        result += (highlight * highlightScale) * metallicTint(finish.metallic, pigment, cosNL) * lightIntensity;
     return result;
 }
 

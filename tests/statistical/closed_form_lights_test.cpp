@@ -159,6 +159,189 @@ TEST(ClosedFormLights, ShrinkingAreaLightConvergesToThePointLight) {
     }
 }
 
+// ---------------------------------------------------------------- highlights of area lights
+
+// A glossy floor seen along `direction` at the origin, under a rectangle (or
+// ellipse) light that faces the mirror direction R, its centre `offset` light
+// widths from R along its first axis. The floor has only a highlight (no
+// ambient, no diffuse).
+struct HighlightCase {
+    const char* name;
+    double phong, phongSize, specular, roughness;
+    AreaSampling sampling;
+    bool inverseSquare, circular;
+    double offset; // in widths: 0 R through the centre, 0.5 its edge, 1 beyond it
+};
+
+struct HighlightGeometry {
+    Vec3 incoming, mirror, center, axis1, axis2;
+};
+
+HighlightGeometry highlightGeometry(double offset) {
+    const double theta = 40 * kPi / 180;
+    HighlightGeometry g;
+    g.incoming = {std::sin(theta), -std::cos(theta), 0};
+    g.mirror = {std::sin(theta), std::cos(theta), 0};
+    const Vec3 across{0, 0, 1};
+    g.axis1 = across * 0.9;
+    g.axis2 = normalize(cross(g.mirror, across)) * 0.6;
+    g.center = g.mirror * 3.0 + g.axis1 * offset;
+    return g;
+}
+
+// The highlight at the origin (normal +y) for a light in unit direction l
+// (shading.h, written out again here).
+double highlightAt(const HighlightCase& c, const Vec3& incoming, const Vec3& l) {
+    if (!(l.y > 0)) return 0;
+    double h = 0;
+    const Vec3 mirror = incoming - 2 * dot(incoming, Vec3(0, 1, 0)) * Vec3(0, 1, 0);
+    if (c.phong > 0) h += c.phong * std::pow(std::max(0.0, dot(mirror, l)), c.phongSize);
+    if (c.specular > 0) {
+        const Vec3 half = normalize(l - incoming);
+        h += c.specular * std::pow(std::max(0.0, half.y), 1 / c.roughness);
+    }
+    return h;
+}
+
+// The highlight's integral over the light by the midpoint rule on a 1200 x
+// 1200 grid over the light's rectangle (the ellipse's cells alone for a
+// circular light): in solid angle, F = C h / A_e with inverse_square (the
+// light's radiance C / A_e times the highlight h), else F = C h r^2 / (A_e
+// |cos theta_e|) (the mean over the area of point lights of colour C), A_e
+// the light's area. Its mean is the exact value the render estimates; its
+// variance is what the light's sample points alone would give per sample:
+// of F / p, p = r^2 / (|cos theta_e| A_e) for points uniform over the area
+// (stratified) or 1 / Omega uniform in solid angle.
+struct Quadrature {
+    double mean, variance;
+};
+
+Quadrature highlightQuadrature(const HighlightCase& c, const HighlightGeometry& g, double color) {
+    const int n = 1200;
+    const Vec3 normal = normalize(cross(g.axis1, g.axis2));
+    const double cellArea = length(cross(g.axis1, g.axis2)) / (double(n) * n);
+    const double area = length(cross(g.axis1, g.axis2)) * (c.circular ? kPi / 4 : 1);
+    struct Cell {
+        double f, solidAngle;
+    };
+    std::vector<Cell> cells;
+    double omega = 0, mean = 0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const double s = (i + 0.5) / n - 0.5, q = (j + 0.5) / n - 0.5;
+            if (c.circular && 4 * (s * s + q * q) > 1) continue;
+            const Vec3 x = g.center + g.axis1 * s + g.axis2 * q;
+            const double r = length(x);
+            const double cosEmitter = std::fabs(dot(normal, x / r));
+            const double h = color * highlightAt(c, g.incoming, x / r);
+            const double f = c.inverseSquare ? h / area : h * r * r / (area * cosEmitter);
+            const double dOmega = cosEmitter / (r * r) * cellArea;
+            cells.push_back({f, dOmega});
+            omega += dOmega;
+            mean += f * dOmega;
+        }
+    double second = 0; // E[(F / p)^2] = sum (F / p)^2 p dOmega
+    for (const Cell& cell : cells) {
+        const double density = c.sampling == AreaSampling::SolidAngle
+                                    ? 1 / omega
+                                    : cellArea / cell.solidAngle / area; // r^2 / (|cos| A_e)
+        second += cell.f * cell.f / density * cell.solidAngle;
+    }
+    return {mean, second - mean * mean};
+}
+
+Scene highlightScene(const HighlightCase& c, const HighlightGeometry& g, double color) {
+    Scene scene;
+    Object floor = floorPlane();
+    Finish& finish = floor.texture.edit().finish;
+    finish.diffuse = 0;
+    finish.phong = c.phong;
+    finish.phongSize = c.phongSize;
+    finish.specular = c.specular;
+    finish.roughness = c.roughness;
+    scene.objects.push_back(floor);
+    Light light = rectangleLight(g.center, g.axis1, g.axis2, Color(color), c.sampling, c.inverseSquare);
+    light.area->circular = c.circular;
+    scene.lights.push_back(light);
+    // A needle camera: every ray meets the origin from `incoming`.
+    scene.camera.location = -g.incoming * 1e-3;
+    scene.camera.direction = g.incoming;
+    scene.camera.up = normalize(cross(g.incoming, Vec3(0, 0, 1))) * 1e-9;
+    scene.camera.right = Vec3(0, 0, 1) * 1e-9;
+    return scene;
+}
+
+const HighlightCase kHighlightCases[] = {
+    {"phong 200, stratified, inverse_square", 1, 200, 0, 0, AreaSampling::Stratified, true, false, 0},
+    {"phong 200, stratified, inverse_square, edge", 1, 200, 0, 0, AreaSampling::Stratified, true, false, 0.5},
+    {"phong 200, stratified, inverse_square, beyond", 1, 200, 0, 0, AreaSampling::Stratified, true, false, 1},
+    {"specular 1/200, solid angle", 0, 0, 1, 0.005, AreaSampling::SolidAngle, false, false, 0},
+    {"specular 1/200, solid angle, edge", 0, 0, 1, 0.005, AreaSampling::SolidAngle, false, false, 0.5},
+    {"phong 300 + specular 1/50, circular", 0.5, 300, 0.8, 0.02, AreaSampling::Stratified, false, true, 0.25},
+    {"phong 300 + specular 1/50, circular, inverse_square", 0.5, 300, 0.8, 0.02, AreaSampling::Stratified, true,
+     true, 0.5},
+};
+
+// One case rendered at a needle pixel with 4096 independent samples, and its quadrature.
+struct HighlightRun {
+    Quadrature exact;
+    double mean, varianceOfMean, variancePerSample;
+};
+
+HighlightRun runHighlight(const HighlightCase& c, uint64_t seed) {
+    const double color = 2;
+    const int spp = 4096;
+    const HighlightGeometry g = highlightGeometry(c.offset);
+    const RenderResult r = render(highlightScene(c, g, color), options(1, 1, spp, "independent", seed));
+    const double variance = red(r.variance, 0, 0);
+    return {highlightQuadrature(c, g, color), red(r.color, 0, 0), variance, variance * spp};
+}
+
+TEST(ClosedFormLights, AreaLightHighlightsMatchTheirIntegral) {
+    // A highlight under an area light is estimated from the light's sample
+    // point and a direction drawn from the highlight's lobe, combined by the
+    // power heuristic (lighting.h). Its mean must be the integral of the
+    // highlight over the light (midpoint rule, above): |z| < 3.5 for each of
+    // the 7 cases (4096 independent samples each; the quadrature's own error
+    // is below 1e-4 of the value). Rectangles and an ellipse, R through the
+    // light, on its edge and beyond it, with and without inverse_square.
+    uint64_t seed = 71;
+    for (const HighlightCase& c : kHighlightCases) {
+        const HighlightRun run = runHighlight(c, seed++);
+        const double z = (run.mean - run.exact.mean) / std::sqrt(run.varianceOfMean);
+        std::printf("  %-52s exact %.6f, rendered %.6f, z %.2f\n", c.name, run.exact.mean, run.mean, z);
+        EXPECT_GT(run.exact.mean, 0) << c.name;
+        EXPECT_GT(run.varianceOfMean, 0) << c.name;
+        EXPECT_LT(std::fabs(z), 3.5) << c.name;
+    }
+}
+
+TEST(ClosedFormLights, LobeDirectionsCutTheVarianceOfANarrowHighlight) {
+    // Where a narrow highlight (phong 200: a lobe of about 0.03 sr) looks into
+    // a larger light (0.06 sr), most of the light's own points miss the lobe,
+    // and the directions drawn from the lobe carry the estimate: the variance
+    // per sample must be at most half of what the light's points alone give,
+    // computed exactly by the midpoint rule (measured: 2.7x and 2.2x lower).
+    // Elsewhere (R beyond the light, lobes as wide as the light) the power
+    // heuristic leans on the light's points, and the variance may be at most
+    // 1.25x theirs (measured: 0.86x to 1.16x of it). 4096 independent
+    // samples: the sample variance is within a few percent of its own.
+    uint64_t seed = 91;
+    for (const HighlightCase& c : kHighlightCases) {
+        const HighlightRun run = runHighlight(c, seed++);
+        const double lightAlone = run.exact.variance, perSample = run.variancePerSample;
+        std::printf("  %-52s variance per sample: light's points alone %.4g, with the lobe's directions %.4g (%.3gx "
+                    "lower)\n",
+                    c.name, lightAlone, perSample, lightAlone / perSample);
+        EXPECT_GT(lightAlone, 0);
+        const bool narrow = c.phong > 0 && c.specular == 0 && c.offset < 1;
+        if (narrow)
+            EXPECT_LT(perSample, lightAlone / 2) << c.name;
+        else
+            EXPECT_LT(perSample, 1.25 * lightAlone) << c.name;
+    }
+}
+
 // ---------------------------------------------------------------- white furnace
 
 constexpr double kBackground = 0.5;
