@@ -311,6 +311,58 @@ TEST(Stability, VanishingAreaLightsTendToThePointLight) {
     }
 }
 
+TEST(Stability, HighlightsOfTinyHugeAndGrazingAreaLightsAreFinite) {
+    // Area lights' highlights draw a direction from the highlight's lobe and
+    // weigh it against the light's density (render/lighting.h): a light of
+    // 1e-80 x 1e-80 (its density per steradian, 1e161, squares past the
+    // largest double) and one of 1e-150 (whose area underflows), lobes of
+    // exponent 1e9 and 0, highlights of 1e6, a light edge-on to the floor.
+    // Every pixel finite; the tiny light's image within 1e-5 of the point
+    // light's, as VanishingAreaLightsTendToThePointLight asks without highlights.
+    struct Case {
+        double size, phong, phongSize, specular, roughness;
+        Vec3 axis2;
+    };
+    const Case cases[] = {
+        {1e-80, 1, 40, 0.8, 0.01, {0, 0, 1}}, {1e-12, 1, 1e9, 1, 1e-9, {0, 0, 1}}, {1, 1e6, 0, 1e6, 1, {0, 0, 1}},
+        {2, 1, 80, 1, 0.003, {0, 1, 0}},       {1e-150, 0, 40, 1, 0.05, {0, 0, 1}},
+    };
+    for (const AreaSampling sampling : {AreaSampling::Stratified, AreaSampling::SolidAngle}) {
+        for (const bool inverseSquare : {false, true}) {
+            for (const Case& c : cases) {
+                const auto make = [&](bool area) {
+                    Scene scene = shadowScene();
+                    for (Object& o : scene.objects) {
+                        Finish& f = o.texture.edit().finish;
+                        f.phong = c.phong;
+                        f.phongSize = c.phongSize;
+                        f.specular = c.specular;
+                        f.roughness = c.roughness;
+                    }
+                    scene.lights[0].inverseSquare = inverseSquare;
+                    if (area) {
+                        AreaLight light;
+                        light.axis1 = {c.size, 0, 0};
+                        light.axis2 = c.axis2 * c.size;
+                        light.size1 = light.size2 = 2;
+                        light.sampling = sampling;
+                        scene.lights[0].area = light;
+                        scene.lights[0].areaIllumination = true;
+                    }
+                    return scene;
+                };
+                const RenderResult r = render(make(true), options(16, 12, 4));
+                expectAllFinite(r);
+                if (c.size < 1e-9 && !inverseSquare) {
+                    const RenderResult point = render(make(false), options(16, 12, 4));
+                    for (size_t i = 0; i < r.color.pixels.size(); ++i)
+                        EXPECT_NEAR(r.color.pixels[i], point.color.pixels[i], 1e-5) << "size " << c.size;
+                }
+            }
+        }
+    }
+}
+
 TEST(Stability, AreaLightsWithParallelAxesAreFiniteLineLights) {
     for (const bool inverseSquare : {false, true}) {
         for (const AreaSampling sampling : {AreaSampling::PovGrid, AreaSampling::Stratified, AreaSampling::SolidAngle}) {

@@ -669,8 +669,10 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                         return distance > 0 ? highlightLobePdf(*sp.finish, sp.normal, sp.incoming, toLight / distance)
                                             : 0.0;
                     }();
-                    const double own = points->solidAnglePdf(position);
-                    const double share = own > 0 && std::isfinite(lobe) ? own * own / (own * own + lobe * lobe) : 1.0;
+                    // The power heuristic own^2 / (own^2 + lobe^2) through their ratio, which
+                    // neither overflows nor underflows for a tiny light's huge density.
+                    const double own = points->solidAnglePdf(position), ratio = lobe / own;
+                    const double share = own > 0 && std::isfinite(ratio) ? 1 / (1 + ratio * ratio) : 1.0;
                     addPointLight(
                         sp, position, samples[0].weight, false,
                         [&] { return lightIntensityAt(*light, cones, position, p, false); }, true,
@@ -682,8 +684,9 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                                         sampler.get2D(highlightDimension(sp.depth, index)), direction) &&
                     dot(sp.normal, direction) > 0 && points->meet(direction, position)) {
                     const double lobe = highlightLobePdf(*sp.finish, sp.normal, sp.incoming, direction);
-                    const double own = points->solidAnglePdf(position);
-                    const double scale = points->perSteradian(position) * lobe / (own * own + lobe * lobe);
+                    // perSteradian / lobe times lobe^2 / (own^2 + lobe^2), as above through the ratio.
+                    const double own = points->solidAnglePdf(position), ratio = own / lobe;
+                    const double scale = points->perSteradian(position) / lobe / (1 + ratio * ratio);
                     if (lobe > 0 && std::isfinite(scale) && scale > 0) {
                         Color seen = highlightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, direction) *
                                      lightIntensityAt(*light, cones, position, p, false) * scale;
