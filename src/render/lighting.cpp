@@ -643,71 +643,86 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         } else if (light->areaIllumination) {
             // Each sample point shades as a weighted point light; a highlight
             // is also sampled from its own lobe (highlights below).
-            std::optional<AreaSampler> points;
-            if (hasHighlight(*sp.finish)) {
-                if (cache.reachOf_ != sp.finish) cache.reachOf_ = sp.finish, cache.cosReach_ = highlightCosReach(*sp.finish);
+            const Finish& finish = *sp.finish;
+            bool highlights = hasHighlight(finish);
+            if (highlights) {
+                // How far the finish's highlight reaches, kept for the next point of the same finish.
+                PointLightSamples::Reach& reach = cache.reach_;
+                if (reach.phong != finish.phong || reach.phongSize != finish.phongSize ||
+                    reach.specular != finish.specular || reach.roughness != finish.roughness)
+                    reach = {finish.phong, finish.phongSize, finish.specular, finish.roughness,
+                             highlightCosReach(finish)};
+                highlights = highlightMayReach(reach.cosReach, sp.normal, sp.incoming, *light, sp.hit->point);
             }
-            if (hasHighlight(*sp.finish) &&
-                highlightMayReach(cache.cosReach_, sp.normal, sp.incoming, *light, sp.hit->point)) {
-                points.emplace(*light, sp.hit->point, sp.depth, index, true);
-                if (!points->continuous()) points.reset();
-            }
-            drawSamples(points ? &*points : nullptr);
-            PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
-            if (points) {
-                // Multiple importance sampling of the highlights (lighting.h):
-                // the light's sample point and a direction drawn from the
-                // highlight's lobe each estimate the highlight, weighted by
-                // the power heuristic p^2 / (p_light^2 + p_lobe^2) in solid angle;
-                // the diffuse term takes the light's sample alone.
-                const Vec3& p = sp.hit->point;
-                if (samples[0].weight > 0) {
-                    const Vec3 position = samples[0].position;
-                    const double lobe = [&] {
-                        const Vec3 toLight = position - p;
-                        const double distance = length(toLight);
-                        return distance > 0 ? highlightLobePdf(*sp.finish, sp.normal, sp.incoming, toLight / distance)
-                                            : 0.0;
-                    }();
-                    // The power heuristic own^2 / (own^2 + lobe^2) through their ratio, which
-                    // neither overflows nor underflows for a tiny light's huge density.
-                    const double own = points->solidAnglePdf(position), ratio = lobe / own;
-                    const double share = own > 0 && std::isfinite(ratio) ? 1 / (1 + ratio * ratio) : 1.0;
-                    addPointLight(
-                        sp, position, samples[0].weight, false,
-                        [&] { return lightIntensityAt(*light, cones, position, p, false); }, true,
-                        [&]() -> const Color& { return visible(samples[0]); },
-                        [&] { return crandNoise(sp, index, sampler); }, sum, share);
-                }
-                Vec3 direction, position;
-                if (sampleHighlightLobe(*sp.finish, sp.normal, sp.incoming,
-                                        sampler.get2D(highlightDimension(sp.depth, index)), direction) &&
-                    dot(sp.normal, direction) > 0 && points->meet(direction, position)) {
-                    const double lobe = highlightLobePdf(*sp.finish, sp.normal, sp.incoming, direction);
-                    // perSteradian / lobe times lobe^2 / (own^2 + lobe^2), as above through the ratio.
-                    const double own = points->solidAnglePdf(position), ratio = own / lobe;
-                    const double scale = points->perSteradian(position) / lobe / (1 + ratio * ratio);
-                    if (lobe > 0 && std::isfinite(scale) && scale > 0) {
-                        Color seen = highlightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, direction) *
-                                     lightIntensityAt(*light, cones, position, p, false) * scale;
-                        if (!isBlack(seen) && std::isfinite(maxComponent(seen))) {
-                            const Scene* media =
-                                hasMedia_ && light->mediaAttenuation && light->mediaInteraction ? &scene_ : nullptr;
-                            seen *= lightTransmittance(accel_, projected_.of(i), light->shadowless, *sp.hit, position,
-                                                       sp.time, counts, media, opaqueCasters_);
-                            sum += seen;
+            if (highlights) {
+                const AreaSampler made(*light, sp.hit->point, sp.depth, index, true);
+                drawSamples(&made);
+                if (made.continuous()) {
+                    const AreaSampler* const points = &made;
+                    PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
+                    // Multiple importance sampling of the highlights (lighting.h):
+                    // the light's sample point and a direction drawn from the
+                    // highlight's lobe each estimate the highlight, weighted by
+                    // the power heuristic p^2 / (p_light^2 + p_lobe^2) in solid angle;
+                    // the diffuse term takes the light's sample alone.
+                    const Vec3& p = sp.hit->point;
+                    if (samples[0].weight > 0) {
+                        const Vec3 position = samples[0].position;
+                        const double lobe = [&] {
+                            const Vec3 toLight = position - p;
+                            const double distance = length(toLight);
+                            return distance > 0 ? highlightLobePdf(*sp.finish, sp.normal, sp.incoming,
+                                                                   toLight / distance)
+                                                : 0.0;
+                        }();
+                        // The power heuristic own^2 / (own^2 + lobe^2) through their ratio, which
+                        // neither overflows nor underflows for a tiny light's huge density.
+                        const double own = points->solidAnglePdf(position), ratio = lobe / own;
+                        const double share = own > 0 && std::isfinite(ratio) ? 1 / (1 + ratio * ratio) : 1.0;
+                        addPointLight(
+                            sp, position, samples[0].weight, false,
+                            [&] { return lightIntensityAt(*light, cones, position, p, false); }, true,
+                            [&]() -> const Color& { return visible(samples[0]); },
+                            [&] { return crandNoise(sp, index, sampler); }, sum, share);
+                    }
+                    Vec3 direction, position;
+                    if (sampleHighlightLobe(*sp.finish, sp.normal, sp.incoming,
+                                            sampler.get2D(highlightDimension(sp.depth, index)), direction) &&
+                        dot(sp.normal, direction) > 0 && points->meet(direction, position)) {
+                        const double lobe = highlightLobePdf(*sp.finish, sp.normal, sp.incoming, direction);
+                        // perSteradian / lobe times lobe^2 / (own^2 + lobe^2), as above through the ratio.
+                        const double own = points->solidAnglePdf(position), ratio = own / lobe;
+                        const double scale = points->perSteradian(position) / lobe / (1 + ratio * ratio);
+                        if (lobe > 0 && std::isfinite(scale) && scale > 0) {
+                            Color seen =
+                                highlightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, direction) *
+                                lightIntensityAt(*light, cones, position, p, false) * scale;
+                            if (!isBlack(seen) && std::isfinite(maxComponent(seen))) {
+                                const Scene* media =
+                                    hasMedia_ && light->mediaAttenuation && light->mediaInteraction ? &scene_
+                                                                                                    : nullptr;
+                                seen *=
+                                    lightTransmittance(accel_, projected_.of(i), light->shadowless, *sp.hit,
+                                                       position, sp.time, counts, media, opaqueCasters_);
+                                sum += seen;
+                            }
                         }
                     }
+                    continue;
                 }
-                continue;
+            } else {
+                drawSamples(nullptr);
             }
+            PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
             for (int k = 0; k < range.count; ++k)
-                if (samples[k].weight > 0) pointLight(samples[k].position, false, samples[k].weight, false, samples + k);
+                if (samples[k].weight > 0)
+                    pointLight(samples[k].position, false, samples[k].weight, false, samples + k);
         } else {
             // A point light at the centre times the mean visibility of the samples.
             const Vec3 toCenter = light->position - sp.hit->point;
             const double distance = length(toCenter);
-            if (!(distance > 0)) continue;
+            if (!(distance > 0))
+                continue;
             const Vec3 l = toCenter / distance;
             if (!(dot(sp.normal, l) > 0)) continue;
             Color intensity = lightIntensityAt(*light, cones, light->position, sp.hit->point, true);

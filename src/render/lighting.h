@@ -235,9 +235,12 @@ private:
     std::vector<Sample> samples_;
     Light moved_; // a moving light as it is at the shaded point's time (render/light_path.h)
     SpotCones movedCones_; // its cones, if a spotlight
-    // The last finish whose highlight met an area light, and how far its highlight reaches (lighting.cpp).
-    const Finish* reachOf_ = nullptr;
-    double cosReach_ = 1;
+    // The highlight of the last finish that met an area light, and how far it reaches (lighting.cpp).
+    struct Reach {
+        double phong = -1, phongSize = 0, specular = -1, roughness = 0;
+        double cosReach = 1;
+    };
+    Reach reach_;
 };
 
 // The scene's lights as one render sees them: what is known before tracing
