@@ -171,10 +171,11 @@ int lightDimension(int depth, int lightIndex) {
 }
 
 int highlightDimension(int depth, int lightIndex) {
-    // Past radiosity's dimensions (integrator.cpp), two per (light, depth) pair.
-    constexpr int first = kFirstMediaDimension + 4 * kMaxLightDepth;
+    // Past crandDimension's 2^29 (and so past the media's and radiosity's, which
+    // start among them), two per (light, depth) pair; wraps (harmlessly) past 2^28.
+    constexpr int first = kFirstExtraLightDimension + (1 << 30) + (1 << 29);
     const int64_t slot = int64_t(std::max(lightIndex, 0)) * kMaxLightDepth + std::clamp(depth, 0, kMaxLightDepth - 1);
-    return first + static_cast<int>((2 * slot) % (int64_t(1) << 29));
+    return first + static_cast<int>((2 * slot) % (int64_t(1) << 28));
 }
 
 int crandDimension(int depth, int lightIndex) {
@@ -721,8 +722,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             // A point light at the centre times the mean visibility of the samples.
             const Vec3 toCenter = light->position - sp.hit->point;
             const double distance = length(toCenter);
-            if (!(distance > 0))
-                continue;
+            if (!(distance > 0)) continue;
             const Vec3 l = toCenter / distance;
             if (!(dot(sp.normal, l) > 0)) continue;
             Color intensity = lightIntensityAt(*light, cones, light->position, sp.hit->point, true);

@@ -204,7 +204,7 @@ int lightDimension(int depth, int lightIndex);
 int crandDimension(int depth, int lightIndex);
 // The 2D sampler dimension of the direction drawn from a highlight's lobe
 // toward area light `lightIndex` at depth `depth` (DirectLighting::shade):
-// past every other dimension, radiosity's included.
+// past every other dimension (crand's, the media's and radiosity's included).
 int highlightDimension(int depth, int lightIndex);
 
 // The light samples of one surface point and their shadows, shared by every
