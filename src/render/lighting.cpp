@@ -349,22 +349,14 @@ public:
     // from the shaded point: the density per steradian with which sample()
     // draws that direction.
     double solidAnglePdf(const Vec3& position) const {
-        if (sampling_ == AreaSampling::SolidAngle) return 1.0 / rectangle_->solidAngle();
-        const Vec3 d = point_ - position;
-        const double r2 = dot(d, d);
-        const double cosEmitter = std::fabs(dot(normal_, d)) / std::sqrt(r2);
-        return cosEmitter > 0 && r2 > 0 ? r2 / (areaMeasure_ * cosEmitter) : 0.0;
+        return sampling_ == AreaSampling::SolidAngle ? 1.0 / rectangle_->solidAngle() : uniformAreaPdf(position);
     }
 
     // What the light's colour is multiplied by per steradian at `position`:
     // sample()'s weight times solidAnglePdf (lighting.h: 1/A with
     // inverse_square, else r^2 / (A |cos theta_e|), the mean over the area).
     double perSteradian(const Vec3& position) const {
-        if (light_.inverseSquare) return 1.0 / areaMeasure_;
-        const Vec3 d = point_ - position;
-        const double r2 = dot(d, d);
-        const double cosEmitter = std::fabs(dot(normal_, d)) / std::sqrt(r2);
-        return cosEmitter > 0 ? r2 / (areaMeasure_ * cosEmitter) : 0.0;
+        return light_.inverseSquare ? 1.0 / areaMeasure_ : uniformAreaPdf(position);
     }
 
     // Where the ray from the shaded point in unit `direction` meets a
@@ -447,6 +439,15 @@ private:
     // but pov_grid) the pixel's own stratified sequence in the light's dimension.
     Vec2 uniform(Sampler& sampler, int k) const {
         return count_ == 1 ? sampler.get2D(dimension_) : sampler.get2DStratified(dimension_, k, count_);
+    }
+
+    // The density per steradian of points uniform over the area, seen from
+    // the shaded point: r^2 / (A |cos theta_e|), 0 edge-on.
+    double uniformAreaPdf(const Vec3& position) const {
+        const Vec3 d = point_ - position;
+        const double r2 = dot(d, d);
+        const double cosEmitter = std::fabs(dot(normal_, d)) / std::sqrt(r2);
+        return cosEmitter > 0 ? r2 / (areaMeasure_ * cosEmitter) : 0.0;
     }
 
     double emitterCosine(const Vec3& position) const {
@@ -672,9 +673,9 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                         const double lobe = [&] {
                             const Vec3 toLight = position - p;
                             const double distance = length(toLight);
-                            return distance > 0 ? highlightLobePdf(*sp.finish, sp.normal, sp.incoming,
-                                                                   toLight / distance)
-                                                : 0.0;
+                            return distance > 0
+                                       ? highlightLobePdf(finish, sp.normal, sp.incoming, toLight / distance)
+                                       : 0.0;
                         }();
                         // The power heuristic own^2 / (own^2 + lobe^2) through their ratio, which
                         // neither overflows nor underflows for a tiny light's huge density.
@@ -687,16 +688,16 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                             [&] { return crandNoise(sp, index, sampler); }, sum, share);
                     }
                     Vec3 direction, position;
-                    if (sampleHighlightLobe(*sp.finish, sp.normal, sp.incoming,
+                    if (sampleHighlightLobe(finish, sp.normal, sp.incoming,
                                             sampler.get2D(highlightDimension(sp.depth, index)), direction) &&
                         dot(sp.normal, direction) > 0 && points->meet(direction, position)) {
-                        const double lobe = highlightLobePdf(*sp.finish, sp.normal, sp.incoming, direction);
+                        const double lobe = highlightLobePdf(finish, sp.normal, sp.incoming, direction);
                         // perSteradian / lobe times lobe^2 / (own^2 + lobe^2), as above through the ratio.
                         const double own = points->solidAnglePdf(position), ratio = own / lobe;
                         const double scale = points->perSteradian(position) / lobe / (1 + ratio * ratio);
                         if (lobe > 0 && std::isfinite(scale) && scale > 0) {
                             Color seen =
-                                highlightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, direction) *
+                                highlightTerm(finish, sp.pigment, sp.normal, sp.incoming, direction) *
                                 lightIntensityAt(*light, cones, position, p, false) * scale;
                             if (!isBlack(seen) && std::isfinite(maxComponent(seen))) {
                                 const Scene* media =
