@@ -166,6 +166,36 @@ bool fillPacket(const Ray* rays, int count, const AcceleratorState& state, unsig
     return inRange.all();
 }
 
+// Whether the ray's segment [tMin, tMax] may meet the box (slabs in double;
+// the box is grown to cover rounding, AcceleratorState::sweptBoxes).
+inline bool segmentMeetsBox(const Ray& ray, const Vec3& lower, const Vec3& upper) {
+    double t0 = ray.tMin, t1 = ray.tMax;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double o = ray.origin[axis], d = ray.direction[axis];
+        if (d == 0) {
+            if (!(o >= lower[axis] && o <= upper[axis])) return false;
+            continue;
+        }
+        const double inverse = 1 / d;
+        double near = (lower[axis] - o) * inverse, far = (upper[axis] - o) * inverse;
+        if (near > far) std::swap(near, far);
+        t0 = near > t0 ? near : t0;
+        t1 = far < t1 ? far : t1;
+        if (!(t0 <= t1)) return false;
+    }
+    return true;
+}
+
+// The ray's geometry mask: every bit but those of the moving instances whose
+// swept box its segment misses (for intersect), or kShadowMask and the bits
+// of the shadow-casting ones it may meet (for occluded).
+inline unsigned rayMask(const Ray& ray, const AcceleratorState& state, bool shadow) {
+    unsigned mask = shadow ? kShadowMask : ~state.sweptBits;
+    for (const AcceleratorState::SweptBox& box : state.sweptBoxes)
+        if ((!shadow || box.castsShadow) && segmentMeetsBox(ray, box.lower, box.upper)) mask |= box.bit;
+    return mask;
+}
+
 // Whether Embree can take the ray (Accelerator::kLargestCoordinate).
 inline bool traceable(const Ray& ray, const AcceleratorState& state) {
     return withinEmbree(state.shifted ? ray.origin - state.frameOrigin : ray.origin) && withinEmbree(ray.direction);
@@ -495,7 +525,7 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     }
     RayQuery query(*impl_, ray.origin, ray.direction);
     RTCRayHit rayhit;
-    fillRay(ray, *impl_, rayhit.ray, 0xFFFFFFFFu);
+    fillRay(ray, *impl_, rayhit.ray, impl_->sweptBits ? rayMask(ray, *impl_, false) : 0xFFFFFFFFu);
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -518,6 +548,8 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
         for (int i = 0; i < count; ++i) found[i] = intersect(rays[i], hits[i]);
         return;
     }
+    if (impl_->sweptBits)
+        for (int i = 0; i < count; ++i) packet.ray.mask[i] = rayMask(rays[i], *impl_, false);
     // Each ray keeps its own query (its double-precision ray and crossing); the
     // callbacks find it by the ray's id through the first query's context.
     // Built in place for the rays there are (a zeroed array of 8 costs more).
@@ -581,7 +613,7 @@ bool Accelerator::occluded(const Ray& ray) const {
         return false;
     }
     RTCRay r;
-    fillRay(ray, *impl_, r, kShadowMask);
+    fillRay(ray, *impl_, r, impl_->sweptBits ? rayMask(ray, *impl_, true) : kShadowMask);
     if (impl_->anyMotion) { // a compact mesh's still instance holds only triangles
         RayQuery query(*impl_, ray.origin, ray.direction);
         rtcOccluded1(impl_->top.scene, &query.context, &r);
@@ -606,6 +638,8 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
         for (int i = 0; i < count; ++i) blocked[i] = occluded(rays[i]);
         return;
     }
+    if (impl_->sweptBits)
+        for (int i = 0; i < count; ++i) packet.mask[i] = rayMask(rays[i], *impl_, true);
     // With moving objects each ray keeps its double-precision query, found by
     // its id through the first query's context (occluded; intersectPacket).
     static_assert(std::is_trivially_destructible_v<RayQuery>, "the queries are never destroyed");

@@ -309,5 +309,8 @@ void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const Ind
 // carry only kShadowMask, which geometry with no_shadow lacks.
 inline constexpr unsigned kCameraMask = 1u;
 inline constexpr unsigned kShadowMask = 2u;
+// The bits above them go to moving instances, one each (AcceleratorState::sweptBoxes).
+inline constexpr unsigned kFirstSweptBit = 4u;
+inline constexpr size_t kMaxSweptBoxes = 8;
 
 } // namespace drt::accel
