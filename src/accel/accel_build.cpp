@@ -427,7 +427,7 @@ struct Builder {
     }
 
     // Gives each moving instance a mask bit of its own when there are at most
-    // kMaxSweptBoxes of them, all with finite boxes (more are culled well by
+    // kMaxSweptBoxes of them, all with finite boxes (more are culled by
     // Embree's own hierarchy over them, and each would cost every ray a test).
     void assignSweptBits() {
         if (sweptCandidates.empty() || sweptCandidates.size() > kMaxSweptBoxes) return;

@@ -27,7 +27,7 @@ struct AcceleratorState {
     // a level of one primitive: the one moving ball of a scene had every ray
     // of the scene moved into its level and tested against it. A ray carries
     // an instance's bit only if it may meet the box the instance sweeps over
-    // the shutter (sweptMask), so the others skip it at its mask.
+    // the shutter (accel.cpp rayMask), so the others skip it at its mask.
     struct SweptBox {
         Vec3 lower, upper; // world space, grown to be conservative (accel_build.cpp)
         unsigned bit = 0;
