@@ -169,6 +169,14 @@ bool fillPacket(const Ray* rays, int count, const AcceleratorState& state, unsig
 // Whether the ray's segment [tMin, tMax] may meet the box (slabs in double;
 // the box is grown to cover rounding, AcceleratorState::sweptBoxes).
 inline bool segmentMeetsBox(const Ray& ray, const Vec3& lower, const Vec3& upper) {
+    if (ray.tMax < INFINITY) { // a shadow ray's segment has a box of its own: apart from the box, no divisions
+        const Vec3 a = ray.origin + ray.tMin * ray.direction, b = ray.origin + ray.tMax * ray.direction;
+        for (int axis = 0; axis < 3; ++axis) {
+            const bool ordered = a[axis] <= b[axis];
+            const double low = ordered ? a[axis] : b[axis], high = ordered ? b[axis] : a[axis];
+            if (low > upper[axis] || high < lower[axis]) return false;
+        }
+    }
     double t0 = ray.tMin, t1 = ray.tMax;
     for (int axis = 0; axis < 3; ++axis) {
         const double o = ray.origin[axis], d = ray.direction[axis];
@@ -613,8 +621,11 @@ bool Accelerator::occluded(const Ray& ray) const {
         return false;
     }
     RTCRay r;
-    fillRay(ray, *impl_, r, impl_->sweptBits ? rayMask(ray, *impl_, true) : kShadowMask);
-    if (impl_->anyMotion) { // a compact mesh's still instance holds only triangles
+    const unsigned mask = impl_->sweptBits ? rayMask(ray, *impl_, true) : kShadowMask;
+    fillRay(ray, *impl_, r, mask);
+    // A compact mesh's still instance holds only triangles, and a ray without
+    // the one moving object's bit never reaches its level: neither needs the query.
+    if (impl_->anyMotion && (!impl_->sweptBits || (mask & impl_->sweptBits))) {
         RayQuery query(*impl_, ray.origin, ray.direction);
         rtcOccluded1(impl_->top.scene, &query.context, &r);
     } else {
@@ -638,8 +649,12 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
         for (int i = 0; i < count; ++i) blocked[i] = occluded(rays[i]);
         return;
     }
+    bool reachesMotion = impl_->anyMotion && !impl_->sweptBits;
     if (impl_->sweptBits)
-        for (int i = 0; i < count; ++i) packet.mask[i] = rayMask(rays[i], *impl_, true);
+        for (int i = 0; i < count; ++i) {
+            packet.mask[i] = rayMask(rays[i], *impl_, true);
+            reachesMotion |= (packet.mask[i] & impl_->sweptBits) != 0;
+        }
     // With moving objects each ray keeps its double-precision query, found by
     // its id through the first query's context (occluded; intersectPacket).
     static_assert(std::is_trivially_destructible_v<RayQuery>, "the queries are never destroyed");
@@ -647,7 +662,7 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
     RayQuery* lanes[kPacketSize];
     RTCIntersectContext plain;
     RTCIntersectContext* context = &plain;
-    if (impl_->anyMotion) { // a compact mesh's still instance holds only triangles
+    if (reachesMotion) { // a compact mesh's still instance holds only triangles (occluded)
         for (int i = 0; i < count; ++i) lanes[i] = new (storage[i]) RayQuery(*impl_, rays[i].origin, rays[i].direction);
         lanes[0]->lanes = lanes;
         context = &lanes[0]->context;
