@@ -120,6 +120,55 @@ TEST(HardeningScene, AWhileAddingObjectsForeverEndsAtTheObjectLimitWithOneError)
     EXPECT_CONTAINS(two.err, "2 errors");
 }
 
+// loop_iterations bounds one loop; passes_and_calls bounds the passes of all
+// loops and the macro calls together, over the whole read, in both dialects.
+// Each loop here stays under loop_iterations: nested loops multiply their
+// passes, a loop that sets its counter back (a fuzzer's find: a mutated
+// sort.pov ran for hours) never ends, and a macro calling itself twice makes
+// 2^(N+1) - 1 calls at a depth of only N. The limit ends the read.
+TEST(HardeningScene, LoopsAndMacroCallsStopAtTheLimitOfPassesAndCalls) {
+    const std::string tree = "#macro Tree(N)\n  #if (N > 0)\n    Tree(N - 1)\n    Tree(N - 1)\n  #end\n#end\n";
+    struct Case {
+        std::string file, scene, limits;
+        int limit;
+        std::string at, quoted, note; // the error's place and quoted line, a note that follows it
+    };
+    const Case cases[] = {
+        // 101 passes an outer pass: the 5001st is the inner loop's 52nd of the 50th.
+        {"nested.pov", "#declare I = 0;\n#while (I < 100)\n  #declare J = 0;\n  #while (J < 100)\n"
+                       "    #declare J = J + 1;\n  #end\n  #declare I = I + 1;\n#end\n",
+         "", 5000, "4:3", "    #while (J < 100)\n    ^\n", "nested.pov:2:1: note: in pass 50 of this #while loop\n"},
+        {"nested.drt", "#declare I = 0;\n#while (I < 100)\n  #for (J, 1, 100)\n    #declare K = J * 2;\n  #end\n"
+                       "  #declare I = I + 1;\n#end\nsphere { <0, 0, 0>, -1 }\n",
+         "", 5000, "3:3", "    #for (J, 1, 100)\n    ^\n", "nested.drt:2:1: note: in pass 50 of this #while loop\n"},
+        // 21 passes an outer pass: the 10001st is the inner loop's 5th of the 477th.
+        {"reset.pov", "#declare I = 0;\n#while (I < 20)\n  #declare J = 0;\n  #while (J < 20)\n"
+                      "    #declare J = J + 1;\n  #end\n  #declare I = 0;\n#end\n",
+         "--limit loop_iterations=1000", 10000, "4:3", "    #while (J < 20)\n    ^\n",
+         "reset.pov:2:1: note: in pass 477 of this #while loop\n  #while (I < 20)\n  ^\n"},
+        // 32767 calls in all, depth first: the 1001st is a Tree(1) of a first branch.
+        {"tree.pov", tree + "Tree(14)\n", "", 1000, "3:5", "      Tree(N - 1)\n      ^\n",
+         "tree.pov:7:1: note: in macro 'Tree' called here"},
+        {"tree.drt", tree + "Tree(14)\n", "", 1000, "3:5", "      Tree(N - 1)\n      ^\n",
+         "tree.drt:7:1: note: in macro 'Tree' called here"},
+    };
+    for (const Case& c : cases) {
+        const std::string limit = std::to_string(c.limit);
+        const Outcome o = runOn(c.file, c.scene, "check", c.limits + " --limit passes_and_calls=" + limit);
+        EXPECT_EQ(o.exitCode, 1) << c.file;
+        EXPECT_CONTAINS(o.err, c.file + ":" + c.at + ": error: the scene's loop passes and macro calls number " +
+                                   std::to_string(c.limit + 1) + " is over the limit of " + limit +
+                                   " (limit passes_and_calls = " + limit +
+                                   "; raise it with --limit passes_and_calls=N)\n" + c.quoted);
+        EXPECT_CONTAINS(o.err, c.note);
+        EXPECT_CONTAINS(o.err, "1 error"); // in .drt too, where the read otherwise goes on after an error
+    }
+    // Under the limit: 70 x 70 + 70 passes, 511 calls.
+    const std::string nestedFors = "#for (I, 1, 70)\n  #for (J, 1, 70)\n  #end\n#end\n";
+    for (const std::string& scene : {nestedFors, tree + "Tree(8)\n"})
+        EXPECT_EQ(runOn("under.pov", scene, "check", "--limit passes_and_calls=5000").exitCode, 0) << scene;
+}
+
 TEST(HardeningScene, PigmentDoublingStopsAtTheMemoryLimit) {
     std::string text = "#declare P0 = pigment { color rgb <1, 0, 0> }\n";
     for (int i = 1; i <= 40; ++i)

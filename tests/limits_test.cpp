@@ -29,6 +29,8 @@ TEST(Limits, SetLimitParsesNamesValuesAndSuffixes) {
     EXPECT_EQ(limits.objects, 12);
     EXPECT_EQ(setLimit(limits, "loop_iterations=3k"), "");
     EXPECT_EQ(limits.loopIterations, 3000);
+    EXPECT_EQ(setLimit(limits, "passes_and_calls=2G"), "");
+    EXPECT_EQ(limits.passesAndCalls, 2'000'000'000);
     EXPECT_EQ(setLimit(limits, "memory_mb=2k"), "");
     EXPECT_EQ(limits.memoryMB, 2000);
     EXPECT_EQ(setLimit(limits, "objects=1G"), "");

@@ -27,6 +27,8 @@ const std::vector<LimitInfo>& limitTable() {
         {"call_depth", &Limits::callDepth, 2000, "POV-Ray macro calls and includes nested at once"},
         {"nesting_depth", &Limits::nestingDepth, 1000, "blocks and expressions nested in each other"},
         {"loop_iterations", &Limits::loopIterations, int64_t(1) << 40, "passes of one #while or #for loop"},
+        {"passes_and_calls", &Limits::passesAndCalls, int64_t(1) << 40,
+         "passes of all #while and #for loops and macro calls, together, in the whole read of a scene"},
         {"objects", &Limits::objects, kInt, "objects in a scene (CSG members and copies counted)"},
         {"memory_mb", &Limits::memoryMB, int64_t(1) << 30, "MB of memory a scene may fill while it is read"},
         {"string_length", &Limits::stringLength, kInt, "characters of one string value"},

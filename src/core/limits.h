@@ -23,6 +23,7 @@ struct Limits {
     int64_t callDepth = 400;               // POV-Ray macro calls and includes nested at once
     int64_t nestingDepth = 200;            // blocks and expressions nested in each other
     int64_t loopIterations = 10'000'000;   // passes of one #while / #for loop
+    int64_t passesAndCalls = 10'000'000;   // passes of all loops and macro calls, in the whole read
     int64_t objects = 4'000'000;           // objects in a scene, CSG members and copies counted
     int64_t memoryMB = 8192;               // resident memory while a scene is read
     int64_t stringLength = 1 << 20;        // characters of one string value

@@ -5,16 +5,18 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace drt::lang {
 
 namespace {
 constexpr int kMaxErrors = 100; // then the evaluator stops
 } // namespace
 
-std::vector<SourceLoc> Evaluator::includeChain() const {
+std::vector<SourceLoc> Evaluator::includeChain(size_t frameCount) const {
     std::vector<SourceLoc> chain;
-    for (auto it = frames_.rbegin(); it != frames_.rend(); ++it)
-        if (!it->isMacro && it->includedFrom.valid()) chain.push_back(it->includedFrom);
+    for (size_t i = std::min(frameCount, frames_.size()); i-- > 0;)
+        if (!frames_[i].isMacro && frames_[i].includedFrom.valid()) chain.push_back(frames_[i].includedFrom);
     return chain;
 }
 

@@ -536,7 +536,8 @@ void Evaluator::invokeMacro(const Token& t) {
         failLimit(t.loc, limitExceeded(diags_.limits(), &Limits::callDepth, "macro calls and includes nested",
                                   double(frames_.size() + 1)) +
                         " (runaway recursion?)");
-    if (++macroCalls_ % kMemoryCheckInterval == 0) checkMemoryAt(t.loc);
+    if (++passesAndCalls_ > diags_.limits().passesAndCalls) failPassesAndCalls(t.loc);
+    if (passesAndCalls_ % kMemoryCheckInterval == 0) checkMemoryAt(t.loc);
     Frame f;
     f.tokens = m->tokens;
     f.pos = m->bodyStart;
@@ -552,14 +553,33 @@ void Evaluator::invokeMacro(const Token& t) {
 void Evaluator::countIteration(const char* directive) {
     Cond& c = conds_.back();
     const Limits& limits = diags_.limits();
-    if (++c.iterations > limits.loopIterations) {
+    const bool overLoop = ++c.iterations > limits.loopIterations;
+    if (overLoop || ++passesAndCalls_ > limits.passesAndCalls) {
         const SourceLoc loc = c.loc;
         const long iterations = c.iterations;
         conds_.pop_back(); // its #end was just read
+        if (!overLoop) failPassesAndCalls(loc);
         failLimit(loc, limitExceeded(limits, &Limits::loopIterations, fmt::format("this {} loop's pass", directive),
-                                double(iterations)));
+                                     double(iterations)));
     }
-    if (c.iterations % kMemoryCheckInterval == 0) checkMemoryAt(c.loc);
+    if (passesAndCalls_ % kMemoryCheckInterval == 0) checkMemoryAt(c.loc);
+}
+
+void Evaluator::failPassesAndCalls(SourceLoc loc) {
+    limitReached_ = true;
+    report(Severity::Error, loc,
+           limitExceeded(diags_.limits(), &Limits::passesAndCalls, "the scene's loop passes and macro calls number",
+                         double(passesAndCalls_)));
+    // The count runs out wherever the next pass or call happens to be, often deep
+    // in a macro of an include file; the outermost loop still running is the
+    // likely runaway, so it is named too.
+    for (const Cond& c : conds_) {
+        if (c.type != Cond::Type::While && c.type != Cond::Type::For) continue;
+        diags_.attachNote(c.loc, fmt::format("in pass {} of this {} loop", c.iterations + 1, condDirective(c)),
+                          includeChain(c.frame + 1));
+        break;
+    }
+    throw Abort{};
 }
 
 void Evaluator::checkMemoryAt(SourceLoc loc) {

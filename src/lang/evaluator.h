@@ -355,11 +355,16 @@ private:
     void messageDirective(const Token& t);
     void fileDirective(const Token& t);
     void versionDirective(const Token& t);
-    // Counts a pass of the innermost loop against Limits::loopIterations.
+    // Counts a pass of the innermost loop against Limits::loopIterations, and
+    // against Limits::passesAndCalls with every other pass and macro call of the read.
     void countIteration(const char* directive);
+    // The error for passesAndCalls_ over Limits::passesAndCalls, at the pass or call
+    // `loc`, with a note at the outermost loop still running. Ends the read.
+    [[noreturn]] void failPassesAndCalls(SourceLoc loc);
     // Skips raw tokens until a directive in `stops` at nesting depth 0; returns it.
     Token skipTo(const std::set<std::string>& stops, const Token& start);
-    std::vector<SourceLoc> includeChain() const;
+    // The #include directives that opened the first `frameCount` frames, innermost first.
+    std::vector<SourceLoc> includeChain(size_t frameCount = SIZE_MAX) const;
     // "'#while' has no matching #end": the directive that opened `c`.
     static const char* condDirective(const Cond& c);
     // Forgets the conditionals opened in the current frame (after their #end was found missing).
@@ -404,7 +409,9 @@ private:
     std::shared_ptr<const Origin> lastOrigin_; // of the last expression read by floatExpr/vectorExpr
     SourceLoc lastExpressionLoc_;
     int errorsSeen_ = 0;
-    long macroCalls_ = 0;
+    // Loop passes and macro calls so far (Limits::passesAndCalls): nested loops, a loop
+    // that resets its own counter and a macro calling itself twice stay bounded.
+    int64_t passesAndCalls_ = 0;
     int64_t built_ = 0;      // Limits::objects: nodes built and copied so far
     bool limitReached_ = false; // a resource limit ended the read (failLimit)
     int abandonedFile_ = -1; // an included file that is no scene, read no further after its first error
