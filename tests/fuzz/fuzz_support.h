@@ -36,6 +36,7 @@ inline Diagnostics fuzzDiagnostics() {
     Limits limits = diagnostics.limits();
     limits.objects = 1'000;
     limits.loopIterations = 5'000;
+    limits.passesAndCalls = 50'000; // all loops and macro calls of a read: nested loops, recursion
     limits.arrayElements = 20'000;
     limits.meshTriangles = 20'000;
     limits.memoryMB = 1536;
