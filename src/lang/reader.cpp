@@ -477,8 +477,6 @@ std::optional<Scene> Evaluator::run(int fileId, const std::string& baseDir) {
     const std::string& path = diags_.files().path(fileId);
     const std::string id = canonical((fs::path(baseDir) / fs::path(path).filename()).string());
     if (scene().kind == DialectKind::Pov) scene_.camera.right = Vec3(1.33, 0, 0);
-    if (!scene().mediaAttenuationDefault) {
-    }
     try {
         pushFile(fileId, SourceLoc{}, baseDir, id, sceneDialect_);
         scopes_.pop_back(); // the main file shares the global scope
