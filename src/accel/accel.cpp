@@ -166,8 +166,8 @@ bool fillPacket(const Ray* rays, int count, const AcceleratorState& state, unsig
     return inRange.all();
 }
 
-// Whether the ray's segment [tMin, tMax] may meet the box (slabs in double;
-// the box is grown to cover rounding, AcceleratorState::sweptBoxes).
+// Whether the ray's segment [tMin, tMax] may meet the box (in double; the box
+// is grown to cover rounding, AcceleratorState::swept).
 inline bool segmentMeetsBox(const Ray& ray, const Vec3& lower, const Vec3& upper) {
     if (ray.tMax < INFINITY) { // a shadow ray's segment has a box of its own: apart from the box, no divisions
         const Vec3 a = ray.origin + ray.tMin * ray.direction, b = ray.origin + ray.tMax * ray.direction;
@@ -178,30 +178,17 @@ inline bool segmentMeetsBox(const Ray& ray, const Vec3& lower, const Vec3& upper
         }
     }
     double t0 = ray.tMin, t1 = ray.tMax;
-    for (int axis = 0; axis < 3; ++axis) {
-        const double o = ray.origin[axis], d = ray.direction[axis];
-        if (d == 0) {
-            if (!(o >= lower[axis] && o <= upper[axis])) return false;
-            continue;
-        }
-        const double inverse = 1 / d;
-        double near = (lower[axis] - o) * inverse, far = (upper[axis] - o) * inverse;
-        if (near > far) std::swap(near, far);
-        t0 = near > t0 ? near : t0;
-        t1 = far < t1 ? far : t1;
-        if (!(t0 <= t1)) return false;
-    }
-    return true;
+    return clipToBox(lower, upper, ray.origin, ray.direction, t0, t1);
 }
 
-// The ray's geometry mask: every bit but those of the moving instances whose
-// swept box its segment misses (for intersect), or kShadowMask and the bits
-// of the shadow-casting ones it may meet (for occluded).
+// The ray's geometry mask in a scene with a swept box: every bit, less
+// kSweptBit where its segment misses the box (for intersect), or kShadowMask
+// and kSweptBit where it may meet the box of a shadow-casting object (for occluded).
 inline unsigned rayMask(const Ray& ray, const AcceleratorState& state, bool shadow) {
-    unsigned mask = shadow ? kShadowMask : ~state.sweptBits;
-    for (const AcceleratorState::SweptBox& box : state.sweptBoxes)
-        if ((!shadow || box.castsShadow) && segmentMeetsBox(ray, box.lower, box.upper)) mask |= box.bit;
-    return mask;
+    const AcceleratorState::SweptBox& box = *state.swept;
+    const bool meets = (!shadow || box.castsShadow) && segmentMeetsBox(ray, box.lower, box.upper);
+    if (shadow) return meets ? kShadowMask | kSweptBit : kShadowMask;
+    return meets ? 0xFFFFFFFFu : ~kSweptBit;
 }
 
 // Whether Embree can take the ray (Accelerator::kLargestCoordinate).
@@ -533,7 +520,7 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
     }
     RayQuery query(*impl_, ray.origin, ray.direction);
     RTCRayHit rayhit;
-    fillRay(ray, *impl_, rayhit.ray, impl_->sweptBits ? rayMask(ray, *impl_, false) : 0xFFFFFFFFu);
+    fillRay(ray, *impl_, rayhit.ray, impl_->swept ? rayMask(ray, *impl_, false) : 0xFFFFFFFFu);
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -556,7 +543,7 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
         for (int i = 0; i < count; ++i) found[i] = intersect(rays[i], hits[i]);
         return;
     }
-    if (impl_->sweptBits)
+    if (impl_->swept)
         for (int i = 0; i < count; ++i) packet.ray.mask[i] = rayMask(rays[i], *impl_, false);
     // Each ray keeps its own query (its double-precision ray and crossing); the
     // callbacks find it by the ray's id through the first query's context.
@@ -621,11 +608,11 @@ bool Accelerator::occluded(const Ray& ray) const {
         return false;
     }
     RTCRay r;
-    const unsigned mask = impl_->sweptBits ? rayMask(ray, *impl_, true) : kShadowMask;
+    const unsigned mask = impl_->swept ? rayMask(ray, *impl_, true) : kShadowMask;
     fillRay(ray, *impl_, r, mask);
     // A compact mesh's still instance holds only triangles, and a ray without
     // the one moving object's bit never reaches its level: neither needs the query.
-    if (impl_->anyMotion && (!impl_->sweptBits || (mask & impl_->sweptBits))) {
+    if (impl_->anyMotion && (!impl_->swept || (mask & kSweptBit))) {
         RayQuery query(*impl_, ray.origin, ray.direction);
         rtcOccluded1(impl_->top.scene, &query.context, &r);
     } else {
@@ -649,11 +636,11 @@ void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) cons
         for (int i = 0; i < count; ++i) blocked[i] = occluded(rays[i]);
         return;
     }
-    bool reachesMotion = impl_->anyMotion && !impl_->sweptBits;
-    if (impl_->sweptBits)
+    bool reachesMotion = impl_->anyMotion && !impl_->swept;
+    if (impl_->swept)
         for (int i = 0; i < count; ++i) {
             packet.mask[i] = rayMask(rays[i], *impl_, true);
-            reachesMotion |= (packet.mask[i] & impl_->sweptBits) != 0;
+            reachesMotion |= (packet.mask[i] & kSweptBit) != 0;
         }
     // With moving objects each ray keeps its double-precision query, found by
     // its id through the first query's context (occluded; intersectPacket).

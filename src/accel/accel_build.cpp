@@ -372,17 +372,14 @@ struct Builder {
         addObject(level, bounds, object, toLevel(Transform()), parentInverse, parentNoShadow, {&placed, &clipsTo});
     }
 
-    // A moving instance's world box over the shutter (AcceleratorState::sweptBoxes).
-    struct SweptCandidate {
-        unsigned id = 0; // Embree's, in the top level
-        Vec3 lower, upper;
-        bool castsShadow = true;
-        bool valid = false; // a finite box was found
-    };
-    std::vector<SweptCandidate> sweptCandidates{};
+    // The first moving instance's Embree id in the top level and its swept box
+    // (AcceleratorState::swept), and how many moving instances there are.
+    unsigned firstMovingId = 0;
+    std::optional<AcceleratorState::SweptBox> firstMovingBox{};
+    int movingInstances = 0;
 
     // The world box that the level's bounds (lower, upper) sweep over the
-    // shutter, as drt's callbacks place them (Instance::toWorld) and as
+    // shutter (AcceleratorState::swept), as drt's callbacks place them (Instance::toWorld) and as
     // Embree's own single-precision interpolation does (its transform is what
     // places a mesh's triangles): the corners at 32 times per step of the
     // motion, the box grown by twice the farthest any corner moves between two
@@ -426,23 +423,15 @@ struct Builder {
         return isFinite(lo) && isFinite(hi);
     }
 
-    // Gives each moving instance a mask bit of its own when there are at most
-    // kMaxSweptBoxes of them, all with finite boxes (more are culled by
-    // Embree's own hierarchy over them, and each would cost every ray a test).
-    void assignSweptBits() {
-        if (sweptCandidates.empty() || sweptCandidates.size() > kMaxSweptBoxes) return;
-        for (const SweptCandidate& c : sweptCandidates)
-            if (!c.valid) return;
-        unsigned bit = kFirstSweptBit;
-        for (const SweptCandidate& c : sweptCandidates) {
-            RTCGeometry instance = rtcGetGeometry(impl.top.scene, c.id);
-            rtcSetGeometryMask(instance, bit);
-            rtcCommitGeometry(instance);
-            impl.sweptBoxes.push_back({c.lower, c.upper, bit, c.castsShadow});
-            impl.sweptBits |= bit;
-            bit <<= 1;
-        }
-        impl.device.throwIfFailed("masking the moving objects");
+    // Gives a scene's one moving instance its own mask bit, when its box is
+    // finite (two or more are culled by Embree's own hierarchy over them).
+    void maskTheOneMovingObject() {
+        if (movingInstances != 1 || !firstMovingBox) return;
+        RTCGeometry instance = rtcGetGeometry(impl.top.scene, firstMovingId);
+        rtcSetGeometryMask(instance, kSweptBit);
+        rtcCommitGeometry(instance);
+        impl.swept = firstMovingBox;
+        impl.device.throwIfFailed("masking the moving object");
     }
 
     void addMovingObject(const Object& object, const Transform& before, const MotionChain& chain,
@@ -487,15 +476,16 @@ struct Builder {
         const bool noShadow = object.noShadow || parentNoShadow;
         rtcSetGeometryMask(instance, noShadow ? kCameraMask : (kCameraMask | kShadowMask));
         rtcCommitGeometry(instance);
-        SweptCandidate candidate;
-        candidate.castsShadow = !noShadow;
-        candidate.valid = bounds.any && sweptBox(moving, instance, bounds.lower, bounds.upper, candidate.lower,
-                                                  candidate.upper);
+        AcceleratorState::SweptBox box{{}, {}, !noShadow};
+        const bool boxed = ++movingInstances == 1 && bounds.any &&
+                           sweptBox(moving, instance, bounds.lower, bounds.upper, box.lower, box.upper);
         const unsigned id = rtcAttachGeometry(impl.top.scene, instance);
         rtcReleaseGeometry(instance);
         impl.device.throwIfFailed("adding a moving object");
-        candidate.id = id;
-        sweptCandidates.push_back(candidate);
+        if (boxed) {
+            firstMovingId = id;
+            firstMovingBox = box;
+        }
         if (bounds.any) {
             // The swept bounds, sampled at every step and between steps.
             const int samples = 4 * (steps - 1) + 4;
@@ -572,7 +562,7 @@ void buildLevels(const Scene& scene, AcceleratorState& impl) {
         const Vec3 shift = impl.shifted ? impl.frameOrigin : Vec3{};
         builder.extendWorldBounds(bounds.lower + shift, bounds.upper + shift);
     }
-    builder.assignSweptBits();
+    builder.maskTheOneMovingObject();
     builder.finishLevel(impl.top);
 }
 
@@ -592,8 +582,7 @@ void buildScene(const Scene& scene, AcceleratorState& impl) {
     impl.top.release();
     impl.instances.clear();
     impl.anyMotion = false;
-    impl.sweptBoxes.clear();
-    impl.sweptBits = 0;
+    impl.swept.reset();
     impl.bounded = false;
     impl.shifted = true;
     impl.frameOrigin = centre;

@@ -22,19 +22,17 @@ struct AcceleratorState {
     Level top;
     std::vector<Instance> instances; // moving objects and compact-mesh placements, by GeometryRef::index
     bool anyMotion = false;          // some instance moves
-    // Moving instances with a mask bit of their own (kFirstSweptBit on), when
-    // a scene has at most kMaxSweptBoxes of them. Embree tests no bounds above
-    // a level of one primitive: the one moving ball of a scene had every ray
-    // of the scene moved into its level and tested against it. A ray carries
-    // an instance's bit only if it may meet the box the instance sweeps over
-    // the shutter (accel.cpp rayMask), so the others skip it at its mask.
+    // A scene's one moving instance, when it has exactly one, with kSweptBit
+    // as its mask. Embree tests no bounds above a level of one primitive: the
+    // one moving ball of a scene had every ray of the scene moved into its
+    // level and tested against it. A ray carries the bit only if it may meet
+    // the box the instance sweeps over the shutter (accel.cpp rayMask), so the
+    // others skip it at its mask.
     struct SweptBox {
         Vec3 lower, upper; // world space, grown to be conservative (accel_build.cpp)
-        unsigned bit = 0;
         bool castsShadow = true;
     };
-    std::vector<SweptBox> sweptBoxes;
-    unsigned sweptBits = 0; // every SweptBox::bit
+    std::optional<SweptBox> swept;
     // One level per compact mesh, shared by all its placements.
     struct Prototype {
         std::shared_ptr<Level> level;

@@ -309,11 +309,10 @@ void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const Ind
 // carry only kShadowMask, which geometry with no_shadow lacks.
 inline constexpr unsigned kCameraMask = 1u;
 inline constexpr unsigned kShadowMask = 2u;
-// The bits above them go to moving instances, one each (AcceleratorState::sweptBoxes),
-// in a scene with at most kMaxSweptBoxes of them. Embree culls two or more by its
-// own hierarchy over them: examples/cook.drt with two and three moving balls
-// traced 5% and 7% slower with each given a bit, and 25% faster with one.
-inline constexpr unsigned kFirstSweptBit = 4u;
-inline constexpr size_t kMaxSweptBoxes = 1;
+// The bit of a scene's one moving instance (AcceleratorState::swept). Two or
+// more Embree culls by its own hierarchy over them: examples/cook.drt with two
+// and three moving balls traced 5% and 7% slower with a bit each, and 25%
+// faster with its one.
+inline constexpr unsigned kSweptBit = 4u;
 
 } // namespace drt::accel

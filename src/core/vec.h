@@ -2,7 +2,9 @@
 // Embree receives floats). POV-Ray convention: left-handed, x right, y up, z in.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace drt {
 
@@ -46,6 +48,25 @@ inline Vec3 max(const Vec3& a, const Vec3& b) { return {std::fmax(a.x, b.x), std
 
 // An orthonormal basis around a unit vector n (Duff et al. 2017, "Building an
 // orthonormal basis, revisited"): returns t, b with (t, b, n) right-handed.
+// Narrows [t0, t1] of the ray origin + t direction to the part inside the box
+// (the slab test). False when nothing is left (t0 > t1), or when the ray runs
+// outside the box parallel to an axis; a NaN quotient leaves its bound as it was.
+inline bool clipToBox(const Vec3& lower, const Vec3& upper, const Vec3& origin, const Vec3& direction, double& t0,
+                      double& t1) {
+    for (int i = 0; i < 3; ++i) {
+        if (direction[i] == 0) {
+            if (origin[i] < lower[i] || origin[i] > upper[i]) return false;
+            continue;
+        }
+        double a = (lower[i] - origin[i]) / direction[i], b = (upper[i] - origin[i]) / direction[i];
+        if (a > b) std::swap(a, b);
+        t0 = std::max(t0, a);
+        t1 = std::min(t1, b);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
 inline void orthonormalBasis(const Vec3& n, Vec3& t, Vec3& b) {
     const double sign = std::copysign(1.0, n.z);
     const double a = -1.0 / (sign + n.z);

@@ -142,18 +142,8 @@ Color inScattered(const MediaList& media, const std::vector<Color>& densities, c
 } // namespace
 
 double mediaMissDistance(const Vec3& lower, const Vec3& upper, const Vec3& origin, const Vec3& direction) {
-    double t0 = 0, t1 = 1e30; // slab test
-    for (int i = 0; i < 3; ++i) {
-        if (direction[i] == 0) {
-            if (origin[i] < lower[i] || origin[i] > upper[i]) return 0;
-            continue;
-        }
-        double a = (lower[i] - origin[i]) / direction[i], b = (upper[i] - origin[i]) / direction[i];
-        if (a > b) std::swap(a, b);
-        t0 = std::max(t0, a);
-        t1 = std::min(t1, b);
-    }
-    return t1 > t0 ? t1 : 0;
+    double t0 = 0, t1 = 1e30;
+    return clipToBox(lower, upper, origin, direction, t0, t1) && t1 > t0 ? t1 : 0;
 }
 
 void mediaBounds(const Scene& scene, const Accelerator& accel, Vec3& lower, Vec3& upper) {
