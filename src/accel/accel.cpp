@@ -600,67 +600,103 @@ void Accelerator::intersectPacket(const Ray* rays, int count, Hit* hits, bool* f
 // lands up to ~1e-5 away from that surface, more than the origin offset
 // (offsetOrigin), and a sphere turning about a far pivot shadowed half of
 // itself. Other scenes' shadow rays take Embree's ray as they are.
-bool Accelerator::occluded(const Ray& ray) const {
-    if (!traceable(ray, *impl_)) [[unlikely]] {
+namespace {
+
+// occluded(), and with `crossed` (one flag) occludedOpaque()'s query
+// (QueryContext::crossedTransmitter).
+bool occludedQuery(const AcceleratorState& state, const Ray& ray, uint8_t* crossed) {
+    if (!traceable(ray, state)) [[unlikely]] {
         const Ray shorter = shortened(ray);
-        if (traceable(shorter, *impl_)) return occluded(shorter);
-        ++impl_->untraceable;
+        if (traceable(shorter, state)) return occludedQuery(state, shorter, crossed);
+        ++state.untraceable;
         return false;
     }
     RTCRay r;
-    const unsigned mask = impl_->swept ? rayMask(ray, *impl_, true) : kShadowMask;
-    fillRay(ray, *impl_, r, mask);
+    const unsigned mask = state.swept ? rayMask(ray, state, true) : kShadowMask;
+    fillRay(ray, state, r, mask);
     // A compact mesh's still instance holds only triangles, and a ray without
     // the one moving object's bit never reaches its level: neither needs the query.
-    if (impl_->anyMotion && (!impl_->swept || (mask & kSweptBit))) {
-        RayQuery query(*impl_, ray.origin, ray.direction);
-        rtcOccluded1(impl_->top.scene, &query.context, &r);
+    if (state.anyMotion && (!state.swept || (mask & kSweptBit))) {
+        RayQuery query(state, ray.origin, ray.direction);
+        query.crossedTransmitter = crossed;
+        rtcOccluded1(state.top.scene, &query.context, &r);
     } else {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        rtcOccluded1(impl_->top.scene, &context, &r);
+        QueryContext context;
+        rtcInitIntersectContext(&context.context);
+        context.crossedTransmitter = crossed;
+        rtcOccluded1(state.top.scene, &context.context, &r);
     }
-    impl_->device.throwIfFailed("tracing a shadow ray");
+    state.device.throwIfFailed("tracing a shadow ray");
     return r.tfar < 0;
 }
 
-void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) const {
-    static_assert(kPacketSize == 8, "rtcOccluded8 traces the packet");
+// occludedPacket, and with `crossed` (kPacketSize flags, by lane) the query of occludedOpaquePacket.
+void occludedPacketQuery(const AcceleratorState& state, const Ray* rays, int count, bool* blocked, uint8_t* crossed) {
+    static_assert(Accelerator::kPacketSize == 8, "rtcOccluded8 traces the packet");
     if (count <= 1) { // nothing to share
-        if (count == 1) blocked[0] = occluded(rays[0]);
+        if (count == 1) blocked[0] = occludedQuery(state, rays[0], crossed);
         return;
     }
-    count = std::min(count, kPacketSize);
+    count = std::min(count, Accelerator::kPacketSize);
     alignas(32) RTCRay8 packet;
-    if (!fillPacket(rays, count, *impl_, kShadowMask, packet)) [[unlikely]] { // some ray beyond Embree's range
-        for (int i = 0; i < count; ++i) blocked[i] = occluded(rays[i]);
+    if (!fillPacket(rays, count, state, kShadowMask, packet)) [[unlikely]] { // some ray beyond Embree's range
+        for (int i = 0; i < count; ++i) blocked[i] = occludedQuery(state, rays[i], crossed ? crossed + i : nullptr);
         return;
     }
-    bool reachesMotion = impl_->anyMotion && !impl_->swept;
-    if (impl_->swept)
+    bool reachesMotion = state.anyMotion && !state.swept;
+    if (state.swept)
         for (int i = 0; i < count; ++i) {
-            packet.mask[i] = rayMask(rays[i], *impl_, true);
+            packet.mask[i] = rayMask(rays[i], state, true);
             reachesMotion |= (packet.mask[i] & kSweptBit) != 0;
         }
     // With moving objects each ray keeps its double-precision query, found by
     // its id through the first query's context (occluded; intersectPacket).
     static_assert(std::is_trivially_destructible_v<RayQuery>, "the queries are never destroyed");
-    alignas(RayQuery) unsigned char storage[kPacketSize][sizeof(RayQuery)];
-    RayQuery* lanes[kPacketSize];
-    RTCIntersectContext plain;
-    RTCIntersectContext* context = &plain;
+    alignas(RayQuery) unsigned char storage[Accelerator::kPacketSize][sizeof(RayQuery)];
+    RayQuery* lanes[Accelerator::kPacketSize];
+    QueryContext plain;
+    RTCIntersectContext* context = &plain.context;
     if (reachesMotion) { // a compact mesh's still instance holds only triangles (occluded)
-        for (int i = 0; i < count; ++i) lanes[i] = new (storage[i]) RayQuery(*impl_, rays[i].origin, rays[i].direction);
+        for (int i = 0; i < count; ++i) lanes[i] = new (storage[i]) RayQuery(state, rays[i].origin, rays[i].direction);
         lanes[0]->lanes = lanes;
+        lanes[0]->crossedTransmitter = crossed;
         context = &lanes[0]->context;
     } else {
-        rtcInitIntersectContext(&plain);
+        rtcInitIntersectContext(&plain.context);
+        plain.crossedTransmitter = crossed;
     }
-    alignas(32) int valid[kPacketSize];
-    for (int i = 0; i < kPacketSize; ++i) valid[i] = i < count ? -1 : 0;
-    rtcOccluded8(valid, impl_->top.scene, context, &packet);
-    impl_->device.throwIfFailed("tracing a shadow ray packet");
+    alignas(32) int valid[Accelerator::kPacketSize];
+    for (int i = 0; i < Accelerator::kPacketSize; ++i) valid[i] = i < count ? -1 : 0;
+    rtcOccluded8(valid, state.top.scene, context, &packet);
+    state.device.throwIfFailed("tracing a shadow ray packet");
     for (int i = 0; i < count; ++i) blocked[i] = packet.tfar[i] < 0;
+}
+
+Accelerator::Occlusion occlusionOf(bool blocked, uint8_t crossed) {
+    if (blocked) return Accelerator::Occlusion::Blocked;
+    return crossed ? Accelerator::Occlusion::ThroughTransmitters : Accelerator::Occlusion::Clear;
+}
+
+} // namespace
+
+bool Accelerator::occluded(const Ray& ray) const { return occludedQuery(*impl_, ray, nullptr); }
+
+void Accelerator::occludedPacket(const Ray* rays, int count, bool* blocked) const {
+    occludedPacketQuery(*impl_, rays, count, blocked, nullptr);
+}
+
+Accelerator::Occlusion Accelerator::occludedOpaque(const Ray& ray) const {
+    uint8_t crossed = 0;
+    const bool blocked = occludedQuery(*impl_, ray, impl_->transmitters ? &crossed : nullptr);
+    return occlusionOf(blocked, crossed);
+}
+
+void Accelerator::occludedOpaquePacket(const Ray* rays, int count, Occlusion* out) const {
+    count = std::clamp(count, 0, kPacketSize);
+    bool blocked[kPacketSize];
+    uint8_t crossed[kPacketSize] = {};
+    occludedPacketQuery(*impl_, rays, count, blocked, impl_->transmitters ? crossed : nullptr);
+    for (int i = 0; i < count; ++i) out[i] = occlusionOf(blocked[i], crossed[i]);
 }
 
 void Accelerator::installThreadBuffers(InstalledScratchSet& into) {

@@ -118,6 +118,17 @@ public:
     // packet (rtcOccluded8; worth it for coherent rays: a pixel's shadow rays
     // to one light). blocked[i] is what occluded(rays[i]) gives. Thread-safe.
     void occludedPacket(const Ray* rays, int count, bool* blocked) const;
+    // occluded() told apart by what the surfaces on the segment do with light
+    // (scene/light_through.h): Blocked if one that casts shadows and lets no
+    // light through lies on it; else ThroughTransmitters if one that may let
+    // light through does (the caller finds them and filters the light); else
+    // Clear. One query, where telling them apart with occluded() takes the
+    // nearest hits one by one. A scene whose shadow casters all let no light
+    // through never answers ThroughTransmitters. Thread-safe.
+    enum class Occlusion : uint8_t { Clear, Blocked, ThroughTransmitters };
+    Occlusion occludedOpaque(const Ray& ray) const;
+    // occludedOpaque() of up to kPacketSize rays at once, as occludedPacket.
+    void occludedOpaquePacket(const Ray* rays, int count, Occlusion* out) const;
 
     // A ray origin just off the surface at `hit`, on the side `direction` points
     // to, robust at every scale (integer-ULP offset along the geometric normal,

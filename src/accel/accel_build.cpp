@@ -4,6 +4,7 @@
 // object with Motion gets its own sub-scene under a motion-blurred instance.
 #include "accel/accel_impl.h"
 #include "core/error.h"
+#include "scene/light_through.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -58,8 +59,24 @@ struct Placed {
     const Transform* clipsTo = nullptr;
 };
 
+// The occlusion filter of a compact mesh's shared level in a scene with
+// surfaces that let light through: an opaque query records the hits of a
+// placement whose object may let light through (Instance::mayTransmit)
+// instead of being blocked by them (QueryContext). A placement sits in the
+// top level, so the context's instance is its id there.
+void placementFilter(const RTCFilterFunctionNArguments* args) {
+    if (!QueryContext::of(args->context).crossedTransmitter) return;
+    const auto* state = static_cast<const AcceleratorState*>(args->geometryUserPtr);
+    const unsigned id = args->context->instID[0];
+    if (id < state->top.geometries.size() && state->instances[state->top.geometries[id].index].mayTransmit)
+        recordTransmitters(args);
+}
+
 struct Builder {
     AcceleratorState& impl;
+
+    // Whether an opaque query must record the object rather than be blocked by it.
+    bool mayTransmit(const Object& object) const { return impl.transmitters && mayLetLightThrough(object); }
 
     // World (or world at time 0) -> level space: the frame shift, if any.
     Transform toLevel(const Transform& toWorld) const {
@@ -143,6 +160,7 @@ struct Builder {
         MeshRecord record;
         record.object = &object;
         record.inverse = inverse;
+        record.mayTransmit = mayTransmit(object);
         record.clips = std::move(clips);
         const bool mirrored = determinant3(toLevel.matrix()) < 0;
         if (const auto* box = std::get_if<Box>(&object.shape)) {
@@ -248,7 +266,9 @@ struct Builder {
         if (!indexedMeshBounds(*mesh.indexed, proto.lower, proto.upper)) return nullptr;
         proto.level = std::make_shared<Level>();
         proto.level->scene = newScene();
-        attachIndexedMesh(impl.device.get(), *proto.level, mesh.indexed);
+        // In a scene with surfaces that let light through, any placement may be one.
+        if (impl.transmitters) attachIndexedMesh(impl.device.get(), *proto.level, mesh.indexed, placementFilter, &impl);
+        else attachIndexedMesh(impl.device.get(), *proto.level, mesh.indexed);
         impl.device.throwIfFailed("adding a mesh");
         rtcCommitScene(proto.level->scene);
         impl.device.throwIfFailed("building a mesh");
@@ -266,6 +286,7 @@ struct Builder {
         placed.placed = impl.shifted ? toLevel.then(Transform::translate(impl.frameOrigin)) : toLevel;
         placed.object = &object;
         placed.inverse = inverse;
+        placed.mayTransmit = mayTransmit(object);
         Vec3 lo = proto->lower, hi = proto->upper;
         transformBounds(toLevel, lo, hi);
         bounds.add(lo, hi);
@@ -310,6 +331,7 @@ struct Builder {
             Primitive p;
             p.object = &object;
             p.noShadow = noShadow;
+            p.mayTransmit = mayTransmit(object);
             // The tree's root carries the inherited inversion; leaves keep their own.
             p.csg = std::make_unique<CsgNode>(csgNode(object, parentToLevel, where));
             p.csg->inverse = inverse;
@@ -340,6 +362,7 @@ struct Builder {
         p.object = &object;
         p.inverse = inverse;
         p.noShadow = noShadow;
+        p.mayTransmit = mayTransmit(object);
         p.bounded = shapeBounds(p.shape, p.lower, p.upper);
         if (p.bounded) transformBounds(toLevel, p.lower, p.upper);
         p.clips = std::move(clips);
@@ -555,6 +578,7 @@ namespace {
 
 void buildLevels(const Scene& scene, AcceleratorState& impl) {
     Builder builder{impl};
+    impl.transmitters = anyMayLetLightThrough(scene.objects);
     impl.top.scene = builder.newScene();
     Builder::LevelBounds bounds;
     for (const Object& object : scene.objects) builder.addPlaced(bounds, object, nullptr, nullptr, false, false);

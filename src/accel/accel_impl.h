@@ -22,6 +22,9 @@ struct AcceleratorState {
     Level top;
     std::vector<Instance> instances; // moving objects and compact-mesh placements, by GeometryRef::index
     bool anyMotion = false;          // some instance moves
+    // Some shadow-casting surface may let light through (scene/light_through.h):
+    // primitives, meshes and placements say which (mayTransmit).
+    bool transmitters = false;
     // A scene's one moving instance, when it has exactly one, with kSweptBit
     // as its mask. Embree tests no bounds above a level of one primitive: the
     // one moving ball of a scene had every ray of the scene moved into its

@@ -137,6 +137,9 @@ struct Primitive {
     const Object* object = nullptr;
     bool inverse = false;  // normals flipped
     bool noShadow = false;
+    // Some surface of it may let light through (scene/light_through.h), in a
+    // scene that has such surfaces: an opaque query records it (QueryContext).
+    bool mayTransmit = false;
     std::unique_ptr<CsgNode> csg; // set for Merge, Difference, Intersection
     CsgPlan csgPlan;              // planCsg(*csg), set with it
     // clipped_by on the primitive as a whole: a crossing counts only if its
@@ -160,6 +163,7 @@ struct MeshRecord {
     std::shared_ptr<const IndexedMesh> indexed;
     bool swapped = false;
     bool inverse = false;
+    bool mayTransmit = false; // as Primitive::mayTransmit
     double extent = 0; // largest side of the level-space bounds
     // clipped_by (level space): Embree's filter functions drop hits outside them.
     std::vector<CsgNode> clips;
@@ -193,6 +197,7 @@ struct Instance {
     std::optional<Transform> placed;
     const Object* object = nullptr;
     bool inverse = false;
+    bool mayTransmit = false; // a placement's object, as Primitive::mayTransmit
     double frameUnit = 0;
     // Level space -> world at time t.
     Transform toWorld(double t) const {
@@ -203,6 +208,17 @@ struct Instance {
 
 struct AcceleratorState; // accel_impl.h
 
+// What every query hands Embree as its context, so that a callback or filter
+// can tell an opaque query (Accelerator::occludedOpaque) from the others. In
+// an opaque query a surface that may let light through (mayTransmit) does not
+// block the ray: the callback or filter sets crossedTransmitter[ray id] instead
+// and lets the ray go on. Null in every other query.
+struct QueryContext {
+    RTCIntersectContext context; // first, so a context pointer is a query pointer
+    uint8_t* crossedTransmitter = nullptr;
+    static QueryContext& of(RTCIntersectContext* context) { return *reinterpret_cast<QueryContext*>(context); }
+};
+
 // One ray query (Accelerator::intersect, occluded). Embree hands the user
 // geometry callbacks a pointer to `context`, its first member, through which
 // they reach the ray in double precision: each analytic shape is solved once,
@@ -212,8 +228,7 @@ struct AcceleratorState; // accel_impl.h
 // A packet of rays (Accelerator::intersectPacket) has one query per ray; the
 // first one's context goes to Embree, its `lanes` lists them all, and a
 // callback finds a ray's query by the ray's id (lane()).
-struct RayQuery {
-    RTCIntersectContext context; // first, so a context pointer is a query pointer
+struct RayQuery : QueryContext {
     RayQuery* const* lanes = nullptr; // a packet's queries by ray id; null for a single ray
     const AcceleratorState* state = nullptr;
     Vec3 worldOrigin;
@@ -302,8 +317,14 @@ void transformBounds(const Transform& transform, Vec3& lower, Vec3& upper);
 void attachPrimitives(RTCDevice device, Level& level);
 // Adds one triangle geometry; returns its geometry id.
 void attachMesh(RTCDevice device, Level& level, MeshRecord mesh, bool noShadow);
-// Adds a compact mesh's triangles over its own arrays (shared buffers).
-void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const IndexedMesh> mesh);
+// Adds a compact mesh's triangles over its own arrays (shared buffers), with
+// `occludedFilter` (and `user` as its geometry's user data) if given.
+void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const IndexedMesh> mesh,
+                       RTCFilterFunctionN occludedFilter = nullptr, void* user = nullptr);
+// For an opaque query (QueryContext): the valid lanes of a filter's candidate
+// hits are refused and recorded as crossing a surface that may let light
+// through. False, and nothing done, for any other query.
+bool recordTransmitters(const RTCFilterFunctionNArguments* args);
 
 // Geometry masks: every ray for intersect() carries all bits; occlusion rays
 // carry only kShadowMask, which geometry with no_shadow lacks.

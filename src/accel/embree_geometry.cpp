@@ -334,8 +334,25 @@ static void occludedCallback(const RTCOccludedFunctionNArguments* args) {
     const auto* level = static_cast<const Level*>(args->geometryUserPtr);
     const Primitive& p = level->primitives[args->primID];
     if (p.noShadow) return;
-    runLanes(args, p, [args](auto n, auto solve) { occludedTopLanes<decltype(n)::value>(args, solve); },
-             [args, &p](auto n) { occludedLanes<decltype(n)::value>(args, p); });
+    const auto occlude = [&] {
+        runLanes(args, p, [args](auto n, auto solve) { occludedTopLanes<decltype(n)::value>(args, solve); },
+                 [args, &p](auto n) { occludedLanes<decltype(n)::value>(args, p); });
+    };
+    uint8_t* const crossed = p.mayTransmit ? QueryContext::of(args->context).crossedTransmitter : nullptr;
+    if (!crossed) return occlude();
+    // An opaque query and a surface that may let light through: where the
+    // lanes would be blocked they go on, recorded as crossing it.
+    constexpr unsigned kMaxLanes = 16; // Embree's widest packet
+    const unsigned n = std::min(args->N, kMaxLanes);
+    float before[kMaxLanes];
+    for (unsigned i = 0; i < n; ++i) before[i] = RTCRayN_tfar(args->ray, args->N, i);
+    occlude();
+    for (unsigned i = 0; i < n; ++i) {
+        float& tfar = RTCRayN_tfar(args->ray, args->N, i);
+        if (!args->valid[i] || tfar == before[i]) continue;
+        tfar = before[i];
+        crossed[RTCRayN_id(args->ray, args->N, i)] = 1;
+    }
 }
 
 void attachPrimitives(RTCDevice device, Level& level) {
@@ -376,6 +393,30 @@ static void clipFilter(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+bool recordTransmitters(const RTCFilterFunctionNArguments* args) {
+    uint8_t* const crossed = QueryContext::of(args->context).crossedTransmitter;
+    if (!crossed) return false;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        args->valid[i] = 0;
+        crossed[RTCRayN_id(args->ray, args->N, i)] = 1;
+    }
+    return true;
+}
+
+// The occlusion filter of a mesh that may let light through: its clips first,
+// then an opaque query records what is left instead of being blocked by it.
+static void occludedMeshFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* level = static_cast<const Level*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        const unsigned geomID = RTCHitN_geomID(args->hit, args->N, i);
+        if (!level->meshes[level->geometries[geomID].index].clips.empty()) clipFilter(args); // every lane's
+        break;
+    }
+    recordTransmitters(args);
+}
+
 void attachMesh(RTCDevice device, Level& level, MeshRecord mesh, bool noShadow) {
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geometry) return;
@@ -394,11 +435,10 @@ void attachMesh(RTCDevice device, Level& level, MeshRecord mesh, bool noShadow) 
     for (size_t i = 0; i < mesh.triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) indices[3 * i + k] = static_cast<unsigned>(mesh.triangles[i][k]);
     rtcSetGeometryMask(geometry, noShadow ? kCameraMask : (kCameraMask | kShadowMask));
-    if (!mesh.clips.empty()) {
-        rtcSetGeometryUserData(geometry, &level);
-        rtcSetGeometryIntersectFilterFunction(geometry, clipFilter);
-        rtcSetGeometryOccludedFilterFunction(geometry, clipFilter);
-    }
+    if (!mesh.clips.empty() || mesh.mayTransmit) rtcSetGeometryUserData(geometry, &level);
+    if (!mesh.clips.empty()) rtcSetGeometryIntersectFilterFunction(geometry, clipFilter);
+    if (mesh.mayTransmit) rtcSetGeometryOccludedFilterFunction(geometry, occludedMeshFilter);
+    else if (!mesh.clips.empty()) rtcSetGeometryOccludedFilterFunction(geometry, clipFilter);
     rtcCommitGeometry(geometry);
     const unsigned id = rtcAttachGeometry(level.scene, geometry);
     rtcReleaseGeometry(geometry);
@@ -414,7 +454,8 @@ namespace drt::accel {
 // Embree reads vertex buffers 16 bytes at a time, so the last float3 must be
 // followed by 4 readable bytes: the positions' capacity must exceed their size
 // (padIndexedMesh). A mesh without that slack is copied.
-void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const IndexedMesh> mesh) {
+void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const IndexedMesh> mesh,
+                       RTCFilterFunctionN occludedFilter, void* user) {
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geometry) return;
     const std::vector<Float3>& positions = mesh->positions;
@@ -429,6 +470,10 @@ void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const Ind
     }
     rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh->indices.data(), 0,
                                3 * sizeof(uint32_t), mesh->triangleCount());
+    if (occludedFilter) {
+        rtcSetGeometryUserData(geometry, user);
+        rtcSetGeometryOccludedFilterFunction(geometry, occludedFilter);
+    }
     rtcCommitGeometry(geometry);
     const unsigned id = rtcAttachGeometry(level.scene, geometry);
     rtcReleaseGeometry(geometry);

@@ -7,6 +7,7 @@
 #include "render/pigment.h"
 #include "render/shading.h"
 #include "render/texture_shading.h"
+#include "scene/light_through.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,8 +48,17 @@ Color surfaceAndMediaTransmittance(const Accelerator& accel, const Hit& from, co
         const double speed = length(ray.direction);
         return mediaTransmittance(media, ray.origin, ray.direction / speed, t * speed);
     };
-    if (!accel.occluded(ray)) return mediaScene && !mediaScene->media.empty() ? throughMedia(nullptr, 1) : Color(1);
-    if (opaqueCasters && !mediaScene) return Color(0); // the blocker lets nothing through: no need to find it
+    // One query tells a segment with nothing in the way and one blocked by a
+    // surface that lets no light through (black, whatever else or whatever
+    // media it crosses) from one that crosses only surfaces that may let light
+    // through, which alone are found one by one below.
+    const Accelerator::Occlusion occlusion = opaqueCasters
+                                                 ? (accel.occluded(ray) ? Accelerator::Occlusion::Blocked
+                                                                        : Accelerator::Occlusion::Clear)
+                                                 : accel.occludedOpaque(ray);
+    if (occlusion == Accelerator::Occlusion::Clear)
+        return mediaScene && !mediaScene->media.empty() ? throughMedia(nullptr, 1) : Color(1);
+    if (occlusion == Accelerator::Occlusion::Blocked) return Color(0);
 
     // Something is in the way: walk through it, filtering by each surface.
     Color transmittance(1);
@@ -123,45 +133,7 @@ Color lightTransmittance(const Accelerator& accel, const Accelerator* projected,
     return shadowTransmittance(accel, from, ray.origin + ray.direction * cut, time, counts, mediaScene, opaqueCasters);
 }
 
-namespace {
-
-bool mayLetLightThrough(const ColorFT& c) { return c.filter != 0 || c.transmit != 0; }
-
-bool mayLetLightThrough(const Pigment& p) {
-    if (p.imageMap || mayLetLightThrough(p.color)) return true;
-    for (const Pigment& child : p.children)
-        if (mayLetLightThrough(child)) return true;
-    for (const ColorMapEntry& entry : p.colorMap)
-        if (mayLetLightThrough(entry.color)) return true;
-    for (const Pigment::MapEntry& entry : p.pigmentMap)
-        if (mayLetLightThrough(entry.pigment)) return true;
-    return false;
-}
-
-bool mayLetLightThrough(const Texture& t) {
-    if (mayLetLightThrough(t.pigment)) return true;
-    for (const Texture::MapEntry& entry : t.map)
-        if (mayLetLightThrough(entry.texture)) return true;
-    for (const Texture& layer : t.layersAbove)
-        if (mayLetLightThrough(layer)) return true;
-    return false;
-}
-
-bool anyFilteringCaster(const std::vector<Object>& objects) {
-    for (const Object& object : objects) {
-        if (object.noShadow) continue;
-        if (mayLetLightThrough(object.texture)) return true;
-        if (const auto* mesh = std::get_if<Mesh>(&object.shape))
-            for (const Texture& own : mesh->textures)
-                if (mayLetLightThrough(own)) return true;
-        if (const auto* csg = std::get_if<Csg>(&object.shape); csg && anyFilteringCaster(csg->children)) return true;
-    }
-    return false;
-}
-
-} // namespace
-
-bool shadowsAreOpaque(const Scene& scene) { return !anyFilteringCaster(scene.objects); }
+bool shadowsAreOpaque(const Scene& scene) { return !anyMayLetLightThrough(scene.objects); }
 
 int lightDimension(int depth, int lightIndex) {
     if (lightIndex <= 0) return bounceDimension(depth, kOffsetLight);
@@ -482,15 +454,15 @@ DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel, boo
                               !fades && !isBlack(light.color));
     }
     // One occlusion query answers these lights' shadow rays (shadowTransmittance
-    // with opaque casters and no media): they can be traced ahead in packets.
-    if (opaqueCasters_)
-        for (size_t i = 0; i < scene.lights.size(); ++i) {
-            const Light& light = scene.lights[i];
-            const bool media = hasMedia_ && light.mediaAttenuation && light.mediaInteraction;
-            if (!light.area && !light.spotlight && !light.parallel && !light.shadowless && !lightMoves(light) && !media &&
-                !light.projectedThrough && !isBlack(light.color))
-                packetLights_.push_back(static_cast<int>(i));
-        }
+    // with no media; with casters that may let light through, all but those
+    // that cross only such casters): they can be traced ahead in packets.
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = scene.lights[i];
+        const bool media = hasMedia_ && light.mediaAttenuation && light.mediaInteraction;
+        if (!light.area && !light.spotlight && !light.parallel && !light.shadowless && !lightMoves(light) && !media &&
+            !light.projectedThrough && !isBlack(light.color))
+            packetLights_.push_back(static_cast<int>(i));
+    }
 }
 
 void DirectLighting::traceCameraShadows(const Ray* rays, const Hit* hits, const bool* found, int count,
@@ -522,9 +494,19 @@ void DirectLighting::traceCameraShadows(const Ray* rays, const Hit* hits, const 
             ::new (storage[n]) Ray(shadowRay(hits[k], position, rays[k].time));
             lane[n++] = k;
         }
-        bool blocked[kPacket];
-        accel_.occludedPacket(shadow, n, blocked);
-        for (int j = 0; j < n; ++j) out.answers_[size_t(i) * kPacket + size_t(lane[j])] = blocked[j] ? 2 : 1;
+        uint8_t* const answers = out.answers_.data() + size_t(i) * kPacket;
+        if (opaqueCasters_) {
+            bool blocked[kPacket];
+            accel_.occludedPacket(shadow, n, blocked);
+            for (int j = 0; j < n; ++j) answers[lane[j]] = blocked[j] ? 2 : 1;
+        } else {
+            Accelerator::Occlusion occlusion[kPacket];
+            accel_.occludedOpaquePacket(shadow, n, occlusion);
+            for (int j = 0; j < n; ++j)
+                answers[lane[j]] = occlusion[j] == Accelerator::Occlusion::Clear     ? 1
+                                   : occlusion[j] == Accelerator::Occlusion::Blocked ? 2
+                                                                                     : 0; // traced alone
+        }
     }
 }
 

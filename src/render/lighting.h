@@ -155,9 +155,11 @@ inline Facing facingOf(const Vec3& direction, const Hit& hit) {
 // The shadow rays of a camera packet's hits, traced ahead of their shading
 // as packets (one per light: DirectLighting::traceCameraShadows). Only for
 // what one occlusion query answers exactly (a point light that neither moves
-// nor is a spotlight, area light or shadowless, no media along its rays, no
-// shadow caster that lets light through); the shading then takes the answer
-// instead of tracing the same ray alone, and counts the ray when it does.
+// nor is a spotlight, area light or shadowless, no media along its rays); the
+// shading then takes the answer instead of tracing the same ray alone, and
+// counts the ray when it does. A ray that crosses only shadow casters that
+// may let light through (Accelerator::occludedOpaque) gets no answer: the
+// shading traces it alone and filters the light through them.
 // A shadow ray the shading does not ask for is traced and not counted.
 // The hits' facings, which decide the rays, are kept for the shading too.
 struct CameraShadows {
