@@ -237,6 +237,31 @@ TEST(Render, TotalInternalReflectionTracesTheReflectedRay) {
     EXPECT_EQ(grazing.stats.nonFiniteSamples + steep.stats.nonFiniteSamples, 0u);
 }
 
+// POV-Ray's rule where the transmitted ray is totally reflected: the light it
+// brings back is not filtered, and the surface's reflection about the same
+// normal is not traced as well (it would add the same mirror ray twice). Glass
+// with filter 0.6, transmit 0.2 and reflection 0.3: a grazing ray sees the blue
+// background once, at full strength; a steep one the red ceiling through the
+// filter (0.8 red) plus 0.3 of the blue reflection.
+TEST(Render, TotalInternalReflectionTracesTheMirrorRayOnceUnfiltered) {
+    for (const bool conserve : {false, true}) {
+        const auto scene = [&](Vec3 direction) {
+            Scene s = totalInternalReflectionScene(direction);
+            Texture& glass = s.objects[0].texture.edit();
+            glass.pigment.color = ColorFT{Color(1, 0.5, 0.25), 0.6, 0.2};
+            glass.finish.reflectionMin = glass.finish.reflectionMax = Color(0.3);
+            glass.finish.conserveEnergy = conserve;
+            return s;
+        };
+        const RenderResult grazing = render(scene({1, 0.2, 0}), options(1, 1));
+        expectColorNear(pixel(grazing), {0, 0, 1}, 1e-6);
+        EXPECT_EQ(grazing.stats.secondaryRays, 1u) << "the mirror ray alone";
+        const RenderResult steep = render(scene({0.2, 1, 0}), options(1, 1));
+        const double through = conserve ? 0.7 : 1.0; // conserve_energy: what is reflected is not transmitted
+        expectColorNear(pixel(steep), {0.8 * through, 0, 0.3}, 1e-6);
+    }
+}
+
 // Two facing mirrors with ambient a and reflection r: the pixel is
 // a (1 + r + ... + r^(levels-1)).
 Scene hallOfMirrors(int maxTraceLevel) {

@@ -281,6 +281,8 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
 
     Color filter(1); // what the layers so far let through
     Vec3 topNormal = surface.normal;
+    const size_t firstPushed = stack.size(); // this hit's rays are stack[firstPushed..)
+    bool anyMirrorsTop = false;
     for (size_t i = 0; i < count; ++i) {
         const Texture& layer = *layers[i];
         if (!layer.map.empty()) { // a patterned layer shades itself and all below it, seen through `filter`
@@ -329,9 +331,15 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         if (traceChildren && worthTracing(reflectedWeight)) {
             const Vec3 direction = lobeDirection(reflect(incoming, normal), finish.reflectionBlur, sampler,
                                                  bounceDimension(place.depth, kOffsetLobe));
-            if (dot(direction, normal) > 0) // below the surface: weight 0
+            if (dot(direction, normal) > 0) { // below the surface: weight 0
                 stack.emplace_back(hit, direction, ray.time, reflectedWeight,
                                    RayPlace{childDepth, place.medium, place.diffuseDepth});
+                // POV-Ray compares the layer's normal with the top one's to within 1e-10.
+                const Vec3 off = normal - topNormal;
+                stack.back().mirrorsTop =
+                    std::fabs(off.x) <= 1e-10 && std::fabs(off.y) <= 1e-10 && std::fabs(off.z) <= 1e-10;
+                anyMirrorsTop |= stack.back().mirrorsTop;
+            }
         }
 
         filter *= sp.pigment.rgb * sp.pigment.filter + Color(sp.pigment.transmit);
@@ -351,14 +359,22 @@ void Integrator::shadeLayers(const SurfaceHit& surface, const Texture* const* la
         if (surface.eta == 1.0)
             ideal = incoming; // no bending: exactly straight on
         else if (!refract(incoming, topNormal, surface.eta, ideal)) {
-            ideal = reflect(incoming, topNormal); // total internal reflection: the transmitted share follows the mirror ray
+            // Total internal reflection (POV-Ray's rule): the transmitted
+            // light, unfiltered, follows the mirror ray, and the layers'
+            // reflections about the same normal are not traced as well (they
+            // would count the mirror ray twice).
+            ideal = reflect(incoming, topNormal);
             internalReflection = true;
+            if (anyMirrorsTop)
+                stack.erase(std::remove_if(stack.begin() + std::ptrdiff_t(firstPushed), stack.end(),
+                                           [](const PendingRay& r) { return r.mirrorsTop; }),
+                            stack.end());
         }
         const Vec3 direction = lobeDirection(ideal, top.refractionBlur, sampler,
                                              bounceDimension(place.depth, kOffsetRefractionLobe));
         const double side = dot(direction, topNormal);
         if (internalReflection ? side > 0 : side < 0)
-            stack.emplace_back(hit, direction, ray.time, transmittedWeight,
+            stack.emplace_back(hit, direction, ray.time, internalReflection ? weight : transmittedWeight,
                                RayPlace{childDepth,
                                         internalReflection
                                             ? place.medium

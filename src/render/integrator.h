@@ -77,6 +77,9 @@ private:
         Ray ray;
         Color weight;
         RayPlace place;
+        // A layer's reflection about the top layer's normal: shadeLayers
+        // drops it where the transmitted ray is totally reflected (POV-Ray).
+        bool mirrorsTop = false;
     };
     // The surface point a ray hit, before any texture layer's bump normal.
     struct SurfaceHit {
