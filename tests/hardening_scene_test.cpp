@@ -169,6 +169,41 @@ TEST(HardeningScene, LoopsAndMacroCallsStopAtTheLimitOfPassesAndCalls) {
         EXPECT_EQ(runOn("under.pov", scene, "check", "--limit passes_and_calls=5000").exitCode, 0) << scene;
 }
 
+// A mesh given a triangle a pass by a loop that never ends (a misspelt
+// counter) stops at the objects limit, each such triangle counted as an
+// object, long before the passes_and_calls limit: its passes are heavy.
+TEST(HardeningScene, MeshTrianglesMadeInALoopCountAsObjects) {
+    const std::string scene = "#declare I = 0;\n"
+                              "mesh {\n"
+                              "  #while (I < 100)\n"
+                              "    triangle { <I, 0, 0>, <I, 1, 0>, <I + 1, 0, 0> }\n"
+                              "    #declare I = I + 1;\n"
+                              "  #end\n"
+                              "}\n";
+    // The mesh is one object, so its 100th triangle is the 101st.
+    for (const std::string file : {"loop.pov", "loop.drt"}) {
+        const Outcome o = runOn(file, scene, "check", "--limit objects=100");
+        EXPECT_EQ(o.exitCode, 1) << file;
+        EXPECT_CONTAINS(o.err, file + ":4:5: error: the scene's objects and patterns number 101 is over the limit of "
+                                      "100 (limit objects = 100; raise it with --limit objects=N)\n"
+                                      "      triangle { <I, 0, 0>, <I, 1, 0>, <I + 1, 0, 0> }\n"
+                                      "      ^\n");
+        // The notes name the mesh and the loop (the paths before them are the scene's folder).
+        EXPECT_CONTAINS(o.err, file + ":2:1: note: the triangles this mesh is given while a loop runs count as "
+                                      "objects\n  mesh {\n  ^\n");
+        EXPECT_CONTAINS(o.err, file + ":3:3: note: in pass 100 of this #while loop\n    #while (I < 100)\n    ^\n");
+        EXPECT_CONTAINS(o.err, "1 error");
+        EXPECT_EQ(runOn(file, scene, "check", "--limit objects=101").exitCode, 0) << file;
+    }
+    // Triangles written out are not counted: a mesh of 100 reads under a limit of 50 objects.
+    std::string written = "mesh {\n";
+    for (int i = 0; i < 100; ++i)
+        written += "  triangle { <" + std::to_string(i) + ", 0, 0>, <" + std::to_string(i) + ", 1, 0>, <" +
+                   std::to_string(i + 1) + ", 0, 0> }\n";
+    written += "}\n";
+    EXPECT_EQ(runOn("written.pov", written, "check", "--limit objects=50").exitCode, 0);
+}
+
 TEST(HardeningScene, PigmentDoublingStopsAtTheMemoryLimit) {
     std::string text = "#declare P0 = pigment { color rgb <1, 0, 0> }\n";
     for (int i = 1; i <= 40; ++i)

@@ -3,13 +3,14 @@
 // back by token index; a false branch is skipped raw, counting nested directives.
 #include "lang/evaluator.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 namespace drt::lang {
 
 namespace {
 
-bool opensBlock(const std::string& d) {
+bool opensBlock(std::string_view d) {
     return d == "if" || d == "ifdef" || d == "ifndef" || d == "switch" || d == "while" || d == "for" || d == "macro";
 }
 
@@ -61,7 +62,7 @@ void Evaluator::dropFrameConds() {
     if (!frames_.empty() && conds_.size() > frames_.back().condDepth) conds_.resize(frames_.back().condDepth);
 }
 
-Token Evaluator::skipTo(const std::set<std::string>& stops, const Token& start) {
+Token Evaluator::skipTo(std::initializer_list<std::string_view> stops, const Token& start) {
     int depth = 0;
     for (;;) {
         Frame& f = frames_.back();
@@ -72,9 +73,10 @@ Token Evaluator::skipTo(const std::set<std::string>& stops, const Token& start) 
         }
         ++f.pos;
         if (t.kind != TokenKind::Directive) continue;
-        if (depth == 0 && stops.count(t.text)) return t;
-        if (opensBlock(t.text)) ++depth;
-        else if (t.text == "end") --depth;
+        const std::string_view d = t.text;
+        if (depth == 0 && std::find(stops.begin(), stops.end(), d) != stops.end()) return t;
+        if (opensBlock(d)) ++depth;
+        else if (d == "end") --depth;
     }
 }
 
@@ -91,8 +93,7 @@ void Evaluator::directive(const Token& t) {
         noExpand_ = true;
         const Token name = expectWord("an identifier after #undef");
         noExpand_ = false;
-        for (auto it = scopes_.rbegin(); it != scopes_.rend(); ++it)
-            if (it->erase(name.text)) break;
+        scopes_.eraseInnermost(name.text);
     } else if (d == "include") includeDirective(t);
     else if (d == "if") openingDirective(t, [&] { ifDirective(t, 0); });
     else if (d == "ifdef") openingDirective(t, [&] { ifDirective(t, 1); });
@@ -265,8 +266,8 @@ void Evaluator::declareDirective(const Token& t, bool local) {
     // A declared scene item may be a copy of copies (a doubling "billion
     // laughs"): look at the memory the scene takes before keeping it.
     if (!value.isNumeric() && value.kind != Value::Kind::String) checkMemoryAt(name.loc);
-    if (element) **element = value;
-    else declare(name.text, value, local, scopeCount);
+    if (element) **element = std::move(value);
+    else declare(name.text, std::move(value), local, scopeCount);
     if (peekOperator().is(";")) next();
     else if (needsSemicolon) fail(lastToken_.loc, "expected ';' after the value of '" + name.text + "'");
 }
@@ -493,13 +494,14 @@ void Evaluator::macroDefinition(const Token& t) {
     Value v;
     v.kind = Value::Kind::Macro;
     v.macro = m;
-    scopes_.front()[m->name] = std::make_shared<Value>(v);
+    macroNames_.add(m->name);
+    scopes_.set(0, m->name, std::make_shared<Value>(v));
 }
 
 void Evaluator::invokeMacro(const Token& t) {
     const std::shared_ptr<const lang::Macro> m = lookup(t.text)->macro;
     expectSymbol("(", "to call macro '" + t.text + "'");
-    std::map<std::string, Cell> scope;
+    std::vector<std::pair<const std::string*, Cell>> scope; // the parameters' cells, bound when the body starts
     size_t count = 0;
     if (!peek().is(")")) {
         do {
@@ -518,10 +520,10 @@ void Evaluator::invokeMacro(const Token& t) {
                 }
             }
             if (byReference) {
-                scope[m->params[count]] = byReference;
+                scope.emplace_back(&m->params[count], byReference);
             } else {
                 pushBack(first);
-                scope[m->params[count]] = std::make_shared<Value>(rvalue());
+                scope.emplace_back(&m->params[count], std::make_shared<Value>(rvalue()));
             }
             ++count;
             // POV-Ray's commas between arguments are optional: `M(Obj -y)`.
@@ -547,7 +549,11 @@ void Evaluator::invokeMacro(const Token& t) {
     f.condDepth = conds_.size();
     f.dialect = m->dialect;
     pushFrame(std::move(f));
-    scopes_.push_back(std::move(scope));
+    scopes_.push();
+    for (auto& [param, cell] : scope) {
+        if (cell->kind == Value::Kind::Macro) macroNames_.add(*param);
+        scopes_.set(scopes_.size() - 1, *param, std::move(cell));
+    }
 }
 
 void Evaluator::countIteration(const char* directive) {
@@ -573,12 +579,33 @@ void Evaluator::failPassesAndCalls(SourceLoc loc) {
     // The count runs out wherever the next pass or call happens to be, often deep
     // in a macro of an include file; the outermost loop still running is the
     // likely runaway, so it is named too.
+    noteOutermostLoop();
+    throw Abort{};
+}
+
+void Evaluator::noteOutermostLoop() {
     for (const Cond& c : conds_) {
         if (c.type != Cond::Type::While && c.type != Cond::Type::For) continue;
         diags_.attachNote(c.loc, fmt::format("in pass {} of this {} loop", c.iterations + 1, condDirective(c)),
                           includeChain(c.frame + 1));
         break;
     }
+}
+
+bool Evaluator::loopRunning() const {
+    for (const Cond& c : conds_)
+        if (c.type == Cond::Type::While || c.type == Cond::Type::For) return true;
+    return false;
+}
+
+void Evaluator::countLoopTriangle(SourceLoc loc, SourceLoc mesh) {
+    if (built_ + 1 <= diags_.limits().objects) return countBuilt(loc, 1);
+    limitReached_ = true;
+    report(Severity::Error, loc,
+           limitExceeded(diags_.limits(), &Limits::objects, "the scene's objects and patterns number",
+                         double(built_ + 1)));
+    diags_.attachNote(mesh, "the triangles this mesh is given while a loop runs count as objects", includeChain());
+    noteOutermostLoop();
     throw Abort{};
 }
 

@@ -12,6 +12,7 @@
 #include "lang/keywords.h"
 #include "lang/lexer.h"
 #include "lang/load.h"
+#include "lang/symbols.h"
 #include "lang/value.h"
 #include "scene/texture_sharing.h"
 #include "scene/weight.h"
@@ -49,13 +50,22 @@ public:
     std::optional<Scene> run(int fileId, const std::string& baseDir);
 
     // ------------------------------------------------------------ tokens (reader.cpp)
-    Token next();         // directives run, macros expanded
-    Token peek();         // the same token next() will return
-    Token peekOperator(); // stops at a directive or a macro name (returned unconsumed, unexpanded)
+    // The next token, directives run and macros expanded. The reference is to
+    // the last token read (lastToken()): it holds until the next is read.
+    const Token& next();
+    // The same token next() will return. The reference is to the look-ahead:
+    // it holds until the next token is taken or given back.
+    const Token& peek();
+    // Stops at a directive or a macro name (returned unconsumed, unexpanded). The
+    // reference holds, as peek()'s, until the next token is taken or given back.
+    const Token& peekOperator();
     void pushBack(Token t);
-    bool acceptSymbol(const char* s);
-    Token expectSymbol(const char* s, const std::string& context);
-    bool acceptWord(const char* w);
+    bool acceptSymbol(std::string_view s);
+    // The next token, which must be the symbol `s`: else an error, "expected 's' <context>".
+    // A literal context goes to the const char* form, which makes no string unless it fails.
+    const Token& expectSymbol(const char* s, const std::string& context);
+    const Token& expectSymbol(const char* s, const char* context);
+    bool acceptWord(std::string_view w);
     Token expectWord(const std::string& context); // any word
     // After '{' was consumed: skips to its matching '}', directives included.
     void skipBlock();
@@ -125,8 +135,10 @@ public:
 
     // ------------------------------------------------------------ symbols (reader.cpp)
     Cell lookup(const std::string& name) const;
+    Cell lookup(const Token& word) const { return scopes_.find(word); } // the same, for a word token
     // lookup() for a use of the identifier: reports the warnings its declaration deferred.
     Cell use(const std::string& name);
+    Cell use(const Token& word);
     // use() for an identifier just read, following `[i]...` indices into an array.
     Cell useIndexed(const Token& name);
     // The element of array `cell` named by the `[i]...` that follow.
@@ -136,8 +148,9 @@ public:
     // `scopeCount`: how many scopes were open when the directive began (a
     // value may end inside a macro that is still open, as POV-Ray's
     // `#local V = M();` with the `;` in M's body); the name goes to those.
-    void declare(const std::string& name, const Value& value, bool local, size_t scopeCount = SIZE_MAX);
+    void declare(const std::string& name, Value value, bool local, size_t scopeCount = SIZE_MAX);
     bool isMacro(const std::string& name) const;
+    bool isMacro(const Token& word) const; // the same, for a word token
     // Declared names whose value is one of `kinds` (all names when empty), for suggestions.
     std::vector<std::string> declaredNames(std::initializer_list<Value::Kind> kinds = {}) const;
 
@@ -282,6 +295,12 @@ public:
     // Limits (core/limits.h): objects and pattern nodes built or copied
     // (Limits::objects), and the memory the scene takes.
     void countBuilt(SourceLoc loc, int64_t weight);
+    // Whether a #while or #for loop is running (in any file or macro).
+    bool loopRunning() const;
+    // A triangle (keyword at `loc`) of the mesh opened at `mesh`, read while a
+    // loop runs: it counts as an object, so a loop adding a triangle a pass
+    // without end stops at Limits::objects, with notes naming the mesh and the loop.
+    void countLoopTriangle(SourceLoc loc, SourceLoc mesh);
     void checkMemoryAt(SourceLoc loc);
     void finishScene(); // gamma rules, defaults
 
@@ -334,7 +353,10 @@ private:
         bool switchMatched = false;
     };
 
-    Token rawNext();
+    Token rawNext() { return rawNextRef(); }
+    // rawNext() without a copy: the token in its file's stream (valid until the
+    // stream forgets or frees it: TokenStream::rewind, release).
+    const Token& rawNextRef();
     // Frees the tokens no frame, loop or macro can go back to (after each
     // statement; TokenStream::release).
     void releaseReadTokens();
@@ -361,8 +383,11 @@ private:
     // The error for passesAndCalls_ over Limits::passesAndCalls, at the pass or call
     // `loc`, with a note at the outermost loop still running. Ends the read.
     [[noreturn]] void failPassesAndCalls(SourceLoc loc);
+    // The note under a limit's error that names the outermost loop still running, if any.
+    void noteOutermostLoop();
     // Skips raw tokens until a directive in `stops` at nesting depth 0; returns it.
-    Token skipTo(const std::set<std::string>& stops, const Token& start);
+    // `stops`: the directives (without '#') that end the skip, as literals (no set is built per skip).
+    Token skipTo(std::initializer_list<std::string_view> stops, const Token& start);
     // The #include directives that opened the first `frameCount` frames, innermost first.
     std::vector<SourceLoc> includeChain(size_t frameCount = SIZE_MAX) const;
     // "'#while' has no matching #end": the directive that opened `c`.
@@ -387,7 +412,9 @@ private:
     std::vector<Frame> frames_;
     std::vector<Cond> conds_;
     std::vector<Token> pushed_;
-    std::vector<std::map<std::string, Cell>> scopes_;
+    Cell deferredWarnings(Cell c); // use()'s reports
+    Scopes scopes_; // lang/symbols.h
+    NameFilter macroNames_; // every name a macro was ever bound to: isMacro's quick "no"
     std::set<std::string> warned_;
     // Files opened by `#fopen ID "file" read`, by ID (file_input.cpp).
     struct DataFile;
@@ -400,6 +427,8 @@ private:
     int expressionDepth_ = 0;
     bool noExpand_ = false;
     Token lastToken_, beforeLastToken_;
+    // beforeLastToken_ stands for a copy of lastToken_ (peek() leaves them equal; the copy is not made).
+    bool beforeIsLast_ = false;
     int braceDepth_ = 0; // since the statement started, for recovery
     struct OpenBlock {
         std::string keyword;

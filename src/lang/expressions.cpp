@@ -253,7 +253,7 @@ Value arithmetic(Evaluator& e, const Token& op, const Value& left, const Value& 
         const int n = kind == Kind::Color ? 5 : std::max(componentsOf(left), componentsOf(right));
         Value a = widen(left, n, kind, multiplicative ? 1 : 0), b = widen(right, n, kind, multiplicative ? 1 : 0);
         for (int i = 0; i < n; ++i) a.v[size_t(i)] = apply(a.v[size_t(i)], b.v[size_t(i)]);
-        out = a;
+        out = std::move(a);
     }
     if (divisionByZero) e.error(op.loc, "division by zero");
     else if (bad) e.error(op.loc, "result of '" + s + "' is not a finite number");
@@ -263,47 +263,50 @@ Value arithmetic(Evaluator& e, const Token& op, const Value& left, const Value& 
 // Binary operators by level: 1 |, 2 &, 3 comparisons, 4 + -, 5 * /.
 bool isLevelOperator(int level, const Token& t, bool inVector) {
     if (t.kind != TokenKind::Symbol) return false;
-    const std::string_view s = t.text; // literal lengths known at compile time: no strlen per compare
+    // Token::is: literal lengths known at compile time, characters compared in line
     switch (level) {
-    case 1: return s == "|";
-    case 2: return s == "&";
-    case 3: return s == "<" || s == "<=" || s == "=" || s == "!=" || s == ">=" || (s == ">" && !inVector);
-    case 4: return s == "+" || s == "-";
-    case 5: return s == "*" || s == "/";
+    case 1: return t.is("|");
+    case 2: return t.is("&");
+    case 3: return t.is("<") || t.is("<=") || t.is("=") || t.is("!=") || t.is(">=") || (t.is(">") && !inVector);
+    case 4: return t.is("+") || t.is("-");
+    case 5: return t.is("*") || t.is("/");
     default: return false;
     }
 }
 
-Value binaryLevel(Evaluator& e, int level) {
-    if (level == 6) {
-        const Token t = e.peek();
-        if (t.is("-") || t.is("+") || t.is("!")) {
-            e.next();
-            Evaluator::DepthGuard guard(e, t.loc);
-            Value v = binaryLevel(e, 6);
-            v.origin = nullptr;
-            if (t.is("!")) return Value::makeFloat(e.toFloat(v, t.loc) == 0 ? 1 : 0);
-            if (!v.isNumeric()) e.fail(t.loc, "cannot apply unary '" + t.text + "' to " + kindName(v));
-            if (t.is("-")) {
-                if (v.kind == Kind::Float) v.number = -v.number;
-                else
-                    for (double& c : v.v) c = -c;
-            }
-            return v;
-        }
-        return e.primary();
+// Level 6: unary operators, then a primary.
+Value unary(Evaluator& e) {
+    const Token& peeked = e.peek();
+    if (!(peeked.is("-") || peeked.is("+") || peeked.is("!"))) return e.primary();
+    const Token t = e.next();
+    Evaluator::DepthGuard guard(e, t.loc);
+    Value v = unary(e);
+    v.origin = nullptr;
+    if (t.is("!")) return Value::makeFloat(e.toFloat(v, t.loc) == 0 ? 1 : 0);
+    if (!v.isNumeric()) e.fail(t.loc, "cannot apply unary '" + t.text + "' to " + kindName(v));
+    if (t.is("-")) {
+        if (v.kind == Kind::Float) v.number = -v.number;
+        else
+            for (double& c : v.v) c = -c;
     }
-    Value left = binaryLevel(e, level + 1);
+    return v;
+}
+
+// Levels 1 to 5. Every return is of `left`, so it is made in the caller's
+// result (no move of a Value per level a primary passes through).
+Value binaryLevel(Evaluator& e, int level) {
+    Value left = level == 5 ? unary(e) : binaryLevel(e, level + 1);
     for (;;) {
-        const Token op = e.peekOperator();
-        if (!isLevelOperator(level, op, e.inVector_)) return left;
+        const Token& peeked = e.peekOperator();
+        if (!isLevelOperator(level, peeked, e.inVector_)) return left;
+        const Token op = peeked;
         // POV-Ray's commas are optional: `<a, b, c> <d, e, f>` is two vectors,
         // and a comparison needs floats, so '<' after a vector starts the next one.
         if (level == 3 && op.is("<") &&
             (left.kind == Kind::Vector || left.kind == Kind::Color || e.countBeforeVector_))
             return left;
         e.next();
-        const Value right = binaryLevel(e, level + 1);
+        const Value right = level == 5 ? unary(e) : binaryLevel(e, level + 1);
         if (level >= 4) {
             left = arithmetic(e, op, left, right);
             continue;
@@ -336,9 +339,8 @@ Value binaryLevel(Evaluator& e, int level) {
 Value Evaluator::expression() {
     DepthGuard guard(*this, peek().loc);
     Value condition = binaryLevel(*this, 1);
-    const Token q = peekOperator();
-    if (!q.is("?")) return condition;
-    next();
+    if (!peekOperator().is("?")) return condition;
+    const Token q = next();
     const double c = toFloat(condition, q.loc);
     const bool savedInVector = inVector_;
     inVector_ = false;
@@ -346,7 +348,8 @@ Value Evaluator::expression() {
     expectSymbol(":", "in a ?: expression");
     Value b = expression();
     inVector_ = savedInVector;
-    return c != 0 ? a : b;
+    condition = std::move(c != 0 ? a : b);
+    return condition;
 }
 
 } // namespace drt::lang

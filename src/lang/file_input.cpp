@@ -49,8 +49,7 @@ void Evaluator::openDataFile(const Token& handle, const std::string& name, Sourc
 
 void Evaluator::closeDataFile(const std::string& handle) {
     dataFiles_.erase(handle);
-    for (auto it = scopes_.rbegin(); it != scopes_.rend(); ++it)
-        if (it->erase(handle)) break;
+    scopes_.eraseInnermost(handle);
 }
 
 // #read (ID, Var, ...), after '#read'.

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
+#include <unordered_map>
 
 namespace drt::lang {
 
@@ -52,52 +54,95 @@ bool Evaluator::startsFloat(const Token& t) const {
     return words.count(t.text) > 0;
 }
 
+namespace {
+
+// What builtin() knows a name as: one lookup per name instead of one per table.
+struct BuiltinName {
+    std::optional<double> constant;    // pi, true, on, ...
+    bool function = false;             // called with a parenthesised argument list
+    double (*unary)(double) = nullptr; // a one-argument float function
+};
+
+const BuiltinName* builtinName(const std::string& w) {
+    static const std::unordered_map<std::string, BuiltinName> names = [] {
+        std::unordered_map<std::string, BuiltinName> m;
+        const std::pair<const char*, double> constants[] = {
+            {"pi", kPi}, {"tau", 2 * kPi}, {"true", 1}, {"yes", 1}, {"on", 1}, {"false", 0}, {"no", 0}, {"off", 0},
+            {"max_intersections", 64}};
+        for (const auto& [name, value] : constants) m[name].constant = value;
+        for (const char* name :
+             {"abs", "acos", "acosh", "asin", "asinh", "atan", "atanh", "atan2", "ceil", "cos", "cosh", "degrees",
+              "div", "exp", "floor", "int", "ln", "log", "max", "min", "mod", "pow", "radians", "rand", "seed", "sin",
+              "sinh", "sqrt", "tan", "tanh", "select", "bitwise_and", "bitwise_or", "bitwise_xor", "vaxis_rotate",
+              "vcross", "vdot", "vlength", "vnormalize", "vrotate", "vturbulence", "concat", "str", "chr", "substr",
+              "strlen", "val", "asc", "strupr", "strlwr", "vstr", "dimension_size", "dimensions", "defined",
+              "file_exists", "inside", "trace", "min_extent", "max_extent", "noise3d", "strcmp", "sqr", "prod", "sum",
+              "datetime"})
+            m[name].function = true;
+        const std::pair<const char*, double (*)(double)> unary[] = {
+            {"acos", [](double a) { return std::acos(a); }},    {"acosh", [](double a) { return std::acosh(a); }},
+            {"asin", [](double a) { return std::asin(a); }},    {"asinh", [](double a) { return std::asinh(a); }},
+            {"atanh", [](double a) { return std::atanh(a); }},  {"ceil", [](double a) { return std::ceil(a); }},
+            {"cos", [](double a) { return std::cos(a); }},      {"cosh", [](double a) { return std::cosh(a); }},
+            {"degrees", [](double a) { return a * 180.0 / kPi; }}, {"exp", [](double a) { return std::exp(a); }},
+            {"floor", [](double a) { return std::floor(a); }},  {"int", [](double a) { return std::trunc(a); }},
+            {"ln", [](double a) { return std::log(a); }},       {"log", [](double a) { return std::log10(a); }},
+            {"radians", [](double a) { return radians(a); }},   {"sin", [](double a) { return std::sin(a); }},
+            {"sinh", [](double a) { return std::sinh(a); }},    {"sqrt", [](double a) { return std::sqrt(a); }},
+            {"tan", [](double a) { return std::tan(a); }},      {"tanh", [](double a) { return std::tanh(a); }},
+            {"sqr", [](double a) { return a * a; }}};
+        for (const auto& [name, f] : unary) m[name].unary = f;
+        return m;
+    }();
+    const auto it = names.find(w);
+    return it == names.end() ? nullptr : &it->second;
+}
+
+} // namespace
+
 bool Evaluator::builtin(const Token& name, Value& out) {
     const std::string& w = name.text;
+    // Compared with literals as a string_view: a literal of another length costs no call of memcmp.
+    const std::string_view n = w;
     // ---- constants
-    static const std::map<std::string, double> floats = {
-        {"pi", kPi}, {"tau", 2 * kPi}, {"true", 1}, {"yes", 1}, {"on", 1}, {"false", 0}, {"no", 0}, {"off", 0},
-        {"max_intersections", 64}};
-    if (auto it = floats.find(w); it != floats.end()) {
-        out = Value::makeFloat(it->second);
+    const BuiltinName* known = builtinName(w);
+    if (known && known->constant) {
+        out = Value::makeFloat(*known->constant);
         return true;
     }
-    if (const std::optional<double> v = frameClockValue(options_.frame, w)) {
-        if (w == "clock") scene_.readsClock = true; // motion blur may evaluate the scene again over the shutter
+    // The clock's names (scene/frame_clock.h): clock, clock_delta, clock_on, frame_number, initial_frame,
+    // final_frame, initial_clock, final_clock.
+    const bool clockName = n.starts_with("clock") || n == "frame_number" || n.starts_with("initial_") ||
+                           n.starts_with("final_");
+    if (const std::optional<double> v = clockName ? frameClockValue(options_.frame, w) : std::nullopt) {
+        if (n == "clock") scene_.readsClock = true; // motion blur may evaluate the scene again over the shutter
         return out = Value::makeFloat(*v), true;
     }
-    if (w == "image_width") return out = Value::makeFloat(options_.imageWidth), true;
-    if (w == "image_height") return out = Value::makeFloat(options_.imageHeight), true;
-    if (w == "version") return out = Value::makeFloat(version_), true;
-    if (w == "x" || w == "y" || w == "z") {
-        out = Value::makeVector({w == "x" ? 1.0 : 0.0, w == "y" ? 1.0 : 0.0, w == "z" ? 1.0 : 0.0});
+    if (n == "image_width") return out = Value::makeFloat(options_.imageWidth), true;
+    if (n == "image_height") return out = Value::makeFloat(options_.imageHeight), true;
+    if (n == "version") return out = Value::makeFloat(version_), true;
+    if (n == "x" || n == "y" || n == "z") {
+        out = Value::makeVector({n == "x" ? 1.0 : 0.0, n == "y" ? 1.0 : 0.0, n == "z" ? 1.0 : 0.0});
         return true;
     }
-    if (w == "t") {
+    if (n == "t") {
         out.kind = Kind::Vector;
         out.size = 4;
         out.v = {0, 0, 0, 1, 0};
         return true;
     }
-    if (w == "u" || w == "v") {
+    if (n == "u" || n == "v") {
         out.kind = Kind::Vector;
         out.size = 2;
-        out.v = {w == "u" ? 1.0 : 0.0, w == "v" ? 1.0 : 0.0, 0, 0, 0};
+        out.v = {n == "u" ? 1.0 : 0.0, n == "v" ? 1.0 : 0.0, 0, 0, 0};
         return true;
     }
-    if (w == "input_file_name") return out = Value::makeString(diags_.files().path(name.loc.file)), true;
+    if (n == "input_file_name") return out = Value::makeString(diags_.files().path(name.loc.file)), true;
 
     // ---- functions with a parenthesised argument list
-    static const std::set<std::string> functions = {
-        "abs", "acos", "acosh", "asin", "asinh", "atan", "atanh", "atan2", "ceil", "cos", "cosh", "degrees", "div",
-        "exp", "floor", "int", "ln", "log", "max", "min", "mod", "pow", "radians", "rand", "seed", "sin", "sinh",
-        "sqrt", "tan", "tanh", "select", "bitwise_and", "bitwise_or", "bitwise_xor", "vaxis_rotate", "vcross",
-        "vdot", "vlength", "vnormalize", "vrotate", "vturbulence", "concat", "str", "chr", "substr", "strlen",
-        "val", "asc", "strupr", "strlwr", "vstr", "dimension_size", "dimensions", "defined", "file_exists",
-        "inside", "trace", "min_extent", "max_extent", "noise3d", "strcmp", "sqr", "prod", "sum", "datetime"};
-    if (!functions.count(w)) return false;
+    if (!known || !known->function) return false;
 
-    if (w == "defined") {
+    if (n == "defined") {
         expectSymbol("(", "after 'defined'");
         noExpand_ = true;
         const Token id = next();
@@ -107,7 +152,7 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         out = Value::makeFloat(lookup(id.text) ? 1 : 0);
         return true;
     }
-    if (w == "min_extent" || w == "max_extent") {
+    if (n == "min_extent" || n == "max_extent") {
         expectSymbol("(", "after the function name");
         const SourceLoc at = peek().loc;
         const Value v = rvalue();
@@ -116,10 +161,10 @@ bool Evaluator::builtin(const Token& name, Value& out) {
             fail(at, "'" + w + "' needs an object, not " + kindName(v));
         Vec3 lo(-kUnboundedExtent), hi(kUnboundedExtent); // a shape left out (warned about): unbounded
         if (!v.object->lightOnly) objectBounds(*v.object, lo, hi);
-        out = Value::makeVector(w == "min_extent" ? lo : hi);
+        out = Value::makeVector(n == "min_extent" ? lo : hi);
         return true;
     }
-    if (w == "trace" || w == "inside") {
+    if (n == "trace" || n == "inside") {
         out = traceOrInside(name);
         return true;
     }
@@ -127,6 +172,8 @@ bool Evaluator::builtin(const Token& name, Value& out) {
     expectSymbol("(", "after '" + w + "'");
     std::vector<Value> args;
     std::vector<SourceLoc> locs;
+    args.reserve(4); // most functions take 1 to 4: no copies as the lists grow
+    locs.reserve(4);
     if (!peek().is(")")) {
         const bool saved = inVector_;
         inVector_ = false;
@@ -182,24 +229,12 @@ bool Evaluator::builtin(const Token& name, Value& out) {
     };
 
     // One-argument float functions.
-    static const std::map<std::string, double (*)(double)> unary = {
-        {"acos", [](double a) { return std::acos(a); }},    {"acosh", [](double a) { return std::acosh(a); }},
-        {"asin", [](double a) { return std::asin(a); }},    {"asinh", [](double a) { return std::asinh(a); }},
-        {"atanh", [](double a) { return std::atanh(a); }},  {"ceil", [](double a) { return std::ceil(a); }},
-        {"cos", [](double a) { return std::cos(a); }},      {"cosh", [](double a) { return std::cosh(a); }},
-        {"degrees", [](double a) { return a * 180.0 / kPi; }}, {"exp", [](double a) { return std::exp(a); }},
-        {"floor", [](double a) { return std::floor(a); }},  {"int", [](double a) { return std::trunc(a); }},
-        {"ln", [](double a) { return std::log(a); }},       {"log", [](double a) { return std::log10(a); }},
-        {"radians", [](double a) { return radians(a); }},   {"sin", [](double a) { return std::sin(a); }},
-        {"sinh", [](double a) { return std::sinh(a); }},    {"sqrt", [](double a) { return std::sqrt(a); }},
-        {"tan", [](double a) { return std::tan(a); }},      {"tanh", [](double a) { return std::tanh(a); }},
-        {"sqr", [](double a) { return a * a; }}};
-    if (auto it = unary.find(w); it != unary.end()) {
+    if (known->unary) {
         need(1, 1);
-        setFloat(it->second(f(0)));
+        setFloat(known->unary(f(0)));
         return true;
     }
-    if (w == "abs") {
+    if (n == "abs") {
         need(1, 1);
         if (args[0].kind == Kind::Float) setFloat(std::fabs(args[0].number));
         else {
@@ -209,34 +244,34 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         }
         return true;
     }
-    if (w == "atan") {
+    if (n == "atan") {
         need(1, 2);
         setFloat(args.size() == 2 ? std::atan2(f(0), f(1)) : std::atan(f(0)));
         return true;
     }
-    if (w == "atan2" || w == "pow" || w == "mod" || w == "div") {
+    if (n == "atan2" || n == "pow" || n == "mod" || n == "div") {
         need(2, 2);
         const double a = f(0), b = f(1);
-        if (w == "atan2") setFloat(std::atan2(a, b));
-        else if (w == "pow") setFloat(std::pow(a, b));
-        else if (w == "mod") setFloat(b == 0 ? NAN : std::fmod(a, b));
+        if (n == "atan2") setFloat(std::atan2(a, b));
+        else if (n == "pow") setFloat(std::pow(a, b));
+        else if (n == "mod") setFloat(b == 0 ? NAN : std::fmod(a, b));
         else setFloat(b == 0 ? NAN : std::trunc(a / b));
         return true;
     }
-    if (w == "max" || w == "min") {
+    if (n == "max" || n == "min") {
         need(2, 1000);
         double r = f(0);
-        for (size_t i = 1; i < args.size(); ++i) r = w == "max" ? std::max(r, f(i)) : std::min(r, f(i));
+        for (size_t i = 1; i < args.size(); ++i) r = n == "max" ? std::max(r, f(i)) : std::min(r, f(i));
         setFloat(r);
         return true;
     }
-    if (w == "select") {
+    if (n == "select") {
         need(3, 4);
         const double s = f(0);
         out = s < 0 ? args[1] : (args.size() == 3 || s == 0 ? args[2] : args[3]);
         return true;
     }
-    if (w == "bitwise_and" || w == "bitwise_or" || w == "bitwise_xor") {
+    if (n == "bitwise_and" || n == "bitwise_or" || n == "bitwise_xor") {
         if (args.size() < 2) need(2, 2);
         const auto operand = [&](size_t i) {
             const double v = f(i);
@@ -247,12 +282,12 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         long r = operand(0);
         for (size_t i = 1; i < args.size(); ++i) {
             const long b = operand(i);
-            r = w == "bitwise_and" ? (r & b) : w == "bitwise_or" ? (r | b) : (r ^ b);
+            r = n == "bitwise_and" ? (r & b) : n == "bitwise_or" ? (r | b) : (r ^ b);
         }
         setFloat(double(r));
         return true;
     }
-    if (w == "seed") {
+    if (n == "seed") {
         need(1, 1);
         // POV-Ray takes the seed modulo 2^32.
         const double seed = f(0);
@@ -261,7 +296,7 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         setFloat(double(randomStreams_.size() - 1));
         return true;
     }
-    if (w == "rand") {
+    if (n == "rand") {
         need(1, 1);
         const double s = f(0);
         if (!(s >= 0) || s >= double(randomStreams_.size()) || s != std::floor(s))
@@ -270,27 +305,27 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         return true;
     }
     // ---- vectors
-    if (w == "vdot") {
+    if (n == "vdot") {
         need(2, 2);
         setFloat(dot(vec(0), vec(1)));
         return true;
     }
-    if (w == "vlength") {
+    if (n == "vlength") {
         need(1, 1);
         setFloat(length(vec(0)));
         return true;
     }
-    if (w == "vcross" || w == "vnormalize" || w == "vrotate" || w == "vaxis_rotate" || w == "vturbulence") {
+    if (n == "vcross" || n == "vnormalize" || n == "vrotate" || n == "vaxis_rotate" || n == "vturbulence") {
         Vec3 r;
-        if (w == "vcross") need(2, 2), r = cross(vec(0), vec(1));
-        else if (w == "vnormalize") {
+        if (n == "vcross") need(2, 2), r = cross(vec(0), vec(1));
+        else if (n == "vnormalize") {
             need(1, 1);
             const Vec3 a = vec(0);
             // POV-Ray gives <0,0,0> for a zero vector; drt's rules call it an error.
             if (length(a) == 0) refuse(name.loc, "'vnormalize' of a zero-length vector");
             r = length(a) == 0 ? Vec3(0) : normalize(a);
-        } else if (w == "vrotate") need(2, 2), r = rotateXyz(vec(0), vec(1));
-        else if (w == "vaxis_rotate") {
+        } else if (n == "vrotate") need(2, 2), r = rotateXyz(vec(0), vec(1));
+        else if (n == "vaxis_rotate") {
             need(3, 3);
             if (length(vec(1)) == 0) fail(locs[1], "vaxis_rotate about a zero axis");
             r = Transform::rotateAxis(vec(1), f(2)).vector(vec(0));
@@ -305,13 +340,13 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         out = Value::makeVector(r);
         return true;
     }
-    if (w == "noise3d") {
+    if (n == "noise3d") {
         warnOnce("noise", name.loc, "noise functions are not supported; '" + w + "' returns 0.5");
         setFloat(0.5);
         return true;
     }
     // ---- strings
-    if (w == "concat") {
+    if (n == "concat") {
         std::string s;
         for (size_t i = 0; i < args.size(); ++i) {
             s += str(i);
@@ -320,13 +355,13 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         out = Value::makeString(s);
         return true;
     }
-    if (w == "str") {
+    if (n == "str") {
         need(3, 3);
         out = Value::makeString(formatNumber(f(0), count(1, "str() width", -maxLength, maxLength),
                                                 count(2, "str() precision", -1e9, 100)));
         return true;
     }
-    if (w == "vstr") {
+    if (n == "vstr") {
         need(5, 5);
         const int n = count(0, "vstr() component count", -1e9, 1e9);
         const auto c = args[1].isNumeric() ? toColor(args[1], locs[1]) : std::array<double, 5>{};
@@ -341,29 +376,29 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         out = Value::makeString(s);
         return true;
     }
-    if (w == "chr") {
+    if (n == "chr") {
         need(1, 1);
         const int c = count(0, "chr() code", 0, 255);
         out = Value::makeString(std::string(1, char(c)));
         return true;
     }
-    if (w == "asc") {
+    if (n == "asc") {
         need(1, 1);
         setFloat(str(0).empty() ? 0 : double(static_cast<unsigned char>(str(0)[0])));
         return true;
     }
-    if (w == "strlen") {
+    if (n == "strlen") {
         need(1, 1);
         setFloat(double(str(0).size()));
         return true;
     }
-    if (w == "strcmp") {
+    if (n == "strcmp") {
         need(2, 2);
         const int c = str(0).compare(str(1));
         setFloat(c < 0 ? -1 : c > 0 ? 1 : 0);
         return true;
     }
-    if (w == "substr") {
+    if (n == "substr") {
         need(3, 3);
         const std::string& s = str(0);
         const int start = count(1, "substr() start", 1, double(s.size()) + 1); // 1-based
@@ -373,33 +408,33 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         out = Value::makeString(s.substr(size_t(start - 1), size_t(length)));
         return true;
     }
-    if (w == "strupr" || w == "strlwr") {
+    if (n == "strupr" || n == "strlwr") {
         need(1, 1);
         std::string s = str(0);
-        for (char& c : s) c = char(w == "strupr" ? std::toupper((unsigned char)c) : std::tolower((unsigned char)c));
+        for (char& c : s) c = char(n == "strupr" ? std::toupper((unsigned char)c) : std::tolower((unsigned char)c));
         out = Value::makeString(s);
         return true;
     }
-    if (w == "val") {
+    if (n == "val") {
         need(1, 1);
         setFloat(std::strtod(str(0).c_str(), nullptr));
         return true;
     }
-    if (w == "file_exists") {
+    if (n == "file_exists") {
         need(1, 1);
         setFloat(findInclude(str(0), ".").empty() ? 0 : 1);
         return true;
     }
-    if (w == "datetime") {
+    if (n == "datetime") {
         out = Value::makeString("");
         return true;
     }
     // ---- arrays
-    if (w == "dimensions" || w == "dimension_size") {
-        need(w == "dimensions" ? 1 : 2, w == "dimensions" ? 1 : 2);
+    if (n == "dimensions" || n == "dimension_size") {
+        need(n == "dimensions" ? 1 : 2, n == "dimensions" ? 1 : 2);
         if (args[0].kind != Kind::Array) fail(locs[0], "'" + w + "' needs an array");
         const auto& sizes = args[0].array->sizes;
-        if (w == "dimensions") {
+        if (n == "dimensions") {
             setFloat(double(sizes.size()));
         } else {
             const int d = count(1, "dimension", 1, double(sizes.size()));

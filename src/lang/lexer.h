@@ -9,6 +9,7 @@
 #include "core/diagnostics.h"
 #include "core/vec.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -31,11 +32,24 @@ struct Token {
     std::string text;
     double number = 0;
     SourceLoc loc;
+    // The reader's cache of where a word's name is in its symbol table
+    // (lang/symbols.h: Scopes::slotOf), made at its first lookup: a loop or a
+    // macro replaying the token looks the name up without hashing it again.
+    mutable const void* symbol = nullptr;
+    mutable uint32_t symbolTable = 0; // the table `symbol` is in (0: none)
 
     // A string_view, not a const char*: a literal's length is known when this
-    // is inlined, so a mismatch costs a length compare, not a strlen and a strcmp.
-    bool is(std::string_view symbol) const { return kind == TokenKind::Symbol && text == symbol; }
-    bool isWord(std::string_view word) const { return kind == TokenKind::Word && text == word; }
+    // is inlined, so a mismatch costs a length compare, not a strlen and a strcmp;
+    // the characters are compared here, not by a call of memcmp (symbols are
+    // a character or two).
+    bool is(std::string_view symbol) const { return kind == TokenKind::Symbol && textIs(symbol); }
+    bool isWord(std::string_view word) const { return kind == TokenKind::Word && textIs(word); }
+    bool textIs(std::string_view s) const {
+        if (text.size() != s.size()) return false;
+        for (size_t i = 0; i < s.size(); ++i)
+            if (text[i] != s[i]) return false;
+        return true;
+    }
 };
 
 // `'sphere'`, `'{'`, `string "abc"`, `'#declare'`, `end of file`: a token for messages.

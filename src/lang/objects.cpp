@@ -71,8 +71,8 @@ ShapeReader shapeReader(const std::string& keyword) {
 }
 
 bool isUnsupportedShape(const std::string& keyword) {
-    static const std::set<std::string> words = {"parametric", "sphere_sweep", "ovus"};
-    return words.count(keyword) > 0;
+    const std::string_view w = keyword;
+    return w == "parametric" || w == "sphere_sweep" || w == "ovus";
 }
 
 std::string shapeHead(const Shape& shape, ShapeText& text) {
@@ -229,7 +229,7 @@ void objectBounds(const ObjectValue& po, Vec3& lower, Vec3& upper) { drt::object
 // ------------------------------------------------------------ objects
 
 bool Evaluator::isObjectWord(const Token& t) const {
-    return t.kind == TokenKind::Word && !lookup(t.text) &&
+    return t.kind == TokenKind::Word && !lookup(t) &&
            (t.text == "object" || t.text == "light_group" || shapeReader(t.text) || isUnsupportedShape(t.text));
 }
 

@@ -482,7 +482,7 @@ void Evaluator::warpBlock(const Token& t, Pigment& p) {
         return;
     }
     Turbulence turbulence;
-    while (turbulenceItem(peek(), turbulence)) {
+    while (turbulenceItem(Token(peek()), turbulence)) {
     }
     expectSymbol("}", "to end 'warp { turbulence ... }'");
     if (p.toWorld.isIdentity() && p.turbulence.amount == Vec3(0, 0, 0)) {

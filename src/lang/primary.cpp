@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <unordered_set>
 
 namespace drt::lang {
 
@@ -17,7 +18,7 @@ double srgbToLinear(double c) {
     return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-bool isColorKeyword(const std::string& w) {
+bool isColorKeyword(std::string_view w) {
     return w == "rgb" || w == "rgbf" || w == "rgbt" || w == "rgbft" || w == "srgb" || w == "srgbf" || w == "srgbt" ||
            w == "srgbft";
 }
@@ -142,11 +143,13 @@ Value Evaluator::primary() {
         }
         return Value::makeColor(c);
     }
-    if (w == "color" || w == "colour") return Value::makeColor(colorExpr());
+    if (t.isWord("color") || t.isWord("colour")) return Value::makeColor(colorExpr());
+    // builtin() first: its names are asked for far more often, and no internal
+    // function (f_...) is one of them, so the order changes no meaning.
+    Value out;
+    if (builtin(t, out)) return postfix(std::move(out), t.loc);
     if (const int internal = internalNamed(w); internal >= 0) // f_sphere, f_r, ... without functions.inc
         return postfix(callFunction(t, *internalFunction(internal)), t.loc);
-    Value out;
-    if (builtin(t, out)) return postfix(out, t.loc);
     std::vector<std::string> known{"x",           "y",           "z",           "pi",           "color",
                                    "rgb",         "rgbf",        "rgbt",        "rgbft",        "srgb",
                                    "clock",       "clock_delta", "clock_on",    "frame_number", "initial_frame",
@@ -182,7 +185,7 @@ Cell Evaluator::indexArray(Cell cell, const Token& t) {
 }
 
 Cell Evaluator::useIndexed(const Token& t) {
-    Cell c = use(t.text);
+    Cell c = use(t);
     if (c && c->kind == Kind::Array) c = indexArray(c, t);
     return c;
 }
@@ -225,17 +228,19 @@ Value Evaluator::arrayLiteral(SourceLoc loc) {
 }
 
 Value Evaluator::rvalue() {
-    const Token t = peek();
-    Value v;
-    if (t.kind == TokenKind::Word && !lookup(t.text)) {
+    const Token& peeked = peek();
+    if (peeked.kind == TokenKind::Word && !lookup(peeked)) {
+        const Token t = peeked;
+        Value v;
         const std::string& w = t.text;
-        if (isObjectWord(t) || w == "light_source") {
+        const std::string_view n = w; // compared with literals without strlen or memcmp calls
+        if (isObjectWord(t) || n == "light_source") {
             next();
             v.kind = Kind::Object;
             v.object = std::make_shared<ObjectValue>(object(t));
             return v;
         }
-        if (w == "texture") {
+        if (n == "texture") {
             next();
             v.kind = Kind::Texture;
             Texture layered = texture(Texture{});
@@ -247,31 +252,31 @@ Value Evaluator::rvalue() {
             v.texture = std::make_shared<Texture>(std::move(layered));
             return v;
         }
-        if (w == "pigment") {
+        if (n == "pigment") {
             next();
             v.kind = Kind::Pigment;
             v.pigment = std::make_shared<Pigment>(pigment(Pigment{}));
             return v;
         }
-        if (w == "finish") {
+        if (n == "finish") {
             next();
             v.kind = Kind::Finish;
             v.finish = std::make_shared<Finish>(finish(Finish{}));
             return v;
         }
-        if (w == "interior") {
+        if (n == "interior") {
             next();
             v.kind = Kind::Interior;
             v.interior = std::make_shared<Interior>(interior(Interior{}));
             return v;
         }
-        if (w == "media") {
+        if (n == "media") {
             next();
             v.kind = Kind::Media;
             v.media = std::make_shared<Media>(media(Media{}));
             return v;
         }
-        if (w == "density") { // kept as the pigment it is evaluated as
+        if (n == "density") { // kept as the pigment it is evaluated as
             next();
             v.kind = Kind::Pigment;
             Pigment unit;
@@ -279,60 +284,60 @@ Value Evaluator::rvalue() {
             v.pigment = std::make_shared<Pigment>(density(unit));
             return v;
         }
-        if (w == "material") {
+        if (n == "material") {
             next();
             v.kind = Kind::Material;
             v.material = std::make_shared<lang::Material>(material(lang::Material{}));
             return v;
         }
-        if (w == "normal") {
+        if (n == "normal") {
             next();
             const std::optional<Normal> n = normalBlock(t.loc, std::nullopt);
             v.kind = Kind::Normal;
             if (n) v.normal = std::make_shared<Normal>(*n);
             return v;
         }
-        if (w == "camera") {
+        if (n == "camera") {
             next();
             v.kind = Kind::Camera;
             v.camera = std::make_shared<CameraSpec>(camera(CameraSpec{}, t.loc));
             return v;
         }
-        if (w == "color_map" || w == "colour_map") {
+        if (n == "color_map" || n == "colour_map") {
             next();
             v.kind = Kind::ColorMap;
             v.colorMap = std::make_shared<std::vector<ColorMapEntry>>(colorMap());
             return v;
         }
-        if (w == "transform") {
+        if (n == "transform") {
             next();
             v.kind = Kind::Transform;
             v.transform = std::make_shared<Transform>(transformBlock());
             return v;
         }
-        if (w == "sky_sphere") {
+        if (n == "sky_sphere") {
             next();
             v.kind = Kind::SkySphere;
             v.sky = std::make_shared<const std::vector<Pigment>>(skySphere());
             return v;
         }
-        if (w == "array") {
+        if (n == "array") {
             next();
             return arrayLiteral(t.loc);
         }
-        if (w == "spline") {
+        if (n == "spline") {
             next();
             v.kind = Kind::Spline;
             v.spline = splineBlock(t.loc);
             return v;
         }
-        if (w == "function") {
+        if (n == "function") {
             next();
             v.kind = Kind::Function;
             v.function = functionBody(t);
             return v;
         }
-        static const std::set<std::string> opaque = {
+        static const std::unordered_set<std::string> opaque = {
             "pigment_map", "normal_map", "texture_map", "slope_map", "density_map",
             "material_map", "interior_texture", "rainbow", "fog", "photons", "radiosity"};
         if (opaque.count(w)) {

@@ -26,7 +26,7 @@ Evaluator::DepthGuard::~DepthGuard() { --depth; }
 
 Evaluator::Evaluator(Diagnostics& diags, const LoadOptions& options, DialectKind dialect)
     : diags_(diags), options_(options), sceneDialect_(dialect) {
-    scopes_.emplace_back();
+    scopes_.push();
 }
 
 const Dialect& Evaluator::syntax() const {
@@ -35,14 +35,12 @@ const Dialect& Evaluator::syntax() const {
 
 // ------------------------------------------------------------ symbols
 
-Cell Evaluator::lookup(const std::string& name) const {
-    for (auto it = scopes_.rbegin(); it != scopes_.rend(); ++it)
-        if (auto found = it->find(name); found != it->end()) return found->second;
-    return nullptr;
-}
+Cell Evaluator::lookup(const std::string& name) const { return scopes_.find(name); }
 
-Cell Evaluator::use(const std::string& name) {
-    Cell c = lookup(name);
+Cell Evaluator::use(const std::string& name) { return deferredWarnings(lookup(name)); }
+Cell Evaluator::use(const Token& word) { return deferredWarnings(lookup(word)); }
+
+Cell Evaluator::deferredWarnings(Cell c) {
     if (c && c->warnings) {
         for (const PendingWarning& p : *c->warnings) {
             if (pending_) {
@@ -60,37 +58,39 @@ Cell Evaluator::use(const std::string& name) {
 }
 
 bool Evaluator::isMacro(const std::string& name) const {
-    const Cell c = lookup(name);
-    return c && c->kind == Value::Kind::Macro;
+    if (!macroNames_.mayHold(name)) return false;
+    const Value* v = scopes_.get(name);
+    return v && v->kind == Value::Kind::Macro;
+}
+
+bool Evaluator::isMacro(const Token& word) const {
+    if (!macroNames_.mayHold(word.text)) return false;
+    const Value* v = scopes_.get(word);
+    return v && v->kind == Value::Kind::Macro;
 }
 
 std::vector<std::string> Evaluator::declaredNames(std::initializer_list<Value::Kind> kinds) const {
     std::vector<std::string> names;
-    for (const auto& scope : scopes_)
-        for (const auto& [name, cell] : scope) {
-            if (kinds.size() > 0 && std::find(kinds.begin(), kinds.end(), cell->kind) == kinds.end()) continue;
-            if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-        }
+    scopes_.forEach([&](const std::string& name, const Cell& cell) {
+        if (kinds.size() > 0 && std::find(kinds.begin(), kinds.end(), cell->kind) == kinds.end()) return;
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    });
     return names;
 }
 
 // #local writes the innermost scope; #declare updates the nearest existing
 // identifier (so a macro parameter bound to the caller's identifier writes
 // through) or creates a global one.
-void Evaluator::declare(const std::string& name, const Value& value, bool local, size_t scopeCount) {
+void Evaluator::declare(const std::string& name, Value value, bool local, size_t scopeCount) {
     const size_t open = std::min(scopeCount, scopes_.size());
+    if (value.kind == Value::Kind::Macro) macroNames_.add(name);
     if (local) {
-        auto& scope = scopes_[open - 1];
-        if (auto it = scope.find(name); it != scope.end()) *it->second = value;
-        else scope[name] = std::make_shared<Value>(value);
+        if (Cell* c = scopes_.findIn(open - 1, name)) **c = std::move(value);
+        else scopes_.set(open - 1, name, std::make_shared<Value>(std::move(value)));
         return;
     }
-    for (size_t i = open; i-- > 0;)
-        if (auto found = scopes_[i].find(name); found != scopes_[i].end()) {
-            *found->second = value;
-            return;
-        }
-    scopes_.front()[name] = std::make_shared<Value>(value);
+    if (Cell* c = scopes_.findBelow(open, name)) **c = std::move(value);
+    else scopes_.set(0, name, std::make_shared<Value>(std::move(value)));
 }
 
 // ------------------------------------------------------------ files
@@ -111,7 +111,7 @@ void Evaluator::pushFile(int fileId, SourceLoc includedFrom, const std::string& 
     f.canonicalPath = canonicalPath;
     f.dialect = dialect;
     pushFrame(std::move(f));
-    scopes_.emplace_back();
+    scopes_.push();
 }
 
 void Evaluator::pushFrame(Frame f) {
@@ -122,7 +122,7 @@ void Evaluator::pushFrame(Frame f) {
 
 void Evaluator::popFrame() {
     frames_.pop_back();
-    scopes_.pop_back();
+    scopes_.pop();
     if (!frames_.empty()) {
         // pushed_ is a stack: the saved look-ahead was read first, so it goes on top.
         std::vector<Token>& saved = frames_.back().savedPushback;
@@ -252,7 +252,7 @@ void Evaluator::endFrame() {
 // ------------------------------------------------------------ raw tokens
 
 // The next token of the innermost frame; ends included files on the way.
-Token Evaluator::rawNext() {
+const Token& Evaluator::rawNextRef() {
     for (;;) {
         Frame& f = frames_.back();
         const Token& t = (*f.tokens)[f.pos];
@@ -283,56 +283,77 @@ Token Evaluator::rawNext() {
     }
 }
 
-Token Evaluator::next() {
+// A token becomes the last one read with a move from the look-ahead or a
+// copy from its stream, not through a temporary: a token's text is a string,
+// and reading a token used to cost ten string copies and moves.
+const Token& Evaluator::next() {
     for (;;) {
-        Token t;
-        if (!pushed_.empty()) {
-            t = std::move(pushed_.back());
-            pushed_.pop_back();
-        } else {
-            t = rawNext();
-        }
-        if (t.kind == TokenKind::Directive) {
-            directive(t);
-            continue;
-        }
-        if (t.kind == TokenKind::Word && !noExpand_ && isMacro(t.text)) {
-            invokeMacro(t);
+        const bool pushed = !pushed_.empty();
+        const Token& t = pushed ? pushed_.back() : rawNextRef();
+        if (t.kind == TokenKind::Directive || (t.kind == TokenKind::Word && !noExpand_ && isMacro(t))) {
+            const Token taken = t;
+            if (pushed) pushed_.pop_back();
+            if (taken.kind == TokenKind::Directive) directive(taken);
+            else invokeMacro(taken);
             continue;
         }
         if (t.is("{")) ++braceDepth_;
         else if (t.is("}")) --braceDepth_;
         beforeLastToken_ = std::move(lastToken_);
-        lastToken_ = t;
-        return t;
+        beforeIsLast_ = false;
+        if (pushed) {
+            lastToken_ = std::move(pushed_.back());
+            pushed_.pop_back();
+        } else {
+            if (t.kind == TokenKind::Word) scopes_.remember(t); // for its copies' lookups, in every pass
+            lastToken_ = t;
+        }
+        return lastToken_;
     }
 }
 
 void Evaluator::pushBack(Token t) {
     if (t.is("{")) --braceDepth_;
     else if (t.is("}")) ++braceDepth_;
-    lastToken_ = beforeLastToken_;
+    if (!beforeIsLast_) lastToken_ = beforeLastToken_;
     pushed_.push_back(std::move(t));
 }
 
-Token Evaluator::peek() {
+const Token& Evaluator::peek() {
     // When the token next() would return is already pushed back and next()
-    // would return it as it is (no directive to run, no macro to expand), copy
-    // it: taking it and pushing it back costs three token copies. The state
-    // left is next() then pushBack()'s.
+    // would return it as it is (no directive to run, no macro to expand),
+    // return it: taking it and pushing it back costs three token copies. The
+    // state left is next() then pushBack()'s.
     if (!pushed_.empty()) {
         const Token& t = pushed_.back();
-        if (t.kind != TokenKind::Directive && !(t.kind == TokenKind::Word && !noExpand_ && isMacro(t.text))) {
-            beforeLastToken_ = lastToken_;
+        if (t.kind != TokenKind::Directive && !(t.kind == TokenKind::Word && !noExpand_ && isMacro(t))) {
+            beforeIsLast_ = true; // beforeLastToken_ = lastToken_, without the copy
             return t;
         }
     }
-    Token t = next();
-    pushBack(t);
-    return t;
+    // next() then pushBack(), without their copies: with nothing pushed back,
+    // the token goes from its stream to the look-ahead.
+    if (pushed_.empty()) {
+        for (;;) {
+            const Token& t = rawNextRef();
+            if (t.kind == TokenKind::Directive || (t.kind == TokenKind::Word && !noExpand_ && isMacro(t))) {
+                const Token taken = t;
+                if (taken.kind == TokenKind::Directive) directive(taken);
+                else invokeMacro(taken);
+                if (!pushed_.empty()) break; // the directive or the call left a look-ahead: next()'s way
+                continue;
+            }
+            if (t.kind == TokenKind::Word) scopes_.remember(t); // for its copies' lookups, in every pass
+            pushed_.push_back(t);
+            beforeIsLast_ = true; // beforeLastToken_ = lastToken_, without the copy
+            return pushed_.back();
+        }
+    }
+    pushBack(next());
+    return pushed_.back();
 }
 
-Token Evaluator::peekOperator() {
+const Token& Evaluator::peekOperator() {
     if (!pushed_.empty()) return pushed_.back();
     for (;;) {
         Frame& f = frames_.back();
@@ -361,7 +382,7 @@ Token Evaluator::peekOperator() {
         if (t.kind == TokenKind::Directive) return t;
         // A macro name cannot continue an expression: return it unexpanded, or
         // `#declare S = "" M(S)` would run M before S is declared.
-        if (t.kind == TokenKind::Word && isMacro(t.text)) return t;
+        if (t.kind == TokenKind::Word && isMacro(t)) return t;
         return peek();
     }
 }
@@ -392,11 +413,12 @@ TokenStream* Evaluator::rawStream() {
 
 void Evaluator::rawRead(SourceLoc last, const char* lastSymbol) {
     beforeLastToken_ = std::move(lastToken_);
+    beforeIsLast_ = false;
     lastToken_ = Token{TokenKind::Symbol, lastSymbol, 0, last};
     lastOrigin_ = nullptr;
 }
 
-bool Evaluator::acceptSymbol(const char* s) {
+bool Evaluator::acceptSymbol(std::string_view s) {
     if (peek().is(s)) {
         next();
         return true;
@@ -404,13 +426,27 @@ bool Evaluator::acceptSymbol(const char* s) {
     return false;
 }
 
-Token Evaluator::expectSymbol(const char* s, const std::string& context) {
-    Token t = next();
-    if (!t.is(s)) failExpected(t, std::string("'") + s + "'" + (context.empty() ? "" : " " + context));
+namespace {
+
+std::string expectedSymbol(const char* s, std::string_view context) {
+    return context.empty() ? fmt::format("'{}'", s) : fmt::format("'{}' {}", s, context);
+}
+
+} // namespace
+
+const Token& Evaluator::expectSymbol(const char* s, const std::string& context) {
+    const Token& t = next();
+    if (!t.is(s)) failExpected(t, expectedSymbol(s, context));
     return t;
 }
 
-bool Evaluator::acceptWord(const char* w) {
+const Token& Evaluator::expectSymbol(const char* s, const char* context) {
+    const Token& t = next();
+    if (!t.is(s)) failExpected(t, expectedSymbol(s, context)); // the message is made only when it fails
+    return t;
+}
+
+bool Evaluator::acceptWord(std::string_view w) {
     if (peek().isWord(w)) {
         next();
         return true;
@@ -479,7 +515,7 @@ std::optional<Scene> Evaluator::run(int fileId, const std::string& baseDir) {
     if (scene().kind == DialectKind::Pov) scene_.camera.right = Vec3(1.33, 0, 0);
     try {
         pushFile(fileId, SourceLoc{}, baseDir, id, sceneDialect_);
-        scopes_.pop_back(); // the main file shares the global scope
+        scopes_.pop(); // the main file shares the global scope
     } catch (const Abort&) {
         return std::nullopt;
     }

@@ -133,11 +133,12 @@ void readTriangleMesh(Evaluator& e, const Token& keyword, Mesh& m) {
             textures.insert(textures.end(), 3, texture);
     };
     // Triangles of plain literals are read from the text without tokens
-    // while the keywords are no macro names.
+    // while the keywords are no macro names and no loop runs (a triangle read
+    // in a loop counts as an object: the evaluator's way counts it).
     const auto keywordsPlain = [&] { return !e.isMacro("triangle") && !e.isMacro("smooth_triangle"); };
     bool plain = keywordsPlain();
     const auto literal = [&] {
-        if (!plain || double(out.triangleCount()) + 1 > limit)
+        if (!plain || double(out.triangleCount()) + 1 > limit || e.loopRunning())
             return false;
         TokenStream* s = e.rawStream();
         TriangleCorners c;
@@ -159,6 +160,8 @@ void readTriangleMesh(Evaluator& e, const Token& keyword, Mesh& m) {
         e.next();
         if (double(out.triangleCount()) + 1 > limit)
             e.countValue(double(out.triangleCount()) + 1, t.loc, "mesh triangle count", 0, limit);
+        if (e.loopRunning())
+            e.countLoopTriangle(t.loc, keyword.loc);
         const bool smooth = t.text == "smooth_triangle";
         e.expectSymbol("{", "after '" + t.text + "'");
         const TriangleCorners corners = readTriangleCorners(e, smooth);
