@@ -500,7 +500,7 @@ void Evaluator::macroDefinition(const Token& t) {
 
 void Evaluator::invokeMacro(const Token& t) {
     const std::shared_ptr<const lang::Macro> m = lookup(t.text)->macro;
-    expectSymbol("(", "to call macro '" + t.text + "'");
+    expectSymbol("(", "to call macro '", t.text, "'");
     std::vector<std::pair<const std::string*, Cell>> scope; // the parameters' cells, bound when the body starts
     size_t count = 0;
     if (!peek().is(")")) {

@@ -65,6 +65,8 @@ public:
     // A literal context goes to the const char* form, which makes no string unless it fails.
     const Token& expectSymbol(const char* s, const std::string& context);
     const Token& expectSymbol(const char* s, const char* context);
+    // The context `before + name + after` ("after 'sphere'"), made only when the symbol is missing.
+    const Token& expectSymbol(const char* s, const char* before, const std::string& name, const char* after);
     bool acceptWord(std::string_view w);
     Token expectWord(const std::string& context); // any word
     // After '{' was consumed: skips to its matching '}', directives included.

@@ -231,14 +231,16 @@ Value arithmetic(Evaluator& e, const Token& op, const Value& left, const Value& 
         e.fail(op.loc, "strings are joined with concat(), not '" + s + "'");
     if (!left.isNumeric() || !right.isNumeric())
         e.fail(op.loc, "cannot apply '" + s + "' to " + kindName(left.isNumeric() ? right : left));
-    const bool multiplicative = s == "*" || s == "/";
+    // The operator, told once (Token::is: no strlen or memcmp per component).
+    const bool plus = op.is("+"), minus = op.is("-"), times = op.is("*"), divide = op.is("/");
+    const bool multiplicative = times || divide;
     bool bad = false, divisionByZero = false;
     auto apply = [&](double a, double b) {
-        if (s == "/" && b == 0) {
+        if (divide && b == 0) {
             divisionByZero = true;
             return 1.0;
         }
-        const double r = s == "+" ? a + b : s == "-" ? a - b : s == "*" ? a * b : a / b;
+        const double r = plus ? a + b : minus ? a - b : times ? a * b : a / b;
         if (!std::isfinite(r)) {
             bad = true;
             return 1.0;

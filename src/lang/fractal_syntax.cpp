@@ -71,7 +71,7 @@ bool Evaluator::fractalModifier(const Token& t, std::shared_ptr<const FractalPat
         const int highest = exterior ? 8 : 6;
         if (!(type >= 0 && type <= highest) || type != std::floor(type))
             fail(loc, "the " + w + " type must be a whole number from 0 to " + std::to_string(highest) + got(type));
-        expectSymbol(",", "between the " + w + " type and its factor");
+        expectSymbol(",", "between the ", w, " type and its factor");
         const double factor = floatExpr("the factor");
         (exterior ? f.exteriorType : f.interiorType) = static_cast<int>(type);
         (exterior ? f.exteriorFactor : f.interiorFactor) = factor;

@@ -127,7 +127,7 @@ private:
 
     // "(" expression { "," expression } ")": the number of arguments read.
     int arguments(const std::string& of) {
-        e_.expectSymbol("(", "after '" + of + "'");
+        e_.expectSymbol("(", "after '", of, "'");
         int n = 0;
         if (e_.acceptSymbol(")")) return 0;
         const bool saved = e_.inVector_;
@@ -137,7 +137,7 @@ private:
             ++n;
         } while (e_.acceptSymbol(","));
         e_.inVector_ = saved;
-        e_.expectSymbol(")", "to close the arguments of '" + of + "'");
+        e_.expectSymbol(")", "to close the arguments of '", of, "'");
         return n;
     }
 
@@ -434,7 +434,7 @@ std::shared_ptr<const Function> internalFunction(int number) {
 }
 
 Value Evaluator::callFunction(const Token& name, const Function& f) {
-    expectSymbol("(", "after the function '" + name.text + "'");
+    expectSymbol("(", "after the function '", name.text, "'");
     std::vector<double> args;
     if (!peek().is(")")) {
         const bool saved = inVector_;
@@ -444,7 +444,7 @@ Value Evaluator::callFunction(const Token& name, const Function& f) {
         } while (acceptSymbol(","));
         inVector_ = saved;
     }
-    expectSymbol(")", "to close the arguments of '" + name.text + "'");
+    expectSymbol(")", "to close the arguments of '", name.text, "'");
     if (args.size() != f.params.size() && !f.anyArity)
         fail(name.loc, fmt::format("'{}' takes {} argument{}, got {}", name.text, f.params.size(),
                                    f.params.size() == 1 ? "" : "s", args.size()));

@@ -169,7 +169,7 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         return true;
     }
 
-    expectSymbol("(", "after '" + w + "'");
+    expectSymbol("(", "after '", w, "'");
     std::vector<Value> args;
     std::vector<SourceLoc> locs;
     args.reserve(4); // most functions take 1 to 4: no copies as the lists grow
@@ -183,7 +183,7 @@ bool Evaluator::builtin(const Token& name, Value& out) {
         } while (acceptSymbol(","));
         inVector_ = saved;
     }
-    expectSymbol(")", "to close the arguments of '" + w + "'");
+    expectSymbol(")", "to close the arguments of '", w, "'");
     auto need = [&](size_t lo, size_t hi) {
         if (args.size() >= lo && args.size() <= hi) return;
         std::string want;
@@ -451,7 +451,7 @@ bool Evaluator::builtin(const Token& name, Value& out) {
 // the geometry the loader passed in (scene/geometry_query.h).
 Value Evaluator::traceOrInside(const Token& name) {
     const std::string& w = name.text;
-    expectSymbol("(", "after '" + w + "'");
+    expectSymbol("(", "after '", w, "'");
     const SourceLoc at = peek().loc;
     const Value object = rvalue();
     if (object.kind != Kind::Object)
@@ -477,7 +477,7 @@ Value Evaluator::traceOrInside(const Token& name) {
             normalOut = lookup(id.text);
         }
     }
-    expectSymbol(")", "to close the arguments of '" + w + "'");
+    expectSymbol(")", "to close the arguments of '", w, "'");
     if (!options_.geometry)
         fail(name.loc, "'" + w + "' needs the scene's geometry while the scene is read; this loader gives none");
     if (leftOut) {

@@ -70,7 +70,7 @@ std::shared_ptr<const DensityFile> Evaluator::densityInterpolate(const std::shar
 
 std::optional<Pigment> Evaluator::imageMapPigment(SourceLoc keyword, bool pattern) {
     const std::string name = pattern ? "image_pattern" : "image_map";
-    expectSymbol("{", "after '" + name + "'");
+    expectSymbol("{", "after '", name, "'");
     BlockScope scope(*this, name, keyword);
     if (peek().isWord("function")) {
         unsupported(name + "-function", peek().loc,

@@ -168,7 +168,7 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
             projectedLoc = t.loc;
         } else if (w == "looks_like" || w == "photons") {
             unsupported("light-" + w, t.loc, "light_source '" + w + "' is not supported and is ignored");
-            expectSymbol("{", "after '" + w + "'");
+            expectSymbol("{", "after '", w, "'");
             skipBlock();
         } else if (w == "parallel") {
             l.parallel = true;

@@ -68,7 +68,7 @@ Finish Evaluator::finish(const Finish& base) {
             unsupported("reflection-exponent", t.loc, "'reflection_exponent' is not supported and is ignored");
         } else if (w == "irid" || w == "subsurface") {
             unsupported(w, t.loc, "'" + w + "' is not supported and is ignored");
-            expectSymbol("{", "after '" + w + "'");
+            expectSymbol("{", "after '", w, "'");
             skipBlock();
         } else if (syntax().legacySyntax &&
                    (w == "refraction" || w == "ior" || w == "caustics" || w == "fade_distance" || w == "fade_power")) {

@@ -268,7 +268,7 @@ ObjectValue Evaluator::object(const Token& keyword) {
         po.lights.push_back(light);
         return po;
     }
-    expectSymbol("{", "after '" + w + "'");
+    expectSymbol("{", "after '", w, "'");
     BlockScope scope(*this, w, keyword.loc);
     if (w == "light_group") return lightGroup(keyword);
     if (isUnsupportedShape(w)) {
@@ -420,7 +420,7 @@ void Evaluator::objectModifiers(ObjectValue& po, const Token& keyword) {
             }
         } else if (m == "photons" || m == "radiosity" || m == "interior_texture") {
             unsupported(m, t.loc, "'" + m + "' is not supported and is ignored");
-            expectSymbol("{", "after '" + m + "'");
+            expectSymbol("{", "after '", m, "'");
             skipBlock();
         } else if (m == "uv_mapping") {
             uvMapped = optionalBool(true);
@@ -511,7 +511,7 @@ Motion Evaluator::motionBlock() {
 // block's objects). Left-out shapes (warned about) are left out.
 std::optional<std::vector<Object>> Evaluator::clipObjects(const Token& word) {
     const std::string& keyword = word.text;
-    expectSymbol("{", "after '" + keyword + "'");
+    expectSymbol("{", "after '", keyword, "'");
     BlockScope scope(*this, keyword, word.loc);
     std::vector<Object> objects;
     const char* other = keyword == "clipped_by" ? "bounded_by" : "clipped_by";
@@ -520,7 +520,7 @@ std::optional<std::vector<Object>> Evaluator::clipObjects(const Token& word) {
         const Token t = next();
         if (t.is("}")) break;
         if (t.isWord(other) && !any) {
-            expectSymbol("}", "after '" + std::string(other) + "'");
+            expectSymbol("}", "after '", std::string(other), "'");
             return std::nullopt;
         }
         if (!isObjectWord(t)) failInBlock(t, "an object or '}' in " + keyword);

@@ -388,7 +388,7 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
     } else if (w == "bump_map" || w == "material_map") {
         next();
         unsupported(w, t.loc, "'" + w + "' is not supported; the pigment becomes mid grey");
-        expectSymbol("{", "after '" + w + "'");
+        expectSymbol("{", "after '", w, "'");
         skipBlock();
         const Transform keep = p.toWorld;
         p = solid(rgb(0.5, 0.5, 0.5));
@@ -398,7 +398,7 @@ bool Evaluator::pigmentItem(Pigment& p, const Token& t) {
     } else if (w == "normal_map") {
         next();
         unsupported(w, t.loc, "'" + w + "' is not supported; the pattern uses a grey ramp");
-        expectSymbol("{", "after '" + w + "'");
+        expectSymbol("{", "after '", w, "'");
         skipBlock();
     } else if (w == "warp") {
         warpBlock(t, p);

@@ -63,7 +63,10 @@ Value Evaluator::postfix(Value v, SourceLoc) {
 
 Value Evaluator::primary() {
     const Token t = next();
-    if (t.kind == TokenKind::Number) return postfix(Value::makeFloat(t.number), t.loc);
+    // Without a '.' after it, a number or an identifier's value is made in the
+    // result itself: postfix() would take it and give it back, a Value's copy and move.
+    if (t.kind == TokenKind::Number)
+        return peekOperator().is(".") ? postfix(Value::makeFloat(t.number), t.loc) : Value::makeFloat(t.number);
     if (t.kind == TokenKind::String) return Value::makeString(t.text);
     if (t.is("(")) {
         const bool saved = inVector_, savedCount = countBeforeVector_;
@@ -73,7 +76,7 @@ Value Evaluator::primary() {
         inVector_ = saved;
         countBeforeVector_ = savedCount;
         v.origin = nullptr;
-        return postfix(v, t.loc);
+        return postfix(std::move(v), t.loc);
     }
     if (t.is("<")) {
         DepthGuard guard(*this, t.loc);
@@ -107,13 +110,14 @@ Value Evaluator::primary() {
         countBeforeVector_ = savedCount;
         if (n < 2) fail(t.loc, "a vector needs 2 to 5 components, got 1");
         v.size = n;
-        return postfix(v, t.loc);
+        return postfix(std::move(v), t.loc);
     }
     if (t.kind != TokenKind::Word) failExpected(t, "a value (a number, a vector <x, y, z> or a name)");
 
     if (const Cell c = useIndexed(t)) {
         if (c->kind == Kind::Function) return postfix(callFunction(t, *c->function), t.loc);
         if (c->kind == Kind::Spline && peek().is("(")) return postfix(callSpline(t, *c->spline), t.loc);
+        if (!peekOperator().is(".")) return *c;
         return postfix(*c, t.loc);
     }
 
@@ -166,7 +170,7 @@ Value Evaluator::primary() {
 size_t Evaluator::arrayIndex(const lang::Array& a, const Token& name) {
     size_t index = 0;
     for (size_t d = 0; d < a.sizes.size(); ++d) {
-        expectSymbol("[", "for an index into '" + name.text + "'");
+        expectSymbol("[", "for an index into '", name.text, "'");
         const int i = countExpr("array index", 0, a.sizes[d] - 1);
         expectSymbol("]", "after an array index");
         index = index * size_t(a.sizes[d]) + size_t(i);

@@ -446,6 +446,12 @@ const Token& Evaluator::expectSymbol(const char* s, const char* context) {
     return t;
 }
 
+const Token& Evaluator::expectSymbol(const char* s, const char* before, const std::string& name, const char* after) {
+    const Token& t = next();
+    if (!t.is(s)) failExpected(t, expectedSymbol(s, before + name + after));
+    return t;
+}
+
 bool Evaluator::acceptWord(std::string_view w) {
     if (peek().isWord(w)) {
         next();

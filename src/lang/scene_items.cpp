@@ -43,7 +43,7 @@ void Evaluator::statement(const Token& t) {
         renderBlock();
     } else if (w == "rainbow" || w == "photons" || w == "radiosity") {
         unsupported(w, t.loc, "'" + w + "' is not supported and is ignored");
-        expectSymbol("{", "after '" + w + "'");
+        expectSymbol("{", "after '", w, "'");
         skipBlock();
     } else {
         std::vector<std::string> known{"object"};
@@ -246,7 +246,7 @@ void Evaluator::globalSettings() {
             scene_.global.radiosity = r;
         } else if (w == "photons" || w == "subsurface") {
             unsupported("global-" + w, t.loc, "global_settings '" + w + "' is not supported and is ignored");
-            expectSymbol("{", "after '" + w + "'");
+            expectSymbol("{", "after '", w, "'");
             skipBlock();
         } else if (w == "charset") {
             next();

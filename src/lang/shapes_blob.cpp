@@ -21,7 +21,7 @@ namespace {
 BlobComponent component(Evaluator& e, const Token& keyword) {
     BlobComponent c;
     c.kind = keyword.text == "cylinder" ? BlobComponent::Kind::Cylinder : BlobComponent::Kind::Sphere;
-    const Token open = e.expectSymbol("{", "after '" + keyword.text + "'");
+    const Token open = e.expectSymbol("{", "after '", keyword.text, "'");
     Evaluator::DepthGuard guard(e, open.loc);
     c.center = e.vectorExpr(c.kind == BlobComponent::Kind::Sphere ? "the component's centre" : "the cylinder's first end");
     e.comma("point");

@@ -46,7 +46,7 @@ void ShapeSyntax<Isosurface>::read(Evaluator& e, const Token& keyword, ObjectVal
             const Token shape = e.expectWord("'box' or 'sphere' in contained_by");
             if (shape.text != "box" && shape.text != "sphere")
                 e.fail(shape.loc, "an isosurface is contained by a 'box' or a 'sphere', not '" + shape.text + "'");
-            e.expectSymbol("{", "after '" + shape.text + "'");
+            e.expectSymbol("{", "after '", shape.text, "'");
             if (shape.text == "box") {
                 iso.container = Isosurface::Container::Box;
                 iso.corner1 = e.vectorExpr("the box's first corner");

@@ -163,7 +163,7 @@ void readTriangleMesh(Evaluator& e, const Token& keyword, Mesh& m) {
         if (e.loopRunning())
             e.countLoopTriangle(t.loc, keyword.loc);
         const bool smooth = t.text == "smooth_triangle";
-        e.expectSymbol("{", "after '" + t.text + "'");
+        e.expectSymbol("{", "after '", t.text, "'");
         const TriangleCorners corners = readTriangleCorners(e, smooth);
         Float2 uv[3] = {{0, 0}, {1, 0}, {1, 1}};
         bool hasUv = false;

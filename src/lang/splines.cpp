@@ -81,7 +81,7 @@ std::shared_ptr<const Spline> Evaluator::splineBlock(SourceLoc keyword) {
 }
 
 Value Evaluator::callSpline(const Token& name, const Spline& s) {
-    expectSymbol("(", "after the spline '" + name.text + "'");
+    expectSymbol("(", "after the spline '", name.text, "'");
     const bool saved = inVector_;
     inVector_ = false;
     const double t = floatExpr("the spline's parameter");

@@ -138,7 +138,7 @@ std::vector<Pigment::MapEntry> Evaluator::pigmentMap(bool average) {
     const Token keyword = lastToken();
     const std::string name = keyword.text; // pigment_map, or density_map (its entries densities)
     DepthGuard guard(*this, keyword.loc);
-    expectSymbol("{", "after '" + name + "'");
+    expectSymbol("{", "after '", name, "'");
     BlockScope scope(*this, name, keyword.loc);
     std::vector<Pigment::MapEntry> map;
     for (;;) {
