@@ -323,8 +323,8 @@ void attachIndexedMesh(RTCDevice device, Level& level, std::shared_ptr<const Ind
                        RTCFilterFunctionN occludedFilter = nullptr, void* user = nullptr);
 // For an opaque query (QueryContext): the valid lanes of a filter's candidate
 // hits are refused and recorded as crossing a surface that may let light
-// through. False, and nothing done, for any other query.
-bool recordTransmitters(const RTCFilterFunctionNArguments* args);
+// through. Nothing is done in any other query.
+void recordTransmitters(const RTCFilterFunctionNArguments* args);
 
 // Geometry masks: every ray for intersect() carries all bits; occlusion rays
 // carry only kShadowMask, which geometry with no_shadow lacks.

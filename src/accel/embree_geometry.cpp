@@ -393,15 +393,14 @@ static void clipFilter(const RTCFilterFunctionNArguments* args) {
     }
 }
 
-bool recordTransmitters(const RTCFilterFunctionNArguments* args) {
+void recordTransmitters(const RTCFilterFunctionNArguments* args) {
     uint8_t* const crossed = QueryContext::of(args->context).crossedTransmitter;
-    if (!crossed) return false;
+    if (!crossed) return;
     for (unsigned i = 0; i < args->N; ++i) {
         if (!args->valid[i]) continue;
         args->valid[i] = 0;
         crossed[RTCRayN_id(args->ray, args->N, i)] = 1;
     }
-    return true;
 }
 
 // The occlusion filter of a mesh that may let light through: its clips first,

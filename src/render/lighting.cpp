@@ -7,7 +7,6 @@
 #include "render/pigment.h"
 #include "render/shading.h"
 #include "render/texture_shading.h"
-#include "scene/light_through.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,7 +35,7 @@ struct ShadowScratch {
 
 // shadowTransmittance without the fog.
 Color surfaceAndMediaTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
-                                   RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {
+                                   RayCounts& counts, const Scene* mediaScene) {
     Ray ray = shadowRay(from, target, time);
     ++counts.shadow;
     // Media between ray.origin and the end of the segment (hit == nullptr: the light).
@@ -52,10 +51,7 @@ Color surfaceAndMediaTransmittance(const Accelerator& accel, const Hit& from, co
     // surface that lets no light through (black, whatever else or whatever
     // media it crosses) from one that crosses only surfaces that may let light
     // through, which alone are found one by one below.
-    const Accelerator::Occlusion occlusion = opaqueCasters
-                                                 ? (accel.occluded(ray) ? Accelerator::Occlusion::Blocked
-                                                                        : Accelerator::Occlusion::Clear)
-                                                 : accel.occludedOpaque(ray);
+    const Accelerator::Occlusion occlusion = accel.occludedOpaque(ray);
     if (occlusion == Accelerator::Occlusion::Clear)
         return mediaScene && !mediaScene->media.empty() ? throughMedia(nullptr, 1) : Color(1);
     if (occlusion == Accelerator::Occlusion::Blocked) return Color(0);
@@ -91,8 +87,8 @@ Color surfaceAndMediaTransmittance(const Accelerator& accel, const Hit& from, co
 std::unique_ptr<InstalledScratch> installLightingScratch() { return ThreadScratch<ShadowScratch>::install(); }
 
 Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
-                          RayCounts& counts, const Scene* mediaScene, bool opaqueCasters) {
-    Color transmittance = surfaceAndMediaTransmittance(accel, from, target, time, counts, mediaScene, opaqueCasters);
+                          RayCounts& counts, const Scene* mediaScene) {
+    Color transmittance = surfaceAndMediaTransmittance(accel, from, target, time, counts, mediaScene);
     // Fog dims the light on its way as it dims what the camera sees (POV-Ray,
     // with media_attenuation on): the fog's scale over the segment; its own
     // colour is not added to the light.
@@ -115,10 +111,9 @@ ProjectedThrough::ProjectedThrough(const Scene& scene) {
 ProjectedThrough::~ProjectedThrough() = default;
 
 Color lightTransmittance(const Accelerator& accel, const Accelerator* projected, bool shadowless, const Hit& from,
-                         const Vec3& target, double time, RayCounts& counts, const Scene* mediaScene,
-                         bool opaqueCasters) {
+                         const Vec3& target, double time, RayCounts& counts, const Scene* mediaScene) {
     if (!projected)
-        return shadowless ? Color(1) : shadowTransmittance(accel, from, target, time, counts, mediaScene, opaqueCasters);
+        return shadowless ? Color(1) : shadowTransmittance(accel, from, target, time, counts, mediaScene);
     const Ray ray = shadowRay(from, target, time);
     Hit crossing;
     ++counts.shadow;
@@ -130,10 +125,8 @@ Color lightTransmittance(const Accelerator& accel, const Accelerator* projected,
     const double speed = length(ray.direction);
     const double cut = crossing.t - std::max(1e-4, 1e-5 * crossing.t * speed) / speed;
     if (!(cut > 0)) return Color(1);
-    return shadowTransmittance(accel, from, ray.origin + ray.direction * cut, time, counts, mediaScene, opaqueCasters);
+    return shadowTransmittance(accel, from, ray.origin + ray.direction * cut, time, counts, mediaScene);
 }
-
-bool shadowsAreOpaque(const Scene& scene) { return !anyMayLetLightThrough(scene.objects); }
 
 int lightDimension(int depth, int lightIndex) {
     if (lightIndex <= 0) return bounceDimension(depth, kOffsetLight);
@@ -443,7 +436,7 @@ private:
 } // namespace
 
 DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel, bool shortWays)
-    : scene_(scene), accel_(accel), opaqueCasters_(shadowsAreOpaque(scene)),
+    : scene_(scene), accel_(accel),
       hasMedia_(sceneHasMedia(scene) || !scene.fogs.empty()),
       anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)), projected_(scene) {
     cones_.reserve(scene.lights.size());
@@ -495,18 +488,12 @@ void DirectLighting::traceCameraShadows(const Ray* rays, const Hit* hits, const 
             lane[n++] = k;
         }
         uint8_t* const answers = out.answers_.data() + size_t(i) * kPacket;
-        if (opaqueCasters_) {
-            bool blocked[kPacket];
-            accel_.occludedPacket(shadow, n, blocked);
-            for (int j = 0; j < n; ++j) answers[lane[j]] = blocked[j] ? 2 : 1;
-        } else {
-            Accelerator::Occlusion occlusion[kPacket];
-            accel_.occludedOpaquePacket(shadow, n, occlusion);
-            for (int j = 0; j < n; ++j)
-                answers[lane[j]] = occlusion[j] == Accelerator::Occlusion::Clear     ? 1
-                                   : occlusion[j] == Accelerator::Occlusion::Blocked ? 2
-                                                                                     : 0; // traced alone
-        }
+        Accelerator::Occlusion occlusion[kPacket];
+        accel_.occludedOpaquePacket(shadow, n, occlusion);
+        for (int j = 0; j < n; ++j)
+            answers[lane[j]] = occlusion[j] == Accelerator::Occlusion::Clear     ? 1
+                               : occlusion[j] == Accelerator::Occlusion::Blocked ? 2
+                                                                                 : 0; // traced alone
     }
 }
 
@@ -534,7 +521,7 @@ const Color& DirectLighting::visibility(const ShadingPoint& sp, size_t i, const 
             // Shadow rays through media: only for lights that interact with media (POV-Ray).
             const Scene* media = hasMedia_ && light.mediaAttenuation && light.mediaInteraction ? &scene_ : nullptr;
             s.visibility = lightTransmittance(accel_, projected_.of(i), light.shadowless, *sp.hit, s.position, sp.time,
-                                              counts, media, opaqueCasters_);
+                                              counts, media);
         }
         s.tested = true;
     }
@@ -687,7 +674,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                                                                                                     : nullptr;
                                 seen *=
                                     lightTransmittance(accel_, projected_.of(i), light->shadowless, *sp.hit,
-                                                       position, sp.time, counts, media, opaqueCasters_);
+                                                       position, sp.time, counts, media);
                                 sum += seen;
                             }
                         }

@@ -94,11 +94,12 @@ inline constexpr int kMaxShadowBlockers = 64;
 // The light reaching `target` from `from` (a surface hit): 1 if nothing casts a
 // shadow in between, else the product of P*filter + transmit over every
 // shadow-casting surface crossed (0 at the first opaque one). With `mediaScene`,
-// also the transmittance of the media along the way (render/media.h).
-// `opaqueCasters` promises that no shadow-casting surface lets light through
-// (shadowsAreOpaque): a blocked ray is then black without finding its blocker.
+// also the transmittance of the media along the way (render/media.h). One
+// occlusion query (Accelerator::occludedOpaque) answers a clear segment and
+// one blocked by a surface that lets no light through; only the surfaces of a
+// segment that crosses nothing else are found one by one.
 Color shadowTransmittance(const Accelerator& accel, const Hit& from, const Vec3& target, double time,
-                          RayCounts& counts, const Scene* mediaScene = nullptr, bool opaqueCasters = false);
+                          RayCounts& counts, const Scene* mediaScene = nullptr);
 
 // Installs the calling thread's buffer of shadowTransmittance (accel/thread_scratch.h).
 std::unique_ptr<InstalledScratch> installLightingScratch();
@@ -125,12 +126,7 @@ private:
 // `shadowless` light casts no shadow: 1, or through `projected` 1 where the
 // segment crosses it and 0 elsewhere (POV-Ray's rule).
 Color lightTransmittance(const Accelerator& accel, const Accelerator* projected, bool shadowless, const Hit& from,
-                         const Vec3& target, double time, RayCounts& counts, const Scene* mediaScene = nullptr,
-                         bool opaqueCasters = false);
-
-// True if no shadow-casting object of the scene has a pigment that can let
-// light through (filter or transmit anywhere, image maps counted as able to).
-bool shadowsAreOpaque(const Scene& scene);
+                         const Vec3& target, double time, RayCounts& counts, const Scene* mediaScene = nullptr);
 
 // How a surface hit faces the ray that found it, as the shading takes it:
 // the ray's unit direction, whether the ray enters the object (meets the
@@ -277,7 +273,6 @@ private:
 
     const Scene& scene_;
     const Accelerator& accel_;
-    bool opaqueCasters_;
     bool hasMedia_; // media or fog anywhere: shadow rays of lights that interact with them look for them
     bool anyLightMoves_; // some light moves over the shutter (render/light_path.h)
     ProjectedThrough projected_;
