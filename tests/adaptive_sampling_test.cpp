@@ -11,6 +11,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -292,6 +295,66 @@ TEST(Adaptive, CommandLineWritesTheSamplesPerPixelImageAndReportsIt) {
                                                  "/x.exr' --adaptive --min-spp 64 --max-spp 8");
     EXPECT_EQ(bad.exitCode, 1) << bad.err;
     EXPECT_NE(bad.err.find("below the minimum"), std::string::npos) << bad.err;
+}
+
+TEST(LightSamples, SceneSettingCommandLineAndBadValues) {
+    // render { light_samples K } sets RenderOptions::lightSamples; the
+    // command line overrides it; out-of-range values are located errors.
+    const Scene scene = parse("render { samples 4 light_samples 3 }");
+    EXPECT_EQ(resolveRenderOptions(scene.render).lightSamples, 3);
+    EXPECT_EQ(resolveRenderOptions(RenderSettings{}).lightSamples, 1);
+    RenderSettings overrides;
+    overrides.lightSamples = 6;
+    EXPECT_EQ(resolveRenderOptions(overlaySettings(scene.render, overrides)).lightSamples, 6);
+
+    const auto errors = [](const std::string& text) {
+        Diagnostics diagnostics;
+        EXPECT_FALSE(loadSceneText(text, "bad.drt", diagnostics));
+        return diagnostics.formatAll();
+    };
+    const std::string zero = errors("render {\n  light_samples 0\n}");
+    EXPECT_NE(zero.find("bad.drt:2:17"), std::string::npos) << zero;
+    EXPECT_NE(zero.find("'light_samples' must be between 1 and 1024"), std::string::npos) << zero;
+    EXPECT_NE(zero.find("^"), std::string::npos) << zero;
+    EXPECT_NE(errors("render { light_samples 1025 }").find("'light_samples' must be between 1 and 1024"),
+              std::string::npos);
+    EXPECT_NE(errors("render { light_samples 2.5 }").find("light_samples"), std::string::npos);
+    EXPECT_NE(errors("render { light_sample 2 }").find("light_samples"), std::string::npos); // suggested
+
+    // From the command line: K shadow rays per camera sample (the --stats
+    // file counts them), and a K out of range is refused with no output file.
+    const std::string dir = test::tempDir();
+    // Every pixel sees the floor, and the whole light is above it: each hit
+    // sends exactly K rays.
+    const std::string text = "camera { location <0, 5, 0> look_at <0, 0, 0.01> angle 40 }\n"
+                             "light_source { <1, 6, 0>, color rgb 1 area_light <1, 0, 0>, <0, 0, 1>, 3, 3 }\n"
+                             "plane { y, 0 pigment { color rgb 0.8 } }\n";
+    const std::string file = test::writeFile(dir + "/s.drt", text);
+    std::string counts[2];
+    for (const int k : {1, 4}) {
+        const std::string stats = dir + "/stats" + std::to_string(k) + ".json";
+        const test::CommandResult r =
+            test::runDrt("render '" + file + "' -o '" + dir + "/out.exr' --width 8 --height 6 --spp 2 -q --stats '" +
+                         stats + "' --light-samples " + std::to_string(k));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        std::ifstream in(stats);
+        const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        EXPECT_NE(json.find("\"shadow_rays\""), std::string::npos) << json;
+        counts[k == 1 ? 0 : 1] = json;
+    }
+    const auto shadowRays = [](const std::string& json) {
+        const size_t at = json.find("\"shadow_rays\"");
+        return std::stoull(json.substr(json.find(':', at) + 1));
+    };
+    EXPECT_EQ(shadowRays(counts[0]), 8u * 6 * 2);
+    EXPECT_EQ(shadowRays(counts[1]), 4u * 8 * 6 * 2);
+    for (const char* bad : {"0", "1025", "x"}) {
+        const test::CommandResult r = test::runDrt("render '" + file + "' -o '" + dir + "/bad.exr' --light-samples " +
+                                                   std::string(bad));
+        EXPECT_NE(r.exitCode, 0) << bad;
+        EXPECT_NE(r.err.find("--light-samples"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir + "/bad.exr"));
+    }
 }
 
 } // namespace

@@ -683,10 +683,10 @@ TEST(Render, AreaLightFullIlluminationConvergesToThePointLight) {
     expectColorNear(pixel(render(scene, options(1, 1, 4))), point, 1e-4);
 }
 
-TEST(Render, AreaLightSendsOneShadowRayPerCameraSample) {
+TEST(Render, AreaLightSendsOneShadowRayPerCameraSampleOrKWhenSplit) {
     // Cook's association: a shading point sends one shadow ray per camera
-    // sample whatever n1 x n2 and spp; POV-Ray's own method (pov_grid) sends
-    // all n1 n2 at every sample.
+    // sample whatever n1 x n2 and spp, K with light_samples K; POV-Ray's own
+    // method (pov_grid) sends all n1 n2 at every sample whatever K.
     Scene scene = litFloorScene();
     Light light = pointLight({0, 4, 0}, Color(1));
     light.area = AreaLight{{1, 0, 0}, {0, 0, 1}, 4, 4};
@@ -694,10 +694,14 @@ TEST(Render, AreaLightSendsOneShadowRayPerCameraSample) {
     for (const AreaSampling sampling :
          {AreaSampling::Stratified, AreaSampling::SolidAngle, AreaSampling::Grid, AreaSampling::PovGrid}) {
         scene.lights[0].area->sampling = sampling;
-        for (const int spp : {1, 3, 16, 64}) {
-            const RenderResult r = render(scene, options(1, 1, spp));
-            const uint64_t perSample = sampling == AreaSampling::PovGrid ? 16u : 1u;
-            EXPECT_EQ(r.stats.shadowRays, perSample * uint64_t(spp)) << int(sampling) << " at " << spp << " spp";
+        for (const auto& [spp, k] : {std::pair{1, 1}, std::pair{3, 1}, std::pair{16, 1}, std::pair{64, 1},
+                                     std::pair{5, 3}, std::pair{5, 8}}) {
+            RenderOptions o = options(1, 1, spp);
+            o.lightSamples = k;
+            const RenderResult r = render(scene, o);
+            const uint64_t perSample = sampling == AreaSampling::PovGrid ? 16u : uint64_t(k);
+            EXPECT_EQ(r.stats.shadowRays, perSample * uint64_t(spp))
+                << int(sampling) << " at " << spp << " spp, K = " << k;
         }
     }
 }
@@ -726,6 +730,20 @@ TEST(Render, GridAreaLightVisitsEveryPointOnceInPowerOfTwoCounts) {
     EXPECT_LT(pov.r, 0.9); // some are not
     scene.lights[0].area->sampling = AreaSampling::Grid;
     for (const int spp : {16, 32, 64}) expectColorNear(pixel(render(scene, options(1, 1, spp))), pov, 1e-6);
+    // Split samples keep the stratification: the K points of sample i are the
+    // light sequence's points K i .. K i + K - 1, so N samples of K points each
+    // visit the 16 cells exactly as N K samples of one point do.
+    for (const auto& [spp, k] : {std::pair{4, 4}, std::pair{2, 8}, std::pair{8, 2}, std::pair{1, 16}, std::pair{4, 8}}) {
+        RenderOptions o = options(1, 1, spp);
+        o.lightSamples = k;
+        expectColorNear(pixel(render(scene, o)), pov, 1e-6);
+    }
+    {
+        // Not so with too few points (a control: the test can fail).
+        RenderOptions o = options(1, 1, 2);
+        o.lightSamples = 3;
+        EXPECT_GT(std::fabs(pixel(render(scene, o)).r - pov.r), 1e-3);
+    }
     // And the same with area_illumination on (each point a light of 1/16 the colour).
     scene.lights[0].areaIllumination = true;
     scene.lights[0].area->sampling = AreaSampling::PovGrid;

@@ -319,6 +319,10 @@ TEST(Checkpoint, WrittenAndReadBackOrRefusedWithTheDifference) {
     seed.seed = 8;
     EXPECT_NE(checkpointMismatch(read, path, renderIdentity(seed, "1234"), seed).find("seed=7 there, seed=8 here"),
               std::string::npos);
+    RenderOptions split = options;
+    split.lightSamples = 4;
+    EXPECT_NE(checkpointMismatch(read, path, renderIdentity(split, "1234"), split).find("light_samples=4 here"),
+              std::string::npos);
     RenderOptions size = options;
     size.width = 41;
     EXPECT_NE(checkpointMismatch(read, path, renderIdentity(size, "1234"), size).find("size=40x30 there, size=41x30"),

@@ -302,6 +302,7 @@ struct Differ {
                   eq(a.render.width, b.render.width, "render.width") &&
                   eq(a.render.height, b.render.height, "render.height") &&
                   eq(a.render.samplesPerPixel, b.render.samplesPerPixel, "render.samples") &&
+                  eq(a.render.lightSamples, b.render.lightSamples, "render.lightSamples") &&
                   eq(a.render.seed, b.render.seed, "render.seed") &&
                   eq(a.render.sampler, b.render.sampler, "render.sampler") &&
                   eq(a.render.filter, b.render.filter, "render.filter") &&
@@ -404,7 +405,7 @@ TEST(Writer, RotationsBeyondNinetyDegreesAreWrittenAsRotationsThatRebuildTheMode
 
 TEST(Writer, EveryLanguageFieldRoundTrips) {
     const std::optional<Scene> scene = loadText(R"(
-render { width 40 height 30 samples 3 seed 7 sampler "independent" filter "box" adaptive { error 0.05 min_samples 2 max_samples 9 } }
+render { width 40 height 30 samples 3 light_samples 5 seed 7 sampler "independent" filter "box" adaptive { error 0.05 min_samples 2 max_samples 9 } }
 global_settings { max_trace_level 12 ambient_light rgb <0.5, 0.6, 0.7> assumed_gamma 2.2 adc_bailout 0.01 }
 background { color rgb <0.1, 0.2, 0.3> }
 camera { location <1, 2, -5> direction <0, 0, 2> up <0, 1.1, 0> right <1.4, 0, 0> sky <0, 1, 0.1>

@@ -26,6 +26,7 @@ struct RenderArguments {
     bool adaptive = false;
     double adaptiveError = 0;
     int minSpp = 0, maxSpp = 0;
+    int lightSamples = 1;
     std::string frames, subset, clock; // "A..B" ranges, or one clock value
     double clockDelta = 1, shutter = 0;
 };
@@ -89,6 +90,10 @@ CLI::App* addRender(CLI::App& app, RenderArguments& a) {
     render->add_option("--min-spp", a.minSpp, "Adaptive: samples every pixel takes first")
         ->check(CLI::Range(1, 1 << 24));
     render->add_option("--max-spp", a.maxSpp, "Adaptive: samples no pixel exceeds")->check(CLI::Range(1, 1 << 24));
+    render->add_option("--light-samples", a.lightSamples,
+                       "Shadow rays each area light sends from a shading point per camera sample, stratified as "
+                       "one sequence over the pixel (overrides the scene; default 1, Cook's association)")
+        ->check(CLI::Range(1, kMaxLightSamples));
     render->add_option("--spp-image", a.command.sppImageOutput,
                        "Also write the samples taken per pixel to this image (.exr: counts; else scaled to the most)");
     render->add_option("--crop", a.command.crop,
@@ -161,6 +166,8 @@ void fillOverrides(CLI::App& render, RenderArguments& a) {
         o.minSamplesPerPixel = a.minSpp;
     if (render.count("--max-spp"))
         o.maxSamplesPerPixel = a.maxSpp;
+    if (render.count("--light-samples"))
+        o.lightSamples = a.lightSamples;
     if (render.count("--clock-delta"))
         a.command.animation.clockDelta = a.clockDelta;
     if (render.count("--shutter"))

@@ -23,6 +23,9 @@ RenderIdentity renderIdentity(const RenderOptions& options, const std::string& s
     identity.settings = fmt::format("size={}x{} spp={} seed={} sampler={} adaptive={}", options.width,
                                     options.height, options.adaptive ? 0 : options.samplesPerPixel, options.seed,
                                     sampler, adaptive);
+    // Left out at its default, so that the settings of a render that does not
+    // split its light samples read as they did before the option.
+    if (options.lightSamples != 1) identity.settings += fmt::format(" light_samples={}", options.lightSamples);
     return identity;
 }
 

@@ -84,7 +84,7 @@ const std::map<Block, Words>& table() {
                                     "radiosity", "photons", "subsurface", "charset", "number_of_waves",
                                     "noise_generator", "max_intersections", "hf_gray_16", "mm_per_unit",
                                     "irid_wavelength"};
-        m[Block::Render] = {"width", "height", "samples", "seed", "sampler", "filter", "adaptive"};
+        m[Block::Render] = {"width", "height", "samples", "light_samples", "seed", "sampler", "filter", "adaptive"};
         m[Block::Adaptive] = {"error", "min_samples", "max_samples"};
         m[Block::Fog] = with({"distance", "color", "colour", "fog_type", "fog_offset", "fog_alt", "up",
                               "turbulence", "turb_depth", "octaves", "omega", "lambda"},

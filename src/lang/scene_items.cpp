@@ -280,6 +280,11 @@ void Evaluator::renderBlock() {
             const int n = intExpr(("'" + w + "'").c_str());
             if (n < 1) error(at, "'" + w + "' must be at least 1" + got(n));
             else (w == "width" ? r.width : w == "height" ? r.height : r.samplesPerPixel) = n;
+        } else if (w == "light_samples") {
+            const int n = intExpr("'light_samples'");
+            if (n < 1 || n > kMaxLightSamples)
+                error(at, "'light_samples' must be between 1 and " + std::to_string(kMaxLightSamples) + got(n));
+            else r.lightSamples = n;
         } else if (w == "seed") {
             const double s = floatExpr();
             if (s < 0 || s != std::floor(s) || s > 1.8e19) error(at, "'seed' must be a whole number >= 0" + got(s));

@@ -124,6 +124,8 @@ void SceneWriter::settings(const Scene& scene) {
         items += " height " + std::to_string(*r.height);
     if (r.samplesPerPixel)
         items += " samples " + std::to_string(*r.samplesPerPixel);
+    if (r.lightSamples)
+        items += " light_samples " + std::to_string(*r.lightSamples);
     if (r.seed) {
         items += " seed " + std::to_string(*r.seed);
         if (*r.seed > (uint64_t(1) << 53))

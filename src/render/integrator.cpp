@@ -17,8 +17,8 @@ namespace drt {
 
 static_assert(kTraceLevelLimit < kMaxLightDepth, "extra lights' sampler dimensions must lie past every bounce's");
 
-Integrator::Integrator(const Scene& scene, const Accelerator& accel)
-    : scene_(scene), accel_(accel), lighting_(scene, accel),
+Integrator::Integrator(const Scene& scene, const Accelerator& accel, int lightSamples)
+    : scene_(scene), accel_(accel), lighting_(scene, accel, true, lightSamples),
       maxTraceLevel_(std::clamp(scene.global.maxTraceLevel, 1, kTraceLevelLimit)),
       adcBailout_(std::isfinite(scene.global.adcBailout) ? std::max(0.0, scene.global.adcBailout) : 0.0),
       hasMedia_(sceneHasMedia(scene)) {

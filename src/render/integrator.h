@@ -35,7 +35,8 @@ inline constexpr int kOffsetRefractionLobe = 6; // 2D, the spare dimensions of e
 
 class Integrator {
 public:
-    Integrator(const Scene& scene, const Accelerator& accel);
+    // `lightSamples`: RenderOptions::lightSamples.
+    Integrator(const Scene& scene, const Accelerator& accel, int lightSamples = 1);
 
     // Radiance along a camera ray whose intersection is already found
     // (cameraFound, cameraHit: what Accelerator::intersect gives for it; the

@@ -269,17 +269,21 @@ struct AreaSample {
 class AreaSampler {
 public:
     // `highlights`: the area and normal are wanted for continuous() and what follows it.
-    AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex, bool highlights = false)
+    // `split`: the render's K (RenderOptions::lightSamples).
+    AreaSampler(const Light& light, const Vec3& point, int depth, int lightIndex, int split, bool highlights = false)
         : light_(light), area_(*light.area), point_(point),
           frame_(areaFrame(area_, light.position, point)), n1_(std::max(1, area_.size1)),
           n2_(std::max(1, area_.size2)), dimension_(lightDimension(depth, lightIndex)) {
         sampling_ = area_.sampling;
         // POV-Ray's own method takes every grid point at every hit; the others
-        // send one ray per camera sample (lighting.h). The front ends keep
-        // n1 n2 within Limits::areaLightSamples; a scene built in code is
-        // clamped rather than overflow.
+        // send K rays per camera sample (lighting.h), one unless the render
+        // splits its samples. The front ends keep n1 n2 within
+        // Limits::areaLightSamples; a scene built in code is clamped rather
+        // than overflow.
         if (sampling_ == AreaSampling::PovGrid)
             count_ = static_cast<int>(std::min<int64_t>(int64_t(n1_) * n2_, std::numeric_limits<int>::max()));
+        else
+            count_ = std::max(1, split);
         // The area and the emitter's normal weigh solid-angle and inverse-square samples only.
         if (sampling_ != AreaSampling::SolidAngle && !light.inverseSquare && !highlights) return;
         const Vec3 normal = cross(frame_.axis1, frame_.axis2);
@@ -301,12 +305,12 @@ public:
 
     int count() const { return count_; }
 
-    // Whether the sample points have a density over the light's area (one
-    // point a camera sample, stratified or uniform in solid angle), which a
+    // Whether the sample points have a density over the light's area (K
+    // points a camera sample, stratified or uniform in solid angle), which a
     // direction drawn from a highlight's lobe can meet: not a grid of points,
     // nor a light without area.
     bool continuous() const {
-        return count_ == 1 && (sampling_ == AreaSampling::Stratified || sampling_ == AreaSampling::SolidAngle) &&
+        return (sampling_ == AreaSampling::Stratified || sampling_ == AreaSampling::SolidAngle) &&
                areaMeasure_ > 0 && std::isfinite(areaMeasure_) && dot(normal_, normal_) > 0;
     }
 
@@ -354,7 +358,7 @@ public:
             int i, j;
             Vec2 jitter = {0.5, 0.5};
             if (sampling_ == AreaSampling::Grid) {
-                const Vec2 w = sampler.get2D(dimension_);
+                const Vec2 w = uniform(sampler, k);
                 i = std::min(static_cast<int>(w.x * n1_), n1_ - 1);
                 j = std::min(static_cast<int>(w.y * n2_), n2_ - 1);
                 jitter = {w.x * n1_ - i, w.y * n2_ - j};
@@ -400,8 +404,9 @@ public:
     }
 
 private:
-    // The k-th of the K uniform values of this camera sample: with K = 1 (all
-    // but pov_grid) the pixel's own stratified sequence in the light's dimension.
+    // The k-th of the K uniform values of this camera sample: with K = 1 the
+    // pixel's own stratified sequence in the light's dimension; with K > 1
+    // its points K i + k (Sampler::get2DStratified).
     Vec2 uniform(Sampler& sampler, int k) const {
         return count_ == 1 ? sampler.get2D(dimension_) : sampler.get2DStratified(dimension_, k, count_);
     }
@@ -435,10 +440,11 @@ private:
 
 } // namespace
 
-DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel, bool shortWays)
+DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel, bool shortWays, int lightSamples)
     : scene_(scene), accel_(accel),
       hasMedia_(sceneHasMedia(scene) || !scene.fogs.empty()),
-      anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)), projected_(scene) {
+      anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)),
+      lightSamples_(std::max(1, lightSamples)), projected_(scene) {
     cones_.reserve(scene.lights.size());
     for (const Light& light : scene.lights) {
         cones_.push_back(spotCones(light));
@@ -591,7 +597,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             if (made)
                 drawSamplesWith(*made);
             else
-                drawSamplesWith(AreaSampler(*light, sp.hit->point, sp.depth, index));
+                drawSamplesWith(AreaSampler(*light, sp.hit->point, sp.depth, index, lightSamples_));
         };
         const auto visible = [&](PointLightSamples::Sample& s) -> const Color& {
             return visibility(sp, i, *light, s, counts);
@@ -626,19 +632,21 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                 highlights = highlightMayReach(reach.cosReach, sp.normal, sp.incoming, *light, sp.hit->point);
             }
             if (highlights) {
-                const AreaSampler made(*light, sp.hit->point, sp.depth, index, true);
+                const AreaSampler made(*light, sp.hit->point, sp.depth, index, lightSamples_, true);
                 drawSamples(&made);
                 if (made.continuous()) {
                     const AreaSampler* const points = &made;
                     PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
                     // Multiple importance sampling of the highlights (lighting.h):
-                    // the light's sample point and a direction drawn from the
+                    // the light's K sample points and a direction drawn from the
                     // highlight's lobe each estimate the highlight, weighted by
-                    // the power heuristic p^2 / (p_light^2 + p_lobe^2) in solid angle;
-                    // the diffuse term takes the light's sample alone.
+                    // the power heuristic (K p)^2 / ((K p_light)^2 + p_lobe^2) in
+                    // solid angle; the diffuse term takes the light's points alone.
                     const Vec3& p = sp.hit->point;
-                    if (samples[0].weight > 0) {
-                        const Vec3 position = samples[0].position;
+                    const double split = range.count;
+                    for (int k = 0; k < range.count; ++k) {
+                        if (!(samples[k].weight > 0)) continue;
+                        const Vec3 position = samples[k].position;
                         const double lobe = [&] {
                             const Vec3 toLight = position - p;
                             const double distance = length(toLight);
@@ -648,12 +656,12 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                         }();
                         // The power heuristic own^2 / (own^2 + lobe^2) through their ratio, which
                         // neither overflows nor underflows for a tiny light's huge density.
-                        const double own = points->solidAnglePdf(position), ratio = lobe / own;
+                        const double own = split * points->solidAnglePdf(position), ratio = lobe / own;
                         const double share = own > 0 && std::isfinite(ratio) ? 1 / (1 + ratio * ratio) : 1.0;
                         addPointLight(
-                            sp, position, samples[0].weight, false,
+                            sp, position, samples[k].weight, false,
                             [&] { return lightIntensityAt(*light, cones, position, p, false); }, true,
-                            [&]() -> const Color& { return visible(samples[0]); },
+                            [&]() -> const Color& { return visible(samples[k]); },
                             [&] { return crandNoise(sp, index, sampler); }, sum, share);
                     }
                     Vec3 direction, position;
@@ -662,7 +670,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                         dot(sp.normal, direction) > 0 && points->meet(direction, position)) {
                         const double lobe = highlightLobePdf(finish, sp.normal, sp.incoming, direction);
                         // perSteradian / lobe times lobe^2 / (own^2 + lobe^2), as above through the ratio.
-                        const double own = points->solidAnglePdf(position), ratio = own / lobe;
+                        const double own = split * points->solidAnglePdf(position), ratio = own / lobe;
                         const double scale = points->perSteradian(position) / lobe / (1 + ratio * ratio);
                         if (lobe > 0 && std::isfinite(scale) && scale > 0) {
                             Color seen =

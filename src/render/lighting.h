@@ -7,7 +7,12 @@
 // camera sample (K = 1), its position taken from the light's own 2-D sampler
 // dimension, so that the pixel's spp samples stratify the light jointly with
 // pixel, lens and time; n1 x n2 sets how the light is stratified, not how many
-// rays a hit sends. Only pov_grid sends more. Where the points go
+// rays a hit sends. The render's `light_samples K` splits a camera sample
+// (RenderOptions::lightSamples): its K points are the light sequence's points
+// K i .. K i + K - 1 of the pixel's sample i, so the pixel's N samples still
+// stratify N K points as one sequence does, for N camera paths; a pixel whose
+// noise is that of its soft shadows then needs K times fewer camera samples.
+// pov_grid alone ignores K. Where the points go
 // (AreaLight::sampling):
 //   Stratified  the pixel's light samples are one scrambled (0,2)-sequence
 //               over the rectangle (Sampler::get2D). Unbiased.
@@ -48,13 +53,14 @@
 //        Highlights (phong, specular) of such a light, when its points have
 //        a density over its area (stratified or solid_angle, not a grid):
 //        multiple importance sampling (Veach's power heuristic). Besides
-//        the light's point, one direction is drawn from the finish's
+//        the light's K points, one direction is drawn from the finish's
 //        highlight lobe (shading.h) in highlightDimension; where it meets
-//        the light it is a second estimate with its own shadow ray. Each of
-//        the two is weighted p^2 / (p_light^2 + p_lobe^2), densities per
+//        the light it is one more estimate with its own shadow ray. A point
+//        is weighted (K p_light)^2 / ((K p_light)^2 + p_lobe^2) and the lobe's
+//        direction p_lobe^2 / ((K p_light)^2 + p_lobe^2), densities per
 //        steradian, so together they estimate the same integral as the
-//        light's point alone, and a narrow highlight that the point seldom
-//        finds is found by its lobe. The diffuse term takes the point alone.
+//        light's points alone, and a narrow highlight that the points seldom
+//        find is found by its lobe. The diffuse term takes the points alone.
 //   `circular` maps the unit square onto the inscribed ellipse (concentric map,
 //   area pi A / 4); `orient` turns the axes to face the shaded point, keeping
 //   their lengths; `adaptive` is ignored.
@@ -247,7 +253,8 @@ class DirectLighting {
 public:
     // shortWays: shade plain point lights (plainPoint_) the short way, the
     // same bits as the general one (false: every light the general way, for tests).
-    DirectLighting(const Scene& scene, const Accelerator& accel, bool shortWays = true);
+    // lightSamples: K of RenderOptions::lightSamples (at least 1).
+    DirectLighting(const Scene& scene, const Accelerator& accel, bool shortWays = true, int lightSamples = 1);
 
     // Sum over the scene's lights of the diffuse and highlight terms at
     // `point`. `samples` holds the point's light samples: cleared for each new
@@ -275,6 +282,7 @@ private:
     const Accelerator& accel_;
     bool hasMedia_; // media or fog anywhere: shadow rays of lights that interact with them look for them
     bool anyLightMoves_; // some light moves over the shutter (render/light_path.h)
+    int lightSamples_;   // K: points per area light per shading point and camera sample
     ProjectedThrough projected_;
     std::vector<SpotCones> cones_; // by light, as written (a moving light's are taken at each point)
     std::vector<int> packetLights_; // the lights whose camera shadow rays go in packets (CameraShadows)

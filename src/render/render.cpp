@@ -107,6 +107,7 @@ RenderOptions resolveRenderOptions(const RenderSettings& settings) {
     options.adaptiveError = settings.adaptiveError.value_or(options.adaptiveError);
     options.minSamplesPerPixel = settings.minSamplesPerPixel.value_or(options.minSamplesPerPixel);
     options.maxSamplesPerPixel = settings.maxSamplesPerPixel.value_or(options.maxSamplesPerPixel);
+    options.lightSamples = settings.lightSamples.value_or(options.lightSamples);
     return options;
 }
 
@@ -287,7 +288,7 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
                                               std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves));
     info.depthOfField = cameraPath.hasLens();
 
-    const Integrator integrator(scene, accel);
+    const Integrator integrator(scene, accel, options.lightSamples);
 
     // Samples first..last-1 of pixel (x, y), in index order. A pixel's camera
     // rays are traced in packets of up to Accelerator::kPacketSize (they are

@@ -43,6 +43,13 @@ struct RenderOptions {
     double adaptiveDarkFloor = 0.1; // the 0.01 = 0.1^2 of relMSE's denominator
     int minSamplesPerPixel = 16;
     int maxSamplesPerPixel = 1024;
+    // Shadow rays each area light sends from a shading point at one camera
+    // sample (render/lighting.h): 1 is Cook's association. K > 1 splits the
+    // sample: its K points are the pixel's stratified light sequence at
+    // K i .. K i + K - 1, so a pixel's N samples stratify N K points as N K
+    // camera samples would, for the cost of N camera paths and N K shadow rays.
+    // POV-Ray's pov_grid sampling ignores it (every grid point at every hit).
+    int lightSamples = 1;
     // Only these pixels of the width x height image (a crop window for farm
     // renders): each is bit-identical to the same pixel of a full render, and
     // the result's images are the window's size. None: the whole image.

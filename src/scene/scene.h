@@ -648,6 +648,10 @@ struct GlobalSettings {
     std::optional<Radiosity> radiosity;
 };
 
+// The most shadow rays `light_samples` lets an area light send from a shading
+// point at one camera sample.
+constexpr int kMaxLightSamples = 1024;
+
 // Image size and sampling set from the scene; the command line overrides them
 // (overlaySettings). An empty value means "not set here".
 struct RenderSettings {
@@ -663,6 +667,9 @@ struct RenderSettings {
     std::optional<double> adaptiveError;
     std::optional<int> minSamplesPerPixel;
     std::optional<int> maxSamplesPerPixel;
+    // Shadow rays per area light per shading point per camera sample
+    // (`light_samples K`, 1 to kMaxLightSamples); see render/render.h RenderOptions.
+    std::optional<int> lightSamples;
     // Worker threads: only ever set by the caller (0: all cores), never by a scene.
     std::optional<int> threads;
 };
@@ -682,6 +689,7 @@ inline RenderSettings overlaySettings(RenderSettings base, const RenderSettings&
     take(base.adaptiveError, top.adaptiveError);
     take(base.minSamplesPerPixel, top.minSamplesPerPixel);
     take(base.maxSamplesPerPixel, top.maxSamplesPerPixel);
+    take(base.lightSamples, top.lightSamples);
     take(base.threads, top.threads);
     return base;
 }

@@ -128,12 +128,16 @@ struct Measure {
     double mean, variance; // of the pixel mean
 };
 
-inline Measure measureAt(const Scene& base, const Vec3& point, int spp, const std::string& sampler, uint64_t seed) {
+// `lightSamples`: RenderOptions::lightSamples.
+inline Measure measureAt(const Scene& base, const Vec3& point, int spp, const std::string& sampler, uint64_t seed,
+                         int lightSamples = 1) {
     Scene scene = base;
     scene.camera = needleAt(point);
     scene.camera.shutterOpen = base.camera.shutterOpen; // the base scene's shutter (moving lights)
     scene.camera.shutterClose = base.camera.shutterClose;
-    const RenderResult r = render(scene, options(1, 1, spp, sampler, seed));
+    RenderOptions o = options(1, 1, spp, sampler, seed);
+    o.lightSamples = lightSamples;
+    const RenderResult r = render(scene, o);
     return {red(r.color, 0, 0), red(r.variance, 0, 0)};
 }
 

@@ -38,22 +38,22 @@ syn keyword drtKeyword fog_offset fog_type font frame_number frequency fresnel g
 syn keyword drtKeyword gradient granite gray gray_threshold green grid height hexagon
 syn keyword drtKeyword hierarchy hollow hypercomplex initial_clock initial_frame internal interpolate intersection
 syn keyword drtKeyword intervals inverse inverse_square ior jitter julia lambda leopard
-syn keyword drtKeyword linear_spline linear_sweep load_file location look_at low_error_factor magnet mandel
-syn keyword drtKeyword map_type marble matrix max_gradient max_iteration max_sample max_samples max_trace
-syn keyword drtKeyword max_trace_level maximum_reuse media_attenuation media_interaction merge metallic method min_samples
-syn keyword drtKeyword minimum_reuse mortar natural_spline nearest_count no_shadow octaves offset omega
-syn keyword drtKeyword omnimax once onion open orient orthographic panoramic parallel
-syn keyword drtKeyword perspective phase phong phong_size planar point_at poly_wave pov_grid
-syn keyword drtKeyword precision pretrace_end pretrace_start pwr quadratic_spline quaternion quilted radial
-syn keyword drtKeyword radius ramp_wave ratio read reciprocal recursion_limit red reflection
-syn keyword drtKeyword reflection_blur refraction_blur rgb rgbf rgbft rgbt right ripples
-syn keyword drtKeyword rotate roughness sampler samples save_file scale scallop_wave shadowless
-syn keyword drtKeyword shutter_close shutter_open sine_wave sky slice smooth solid_angle specular
-syn keyword drtKeyword spherical spotlight srgb srgbf srgbft srgbt stratified strength
-syn keyword drtKeyword string sturm subsurface t thickness threshold tightness tile2
-syn keyword drtKeyword translate transmit triangle_wave turb_depth turbulence type u u_steps
-syn keyword drtKeyword ultra_wide_angle union up uv_mapping v v_steps variance water_level
-syn keyword drtKeyword waves width wood wrinkles write
+syn keyword drtKeyword light_samples linear_spline linear_sweep load_file location look_at low_error_factor magnet
+syn keyword drtKeyword mandel map_type marble matrix max_gradient max_iteration max_sample max_samples
+syn keyword drtKeyword max_trace max_trace_level maximum_reuse media_attenuation media_interaction merge metallic method
+syn keyword drtKeyword min_samples minimum_reuse mortar natural_spline nearest_count no_shadow octaves offset
+syn keyword drtKeyword omega omnimax once onion open orient orthographic panoramic
+syn keyword drtKeyword parallel perspective phase phong phong_size planar point_at poly_wave
+syn keyword drtKeyword pov_grid precision pretrace_end pretrace_start pwr quadratic_spline quaternion quilted
+syn keyword drtKeyword radial radius ramp_wave ratio read reciprocal recursion_limit red
+syn keyword drtKeyword reflection reflection_blur refraction_blur rgb rgbf rgbft rgbt right
+syn keyword drtKeyword ripples rotate roughness sampler samples save_file scale scallop_wave
+syn keyword drtKeyword shadowless shutter_close shutter_open sine_wave sky slice smooth solid_angle
+syn keyword drtKeyword specular spherical spotlight srgb srgbf srgbft srgbt stratified
+syn keyword drtKeyword strength string sturm subsurface t thickness threshold tightness
+syn keyword drtKeyword tile2 translate transmit triangle_wave turb_depth turbulence type u
+syn keyword drtKeyword u_steps ultra_wide_angle union up uv_mapping v v_steps variance
+syn keyword drtKeyword water_level waves width wood wrinkles write
 syn match drtDirective "#\s*\%(break\|case\|debug\|declare\|else\|elseif\|end\|error\|fclose\|fopen\|for\|if\|ifdef\|ifndef\|include\|local\|macro\|range\|read\|switch\|undef\|version\|warning\|while\|write\)\>"
 syn match drtNumber "\%(\<\d\+\%(\.\d*\)\=\|\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region drtString start=+"+ skip=+\\["\\]+ end=+"+ contains=drtEscape

@@ -16,6 +16,7 @@ namespace {
 
 // --drt LABEL=PATH (repeatable); none: the drt built beside this tool.
 std::vector<std::string> adaptiveTexts; // --drt-adaptive of versus-povray and time-to-error
+std::vector<std::string> lightSampleTexts; // --drt-light-samples of the same
 
 std::vector<drt::perf::DrtBinary> drtBinaries(const std::vector<std::string>& texts) {
     std::vector<drt::perf::DrtBinary> binaries;
@@ -25,8 +26,14 @@ std::vector<drt::perf::DrtBinary> drtBinaries(const std::vector<std::string>& te
         binaries.push_back(drt::perf::builtDrt());
     for (const std::string& text : adaptiveTexts)
         drt::perf::markAdaptive(binaries, text);
+    for (const std::string& text : lightSampleTexts)
+        drt::perf::markLightSamples(binaries, text);
     return binaries;
 }
+
+constexpr const char* kLightSamplesHelp =
+    "LABEL=K: that --drt renders with --light-samples K (repeatable); give the same PATH twice under two labels "
+    "to compare";
 
 constexpr const char* kAdaptiveHelp =
     "LABEL[=MIN,MAX[,SCALE]]: measure that --drt with adaptive sampling (repeatable): a sweep step of N spp "
@@ -57,6 +64,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 256));
     versusCommand->add_option("--pov-examples", versus.povExamples, "POV-Ray's sample scene folder");
     versusCommand->add_option("--drt-adaptive", adaptiveTexts, kAdaptiveHelp);
+    versusCommand->add_option("--drt-light-samples", lightSampleTexts, kLightSamplesHelp);
     versusCommand->add_flag("--quick", versus.quick, "Fewer settings and lighter references (a few minutes)");
 
     drt::perf::RaysOptions rays;
@@ -117,6 +125,7 @@ int main(int argc, char** argv) {
     timeCommand->add_option("--drt", drtTexts,
                             "LABEL=PATH of a drt to measure (repeatable; the first renders the reference)");
     timeCommand->add_option("--drt-adaptive", adaptiveTexts, kAdaptiveHelp);
+    timeCommand->add_option("--drt-light-samples", lightSampleTexts, kLightSamplesHelp);
     timeCommand->add_option("--scene", timeToError.scene, "A drt scene (default examples/cook.drt)");
     timeCommand->add_option("--target", timeToError.target,
                             "Label of the drt whose error at --target-spp is the target (default: the last)");

@@ -30,15 +30,49 @@ DrtBinary parseDrtBinary(const std::string& text) {
 }
 
 std::vector<std::string> drtSampleArgs(const DrtBinary& drt, int spp) {
-    if (!drt.adaptive)
-        return {"--spp", std::to_string(spp)};
-    return {"--adaptive",
+    std::vector<std::string> split;
+    if (drt.lightSamples != 1) split = {"--light-samples", std::to_string(drt.lightSamples)};
+    if (!drt.adaptive) {
+        std::vector<std::string> args{"--spp", std::to_string(spp)};
+        args.insert(args.end(), split.begin(), split.end());
+        return args;
+    }
+    std::vector<std::string> args{"--adaptive",
             "--adaptive-error",
             fmt::format("{:.6g}", drt.adaptiveScale / std::sqrt(double(std::max(1, spp)))),
             "--min-spp",
             std::to_string(drt.adaptiveMinSpp),
             "--max-spp",
             std::to_string(drt.adaptiveMaxSpp)};
+    args.insert(args.end(), split.begin(), split.end());
+    return args;
+}
+
+void markLightSamples(std::vector<DrtBinary>& binaries, const std::string& text) {
+    const size_t eq = text.find('=');
+    int k = 0;
+    char rest = 0;
+    if (eq == std::string::npos || std::sscanf(text.c_str() + eq + 1, "%d%c", &k, &rest) != 1 || k < 1 || k > 1024)
+        throw std::invalid_argument(fmt::format("'{}' is not LABEL=K with K from 1 to 1024", text));
+    const std::string label = text.substr(0, eq);
+    for (DrtBinary& binary : binaries)
+        if (binary.label == label) {
+            binary.lightSamples = k;
+            return;
+        }
+    throw std::invalid_argument(fmt::format("--drt-light-samples {}: no --drt labelled '{}'", text, label));
+}
+
+std::string drtSamplingNote(const DrtBinary& drt) {
+    std::vector<std::string> parts;
+    if (drt.adaptive)
+        parts.push_back(fmt::format("adaptive, {}..{} spp, a setting of N spp: error {}/sqrt(N)", drt.adaptiveMinSpp,
+                                    drt.adaptiveMaxSpp, drt.adaptiveScale));
+    if (drt.lightSamples != 1) parts.push_back(fmt::format("--light-samples {}", drt.lightSamples));
+    if (parts.empty()) return "";
+    std::string joined;
+    for (const std::string& part : parts) joined += (joined.empty() ? "" : "; ") + part;
+    return " (" + joined + ")";
 }
 
 void markAdaptive(std::vector<DrtBinary>& binaries, const std::string& text) {

@@ -21,6 +21,8 @@ struct DrtBinary {
     bool adaptive = false;
     int adaptiveMinSpp = 4, adaptiveMaxSpp = 1024;
     double adaptiveScale = 0.05; // drt aims at relMSE error^2 or less: 0.05 / sqrt(N) spans 2.5e-3 to 1e-5
+    // --light-samples of every render of this drt (--drt-light-samples); 1: not given.
+    int lightSamples = 1;
 };
 // The render arguments of one sweep step of N samples per pixel: "--spp N", or
 // for an adaptive drt "--adaptive --adaptive-error E --min-spp A --max-spp B".
@@ -29,6 +31,11 @@ std::vector<std::string> drtSampleArgs(const DrtBinary& drt, int spp);
 // that drt of `binaries` adaptive. Throws std::invalid_argument for an
 // unknown label or bad values.
 void markAdaptive(std::vector<DrtBinary>& binaries, const std::string& text);
+// "LABEL=K" of --drt-light-samples: that drt renders with --light-samples K.
+// Throws std::invalid_argument for an unknown label or a bad K.
+void markLightSamples(std::vector<DrtBinary>& binaries, const std::string& text);
+// " (adaptive, ...; K light samples)" or "": how a drt of the sweeps samples, for reports.
+std::string drtSamplingNote(const DrtBinary& drt);
 // "LABEL=PATH", or a bare PATH (labelled "drt"). Throws std::invalid_argument
 // if the file is not an executable.
 DrtBinary parseDrtBinary(const std::string& text);

@@ -179,6 +179,9 @@ int runTimeToError(const TimeToErrorOptions& o, std::ostream& log) {
                 md += fmt::format("- drt {} samples adaptively: its \"N spp\" is `--adaptive --adaptive-error "
                                   "{}/sqrt(N) --min-spp {} --max-spp {}`.\n\n",
                                   d.label, d.adaptiveScale, d.adaptiveMinSpp, d.adaptiveMaxSpp);
+        for (const DrtBinary& d : o.drt)
+            if (d.lightSamples != 1)
+                md += fmt::format("- drt {} renders with `--light-samples {}`.\n\n", d.label, d.lightSamples);
         md += "| drt | time to the target (wall) | (CPU) | speed-up over " + targetLabel +
               " (wall) | (CPU) | shadow rays per camera sample | secondary rays per camera sample |\n"
               "|---|---|---|---|---|---|---|\n";

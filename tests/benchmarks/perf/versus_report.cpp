@@ -193,12 +193,7 @@ std::string formatVersusSummary(const VersusReport& report) {
     md << fmt::format("- {}; drt: ", report.povray);
     for (size_t i = 0; i < o.drt.size(); ++i)
         md << (i ? ", " : "")
-           << fmt::format("`{}` = {}{}", o.drt[i].label, o.drt[i].path,
-                          o.drt[i].adaptive ? fmt::format(" (adaptive, {}..{} spp, a setting of N spp: error "
-                                                          "{}/sqrt(N))",
-                                                          o.drt[i].adaptiveMinSpp, o.drt[i].adaptiveMaxSpp,
-                                                          o.drt[i].adaptiveScale)
-                                            : "");
+           << fmt::format("`{}` = {}{}", o.drt[i].label, o.drt[i].path, drtSamplingNote(o.drt[i]));
     md << fmt::format(
         ".\n- {}x{}, {} threads for both, {} runs of every setting{} (medians), renders interleaved.\n",
         o.width, o.height, o.threads, repetitions, o.quick ? ", quick settings" : "");
