@@ -458,14 +458,16 @@ TEST(Lighting, ALightWhoseConeMissesThePointDrawsNoSamples) {
 }
 
 // DirectLighting::shade takes a short way for a plain point light (still,
-// neither a spotlight nor an area or parallel light, not fading, not black).
-// Every shaded point must be the bits, and count the rays, the general way
-// gives (DirectLighting's shortWays off): random points, finishes and
-// pigments, two layers at a point (the second takes the first's shadows), at
-// depths 0 to 2, under plain lights of every colour, inverse_square and
-// shadowless among lights that are not plain, with the shadows traced ahead
-// (opaque casters) and traced through a filtering caster.
-TEST(Lighting, PlainPointLightsShadeAsTheGeneralWayDoes) {
+// neither a spotlight nor an area or parallel light, not fading, not black),
+// and traces the shadow rays of an area light's points together
+// (traceAhead: K split points, a pov_grid light's n1 n2). Every shaded point
+// must be the bits, and count the rays, the general way gives
+// (DirectLighting's shortWays off): random points, finishes and pigments, two
+// layers at a point (the second takes the first's shadows), at depths 0 to 2,
+// under plain lights of every colour, inverse_square and shadowless among
+// lights that are not plain, with 1 and 4 points a sample, with the shadows
+// traced ahead (opaque casters) and traced through a filtering caster.
+TEST(Lighting, ShortWaysShadeAsTheGeneralWayDoes) {
     const std::string lights = R"(
 camera { location <0, 2, -6> look_at <0, 0.5, 0> angle 60 }
 light_source { <-4, 6, -4>, color rgb <0.8, 0.7, 0.6> }
@@ -477,6 +479,9 @@ light_source { <5, 4, 0>, color rgb 0.6 fade_distance 3 fade_power 2 }
 light_source { <-5, 2, 1>, color rgb 0 }
 light_source { <0, 9, -9>, color rgb 0.5 parallel point_at <0, 0, 0> }
 light_source { <-2, 1.5, -1>, color rgb <-0.1, 0.4, 0.2> }
+light_source { <1, 7, -1>, color rgb 0.4 area_light <1.5, 0, 0>, <0, 0, 1.5>, 3, 3 jitter area_illumination off }
+light_source { <-1, 6, -2>, color rgb 0.3 area_light <2, 0, 0>, <0, 0, 1>, 2, 3 area_sampling pov_grid
+               area_illumination off }
 plane { y, 0 pigment { color rgb 0.7 } }
 sphere { <0, 0.8, 0>, 0.8 pigment { color rgb <0.8, 0.3, 0.2> } }
 sphere { <-1.6, 0.5, 0.5>, 0.5 pigment { color rgb 0.6 } }
@@ -484,14 +489,15 @@ box { <1, 0, -1>, <2, 1.5, 0> pigment { color rgb 0.9 } }
 )";
     std::mt19937 rng(17);
     std::uniform_real_distribution<double> u(0, 1);
-    for (const bool filtering : {false, true}) {
+    for (const auto& [filtering, split] : {std::pair{false, 1}, std::pair{true, 1}, std::pair{false, 4},
+                                           std::pair{true, 4}}) {
         Diagnostics diagnostics;
         const std::optional<Scene> scene = loadSceneText(
             lights + (filtering ? "sphere { <0.5, 2.2, -1.5>, 0.4 pigment { color rgbf <1, 0.8, 0.8, 0.7> } }\n" : ""),
             "plain-lights.drt", diagnostics);
         ASSERT_TRUE(scene && !diagnostics.hasErrors()) << diagnostics.formatAll();
         const Accelerator accel(*scene);
-        const DirectLighting fast(*scene, accel), general(*scene, accel, false);
+        const DirectLighting fast(*scene, accel, true, split), general(*scene, accel, false, split);
         const std::unique_ptr<Sampler> fastSampler = makeSampler("sobol", 8, 3), generalSampler = fastSampler->clone();
         PointLightSamples fastSamples, generalSamples;
         RayCounts fastCounts, generalCounts;
@@ -540,7 +546,8 @@ box { <1, 0, -1>, <2, 1.5, 0> pigment { color rgb 0.9 } }
                     if (!isBlack(a)) ++lit;
                     for (int c = 0; c < 3; ++c)
                         ASSERT_EQ(std::bit_cast<uint64_t>(a[c]), std::bit_cast<uint64_t>(b[c]))
-                            << (filtering ? "filtering" : "opaque") << " point " << shaded << " channel " << c;
+                            << (filtering ? "filtering" : "opaque") << ", K = " << split << ", point " << shaded
+                            << " channel " << c;
                 }
             }
         }

@@ -315,6 +315,30 @@ TEST(SobolSampler, StratifiedLightPointsAreNets) {
     EXPECT_TRUE(isNet(all, {0, 1}, 8));
 }
 
+TEST(Samplers, StratifiedRunsAreThePointsOneByOne) {
+    // get2DStratifiedRun(d, count, out): out[k] is get2DStratified(d, k, count)
+    // bit for bit, for every sampler, with the per-pixel caches warm or cold
+    // (a fresh sampler for each way), at sample indices past 256 (the
+    // shuffle's table) and for counts that are and are not powers of two.
+    for (const std::string name : {"sobol", "independent", "stratified"}) {
+        auto byOne = makeSampler(name, 1024, 21), byRun = makeSampler(name, 1024, 21);
+        for (const int index : {0, 5, 300, 1023})
+            for (const int count : {2, 3, 8, 64})
+                for (const int d : {bounceDimension(0, kOffsetLight), bounceDimension(2, kOffsetLight), 70001}) {
+                    byOne->startPixelSample(4, 7, index);
+                    byRun->startPixelSample(4, 7, index);
+                    std::vector<Vec2> run(size_t(count), Vec2{-1, -1});
+                    byRun->get2DStratifiedRun(d, count, run.data());
+                    for (int k = 0; k < count; ++k) {
+                        const Vec2 one = byOne->get2DStratified(d, k, count);
+                        ASSERT_EQ(std::bit_cast<uint64_t>(one.x), std::bit_cast<uint64_t>(run[size_t(k)].x))
+                            << name << " index " << index << " count " << count << " k " << k;
+                        ASSERT_EQ(std::bit_cast<uint64_t>(one.y), std::bit_cast<uint64_t>(run[size_t(k)].y));
+                    }
+                }
+    }
+}
+
 TEST(BaseSampler, StratifiedLightPointsFillTheGrid) {
     // The default get2DStratified: one point per cell of the near-square grid.
     auto s = makeSampler("independent", 1, 4);

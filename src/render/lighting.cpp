@@ -348,7 +348,17 @@ public:
         return std::fabs(s) <= 0.5 && std::fabs(q) <= 0.5;
     }
 
+    // Whether sample() draws a uniform value: all but an unjittered pov_grid.
+    bool drawsUniforms() const { return sampling_ != AreaSampling::PovGrid || area_.jitter; }
+    int dimension() const { return dimension_; }
+
     AreaSample sample(Sampler& sampler, int k) const {
+        return sampleFrom(drawsUniforms() ? uniform(sampler, k) : Vec2{0.5, 0.5}, k);
+    }
+
+    // The k-th point from its uniform value `w` (uniform(sampler, k); unread
+    // where !drawsUniforms()).
+    AreaSample sampleFrom(const Vec2& w, int k) const {
         const bool inverseSquare = light_.inverseSquare;
         AreaSample s;
         if (sampling_ == AreaSampling::PovGrid || sampling_ == AreaSampling::Grid) {
@@ -358,14 +368,13 @@ public:
             int i, j;
             Vec2 jitter = {0.5, 0.5};
             if (sampling_ == AreaSampling::Grid) {
-                const Vec2 w = uniform(sampler, k);
                 i = std::min(static_cast<int>(w.x * n1_), n1_ - 1);
                 j = std::min(static_cast<int>(w.y * n2_), n2_ - 1);
                 jitter = {w.x * n1_ - i, w.y * n2_ - j};
             } else {
                 i = k % n1_;
                 j = k / n1_;
-                if (area_.jitter) jitter = uniform(sampler, k);
+                if (area_.jitter) jitter = w;
             }
             // Edge to edge: i / (n1 - 1); a single row sits on the centre line.
             double u = n1_ > 1 ? double(i) / (n1_ - 1) : 0.5;
@@ -376,10 +385,9 @@ public:
             }
             s.position = light_.position + areaOffset(area_, frame_, u, v);
         } else if (sampling_ == AreaSampling::Stratified) {
-            const Vec2 u = uniform(sampler, k);
-            s.position = light_.position + areaOffset(area_, frame_, u.x, u.y);
+            s.position = light_.position + areaOffset(area_, frame_, w.x, w.y);
         } else {
-            s.position = rectangle_->sample(uniform(sampler, k));
+            s.position = rectangle_->sample(w);
             const double omega = rectangle_->solidAngle();
             if (inverseSquare) {
                 // L Omega / K with L = C / A (the colour C is applied later).
@@ -444,7 +452,7 @@ DirectLighting::DirectLighting(const Scene& scene, const Accelerator& accel, boo
     : scene_(scene), accel_(accel),
       hasMedia_(sceneHasMedia(scene) || !scene.fogs.empty()),
       anyLightMoves_(std::any_of(scene.lights.begin(), scene.lights.end(), lightMoves)),
-      lightSamples_(std::max(1, lightSamples)), projected_(scene) {
+      lightSamples_(std::max(1, lightSamples)), traceAhead_(shortWays), projected_(scene) {
     cones_.reserve(scene.lights.size());
     for (const Light& light : scene.lights) {
         cones_.push_back(spotCones(light));
@@ -534,6 +542,35 @@ const Color& DirectLighting::visibility(const ShadingPoint& sp, size_t i, const 
     return s.visibility;
 }
 
+void DirectLighting::traceAhead(const ShadingPoint& sp, size_t i, const Light& light,
+                                PointLightSamples::Sample* samples, int count, RayCounts& counts) const {
+    if (!traceAhead_ || light.shadowless || projected_.of(i) ||
+        (hasMedia_ && light.mediaAttenuation && light.mediaInteraction))
+        return; // shadowTransmittance is more than one occlusion query
+    constexpr int kPacket = Accelerator::kPacketSize;
+    static_assert(std::is_trivially_destructible_v<Ray> && std::is_trivially_copyable_v<Ray>);
+    alignas(Ray) unsigned char storage[kPacket][sizeof(Ray)];
+    Ray* const rays = reinterpret_cast<Ray*>(storage);
+    PointLightSamples::Sample* lane[kPacket];
+    for (int first = 0; first < count; first += kPacket) {
+        int n = 0;
+        for (int k = first; k < std::min(count, first + kPacket); ++k) {
+            if (samples[k].tested) continue;
+            ::new (storage[n]) Ray(shadowRay(*sp.hit, samples[k].position, sp.time));
+            lane[n++] = samples + k;
+        }
+        if (n < 2) continue; // one ray: visibility() traces it alone
+        Accelerator::Occlusion occlusion[kPacket];
+        accel_.occludedOpaquePacket(rays, n, occlusion);
+        for (int j = 0; j < n; ++j) {
+            if (occlusion[j] == Accelerator::Occlusion::ThroughTransmitters) continue;
+            ++counts.shadow;
+            lane[j]->visibility = Color(occlusion[j] == Accelerator::Occlusion::Clear ? 1.0 : 0.0);
+            lane[j]->tested = true;
+        }
+    }
+}
+
 Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sampler& sampler,
                             RayCounts& counts) const {
     if (cache.lights_.size() != scene_.lights.size()) cache.lights_.assign(scene_.lights.size(), {});
@@ -586,9 +623,20 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         // (only area lights draw samples; `made`: the light's AreaSampler at this point, if made already)
         const auto drawSamplesWith = [&](const AreaSampler& points) {
             range.begin = static_cast<int>(cache.samples_.size());
-            for (int k = 0; k < points.count(); ++k) {
-                const AreaSample a = points.sample(sampler, k);
-                cache.samples_.push_back({a.position, a.weight, false, Color(0)});
+            const int count = points.count();
+            constexpr int kRun = 64; // K or n1 n2 points: their values in one run up to this many
+            if (count > 1 && count <= kRun && points.drawsUniforms()) {
+                Vec2 w[kRun];
+                sampler.get2DStratifiedRun(points.dimension(), count, w);
+                for (int k = 0; k < count; ++k) {
+                    const AreaSample a = points.sampleFrom(w[k], k);
+                    cache.samples_.push_back({a.position, a.weight, false, Color(0)});
+                }
+            } else {
+                for (int k = 0; k < count; ++k) {
+                    const AreaSample a = points.sample(sampler, k);
+                    cache.samples_.push_back({a.position, a.weight, false, Color(0)});
+                }
             }
             range.count = static_cast<int>(cache.samples_.size()) - range.begin;
         };
@@ -709,6 +757,8 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             if (!light->shadowless) {
                 drawSamples(nullptr);
                 PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
+                // Every sample's visibility is asked for: K or n1 n2 rays from one point, traced together.
+                if (range.count > 1) traceAhead(sp, i, *light, samples, range.count, counts);
                 Color seen(0);
                 for (int k = 0; k < range.count; ++k) seen += visible(samples[k]);
                 intensity *= seen / range.count;

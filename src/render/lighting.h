@@ -251,8 +251,10 @@ private:
 // (whether shadows can be filtered) and the direct lighting at a shading point.
 class DirectLighting {
 public:
-    // shortWays: shade plain point lights (plainPoint_) the short way, the
-    // same bits as the general one (false: every light the general way, for tests).
+    // shortWays: shade plain point lights (plainPoint_) the short way and
+    // trace an area light's points' shadow rays together (traceAhead), the
+    // same bits as the general way (false: every light the general way, each
+    // ray alone, for tests).
     // lightSamples: K of RenderOptions::lightSamples (at least 1).
     DirectLighting(const Scene& scene, const Accelerator& accel, bool shortWays = true, int lightSamples = 1);
 
@@ -277,12 +279,21 @@ private:
     // found once per sample: traced ahead, or traced now.
     const Color& visibility(const ShadingPoint& sp, size_t i, const Light& light, PointLightSamples::Sample& s,
                             RayCounts& counts) const;
+    // The visibility of samples[0..count) of light i from sp, each of which
+    // the caller will ask for, traced ahead kPacketSize rays at a time as one
+    // Embree packet where one occlusion query answers them (no media, no
+    // projected_through): the same rays, the same answers as visibility()
+    // would find one by one. Those the query cannot settle (past a surface
+    // that may let light through) are left to visibility().
+    void traceAhead(const ShadingPoint& sp, size_t i, const Light& light, PointLightSamples::Sample* samples,
+                    int count, RayCounts& counts) const;
 
     const Scene& scene_;
     const Accelerator& accel_;
     bool hasMedia_; // media or fog anywhere: shadow rays of lights that interact with them look for them
     bool anyLightMoves_; // some light moves over the shutter (render/light_path.h)
     int lightSamples_;   // K: points per area light per shading point and camera sample
+    bool traceAhead_;    // shortWays: traceAhead traces together
     ProjectedThrough projected_;
     std::vector<SpotCones> cones_; // by light, as written (a moving light's are taken at each point)
     std::vector<int> packetLights_; // the lights whose camera shadow rays go in packets (CameraShadows)

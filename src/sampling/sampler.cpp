@@ -23,6 +23,10 @@ Vec2 Sampler::get2DStratified(int dimension, int k, int count) {
     return {(cell % nx + j.x) / nx, (cell / nx + j.y) / ny};
 }
 
+void Sampler::get2DStratifiedRun(int dimension, int count, Vec2* out) {
+    for (int k = 0; k < count; ++k) out[k] = get2DStratified(dimension, k, count);
+}
+
 void Sampler::getCameraDimensions(int x, int y, int first, int count, Vec2* pixel, double* time, Vec2* lens) {
     for (int j = 0; j < count; ++j) {
         startPixelSample(x, y, first + j);

@@ -56,6 +56,9 @@ public:
     // pixel sample (e.g. n1 x n2 area-light cells): the k-th of `count`
     // stratified 2D points in the given dimension.
     virtual Vec2 get2DStratified(int dimension, int k, int count);
+    // All `count` of them: out[k] is get2DStratified(dimension, k, count), bit
+    // for bit; a sampler may work out what the points share once.
+    virtual void get2DStratifiedRun(int dimension, int count, Vec2* out);
     int samplesPerPixel() const { return samplesPerPixel_; }
     uint64_t seed() const { return seed_; }
     virtual std::string name() const = 0;

@@ -88,6 +88,13 @@ public:
         return padded2D(i, s);
     }
 
+    // The same points with the seeds and the shuffled sample index looked up once.
+    void get2DStratifiedRun(int dimension, int count, Vec2* out) override {
+        const Seeds& s = seeds(kTagStratified, dimension);
+        const uint64_t base = shuffledIndex(s.shuffle) * static_cast<uint64_t>(std::max(count, 1));
+        for (int k = 0; k < count; ++k) out[k] = padded2D(static_cast<uint32_t>(base + uint64_t(k)), s);
+    }
+
     std::string name() const override { return "sobol"; }
 
 private:
