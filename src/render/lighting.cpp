@@ -552,11 +552,28 @@ void DirectLighting::traceAhead(const ShadingPoint& sp, size_t i, const Light& l
     alignas(Ray) unsigned char storage[kPacket][sizeof(Ray)];
     Ray* const rays = reinterpret_cast<Ray*>(storage);
     PointLightSamples::Sample* lane[kPacket];
+    // shadowRay's origin depends on the target only by the side of the
+    // surface it lies on (Accelerator::offsetOrigin): made once per side.
+    const Hit& hit = *sp.hit;
+    Vec3 origins[2];
+    bool made[2] = {false, false};
     for (int first = 0; first < count; first += kPacket) {
         int n = 0;
         for (int k = first; k < std::min(count, first + kPacket); ++k) {
             if (samples[k].tested) continue;
-            ::new (storage[n]) Ray(shadowRay(*sp.hit, samples[k].position, sp.time));
+            const Vec3& target = samples[k].position;
+            const Vec3 toTarget = target - hit.point;
+            const int side = dot(hit.geometricNormal, toTarget) < 0 ? 1 : 0;
+            if (!made[side]) {
+                origins[side] = Accelerator::offsetOrigin(hit, toTarget);
+                made[side] = true;
+            }
+            Ray* const ray = ::new (storage[n]) Ray;
+            ray->origin = origins[side];
+            ray->direction = target - ray->origin; // the light sits at t = 1, as in shadowRay
+            ray->tMin = 0;
+            ray->tMax = 1;
+            ray->time = sp.time;
             lane[n++] = samples + k;
         }
         if (n < 2) continue; // one ray: visibility() traces it alone
@@ -626,7 +643,9 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             const int count = points.count();
             constexpr int kRun = 64; // K or n1 n2 points: their values in one run up to this many
             if (count > 1 && count <= kRun && points.drawsUniforms()) {
-                Vec2 w[kRun];
+                static_assert(std::is_trivially_destructible_v<Vec2>);
+                alignas(Vec2) unsigned char storage[kRun * sizeof(Vec2)]; // written by the run, not zeroed first
+                Vec2* const w = reinterpret_cast<Vec2*>(storage);
                 sampler.get2DStratifiedRun(points.dimension(), count, w);
                 for (int k = 0; k < count; ++k) {
                     const AreaSample a = points.sampleFrom(w[k], k);
