@@ -542,8 +542,10 @@ const Color& DirectLighting::visibility(const ShadingPoint& sp, size_t i, const 
     return s.visibility;
 }
 
+template <class Wanted>
 void DirectLighting::traceAhead(const ShadingPoint& sp, size_t i, const Light& light,
-                                PointLightSamples::Sample* samples, int count, RayCounts& counts) const {
+                                PointLightSamples::Sample* samples, int count, RayCounts& counts,
+                                Wanted&& wanted) const {
     if (!traceAhead_ || light.shadowless || projected_.of(i) ||
         (hasMedia_ && light.mediaAttenuation && light.mediaInteraction))
         return; // shadowTransmittance is more than one occlusion query
@@ -560,7 +562,7 @@ void DirectLighting::traceAhead(const ShadingPoint& sp, size_t i, const Light& l
     for (int first = 0; first < count; first += kPacket) {
         int n = 0;
         for (int k = first; k < std::min(count, first + kPacket); ++k) {
-            if (samples[k].tested) continue;
+            if (samples[k].tested || !wanted(k)) continue;
             const Vec3& target = samples[k].position;
             const Vec3 toTarget = target - hit.point;
             const int side = dot(hit.geometricNormal, toTarget) < 0 ? 1 : 0;
@@ -669,6 +671,22 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         const auto visible = [&](PointLightSamples::Sample& s) -> const Color& {
             return visibility(sp, i, *light, s, counts);
         };
+        // With area illumination, the K points whose shading will ask for
+        // their visibility (addPointLight's tests, the same expressions),
+        // traced together.
+        const auto traceLitAhead = [&](PointLightSamples::Sample* samples) {
+            if (range.count < 2) return;
+            traceAhead(sp, i, *light, samples, range.count, counts, [&](int k) {
+                const PointLightSamples::Sample& s = samples[k];
+                if (!(s.weight > 0)) return false;
+                const Vec3 toLight = s.position - sp.hit->point;
+                const double distance = length(toLight);
+                if (!(distance > 0)) return false;
+                if (!(dot(sp.normal, toLight / distance) > 0)) return false;
+                const Color intensity = lightIntensityAt(*light, cones, s.position, sp.hit->point, false) * s.weight;
+                return !isBlack(intensity) && std::isfinite(maxComponent(intensity));
+            });
+        };
         // Diffuse and highlights from a point light at `position` whose colour
         // is scaled by `scale` (and by 1/r^2 when `inverseSquare`), times its visibility.
         const auto pointLight = [&](const Vec3& position, bool atCentre, double scale, bool inverseSquare,
@@ -711,6 +729,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                     // solid angle; the diffuse term takes the light's points alone.
                     const Vec3& p = sp.hit->point;
                     const double split = range.count;
+                    traceLitAhead(samples);
                     for (int k = 0; k < range.count; ++k) {
                         if (!(samples[k].weight > 0)) continue;
                         const Vec3 position = samples[k].position;
@@ -760,6 +779,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                 drawSamples(nullptr);
             }
             PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
+            traceLitAhead(samples);
             for (int k = 0; k < range.count; ++k)
                 if (samples[k].weight > 0)
                     pointLight(samples[k].position, false, samples[k].weight, false, samples + k);
@@ -777,7 +797,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                 drawSamples(nullptr);
                 PointLightSamples::Sample* samples = cache.samples_.data() + range.begin;
                 // Every sample's visibility is asked for: K or n1 n2 rays from one point, traced together.
-                if (range.count > 1) traceAhead(sp, i, *light, samples, range.count, counts);
+                if (range.count > 1) traceAhead(sp, i, *light, samples, range.count, counts, [](int) { return true; });
                 Color seen(0);
                 for (int k = 0; k < range.count; ++k) seen += visible(samples[k]);
                 intensity *= seen / range.count;

@@ -279,14 +279,16 @@ private:
     // found once per sample: traced ahead, or traced now.
     const Color& visibility(const ShadingPoint& sp, size_t i, const Light& light, PointLightSamples::Sample& s,
                             RayCounts& counts) const;
-    // The visibility of samples[0..count) of light i from sp, each of which
-    // the caller will ask for, traced ahead kPacketSize rays at a time as one
-    // Embree packet where one occlusion query answers them (no media, no
-    // projected_through): the same rays, the same answers as visibility()
-    // would find one by one. Those the query cannot settle (past a surface
-    // that may let light through) are left to visibility().
+    // The visibility of those of samples[0..count) of light i from sp for
+    // which wanted(k) holds, each of which the caller will ask for, traced
+    // ahead kPacketSize rays at a time as one Embree packet where one
+    // occlusion query answers them (no media, no projected_through): the same
+    // rays, the same answers as visibility() would find one by one. Those the
+    // query cannot settle (past a surface that may let light through) are
+    // left to visibility(). Defined in lighting.cpp.
+    template <class Wanted>
     void traceAhead(const ShadingPoint& sp, size_t i, const Light& light, PointLightSamples::Sample* samples,
-                    int count, RayCounts& counts) const;
+                    int count, RayCounts& counts, Wanted&& wanted) const;
 
     const Scene& scene_;
     const Accelerator& accel_;
