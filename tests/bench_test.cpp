@@ -275,6 +275,37 @@ TEST(BenchRun, SkipsMethodsThatDoNotApplyAndRejectsBadInput) {
     }
 }
 
+TEST(BenchRun, SplitLightSamplesRunOnAreaLightsAndAgreeWithTheReference) {
+    // light-split-4 renders the scene as written with 4 points on each area
+    // light per camera sample: it applies only with an area light, traces
+    // more rays than sobol at the same spp (4 shadow rays a lit hit, not 1),
+    // and estimates the same image (no bias flag: |z| < 4).
+    const std::string dir = test::tempDir();
+    const std::string scene = test::writeFile(
+        (fs::path(dir) / "soft.drt").string(),
+        std::string(kTinyScene) + "light_source { <2, 4, -2>, color rgb 0.6 area_light <1, 0, 0>, <0, 0, 1>, 3, 3 }\n");
+    BenchOptions options;
+    options.scenePath = scene;
+    options.outputDir = (fs::path(dir) / "out").string();
+    options.width = 16, options.height = 12, options.spp = {4}, options.seeds = 1, options.referenceSpp = 64;
+    options.methods = {"sobol", "light-split-4"};
+    std::ostringstream log;
+    const BenchReport report = runBench(options, log);
+    ASSERT_EQ(report.methods, (std::vector<std::string>{"sobol", "light-split-4"})) << log.str();
+    ASSERT_EQ(report.rows.size(), 2u);
+    const BenchRow& one = report.rows[0].method == "sobol" ? report.rows[0] : report.rows[1];
+    const BenchRow& split = report.rows[0].method == "sobol" ? report.rows[1] : report.rows[0];
+    EXPECT_GT(split.rays, one.rays);
+    EXPECT_LT(std::fabs(split.biasZ), 4.0);
+
+    const std::string tiny = test::writeFile((fs::path(dir) / "tiny.drt").string(), kTinyScene);
+    options.scenePath = tiny;
+    options.outputDir = (fs::path(dir) / "out-tiny").string();
+    const BenchReport none = runBench(options, log);
+    ASSERT_EQ(none.skipped.size(), 1u);
+    EXPECT_EQ(none.skipped[0].name, "light-split-4");
+}
+
 TEST(BenchCommand, BadSampleListIsAUsageErrorAndAMissingSceneAnIoError) {
     cli::BenchCommand command;
     command.options.scenePath = test::sourcePath("examples/minimal.drt");

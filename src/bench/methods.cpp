@@ -74,6 +74,13 @@ const std::vector<BenchMethod>& benchMethods() {
                     "sobol sampler, area lights stratified over their area (Cook)"),
         lightMethod("light-solid-angle", AreaSampling::SolidAngle,
                     "sobol sampler, area lights uniform in solid angle (Urena et al. 2013)"),
+        {"light-split-4", "sobol sampler, 4 points on each area light per camera sample (light_samples 4)",
+         needsAreaLight,
+         [](Scene&, RenderOptions& options, int) {
+             options.sampler = "sobol";
+             options.lightSamples = 4;
+         },
+         false},
         {"adaptive", "sobol sampler, adaptive sampling (error 1/sqrt(N), N/4..4N samples)", always,
          [](Scene&, RenderOptions& options, int spp) {
              options.sampler = "sobol";
