@@ -243,18 +243,27 @@ TEST(BenchRun, QuickBenchOnATinySceneConverges) {
     EXPECT_EQ(again.str().find("rendering reference"), std::string::npos);
 }
 
-TEST(BenchRun, SkipsMethodsThatDoNotApplyAndRejectsBadInput) {
-    const std::string dir = test::tempDir();
-    const std::string scene = test::writeFile((fs::path(dir) / "tiny.drt").string(), kTinyScene);
+// A bench of `scene` into dir/out at one sample count and seed.
+BenchOptions smallBench(const std::string& dir, const std::string& scene, int width, int height, int spp,
+                        int referenceSpp, std::vector<std::string> methods) {
     BenchOptions options;
     options.scenePath = scene;
     options.outputDir = (fs::path(dir) / "out").string();
-    options.width = 8, options.height = 6, options.spp = {1}, options.seeds = 1, options.referenceSpp = 4;
-    options.methods = {"sobol", "light-grid"};
+    options.width = width, options.height = height, options.spp = {spp}, options.seeds = 1;
+    options.referenceSpp = referenceSpp;
+    options.methods = std::move(methods);
+    return options;
+}
+
+TEST(BenchRun, SkipsMethodsThatDoNotApplyAndRejectsBadInput) {
+    const std::string dir = test::tempDir();
+    const std::string scene = test::writeFile((fs::path(dir) / "tiny.drt").string(), kTinyScene);
+    BenchOptions options = smallBench(dir, scene, 8, 6, 1, 4, {"sobol", "light-grid", "light-split-4"});
     std::ostringstream log;
     const BenchReport report = runBench(options, log);
-    ASSERT_EQ(report.skipped.size(), 1u);
+    ASSERT_EQ(report.skipped.size(), 2u);
     EXPECT_EQ(report.skipped[0].name, "light-grid");
+    EXPECT_EQ(report.skipped[1].name, "light-split-4");
     EXPECT_EQ(report.methods, std::vector<std::string>{"sobol"});
 
     options.methods = {"no-such-method"};
@@ -277,33 +286,21 @@ TEST(BenchRun, SkipsMethodsThatDoNotApplyAndRejectsBadInput) {
 
 TEST(BenchRun, SplitLightSamplesRunOnAreaLightsAndAgreeWithTheReference) {
     // light-split-4 renders the scene as written with 4 points on each area
-    // light per camera sample: it applies only with an area light, traces
+    // light per camera sample (SkipsMethods... above: only with an area light); it traces
     // more rays than sobol at the same spp (4 shadow rays a lit hit, not 1),
     // and estimates the same image (no bias flag: |z| < 4).
     const std::string dir = test::tempDir();
     const std::string scene = test::writeFile(
         (fs::path(dir) / "soft.drt").string(),
         std::string(kTinyScene) + "light_source { <2, 4, -2>, color rgb 0.6 area_light <1, 0, 0>, <0, 0, 1>, 3, 3 }\n");
-    BenchOptions options;
-    options.scenePath = scene;
-    options.outputDir = (fs::path(dir) / "out").string();
-    options.width = 16, options.height = 12, options.spp = {4}, options.seeds = 1, options.referenceSpp = 64;
-    options.methods = {"sobol", "light-split-4"};
     std::ostringstream log;
-    const BenchReport report = runBench(options, log);
+    const BenchReport report = runBench(smallBench(dir, scene, 16, 12, 4, 64, {"sobol", "light-split-4"}), log);
     ASSERT_EQ(report.methods, (std::vector<std::string>{"sobol", "light-split-4"})) << log.str();
     ASSERT_EQ(report.rows.size(), 2u);
     const BenchRow& one = report.rows[0].method == "sobol" ? report.rows[0] : report.rows[1];
     const BenchRow& split = report.rows[0].method == "sobol" ? report.rows[1] : report.rows[0];
     EXPECT_GT(split.rays, one.rays);
     EXPECT_LT(std::fabs(split.biasZ), 4.0);
-
-    const std::string tiny = test::writeFile((fs::path(dir) / "tiny.drt").string(), kTinyScene);
-    options.scenePath = tiny;
-    options.outputDir = (fs::path(dir) / "out-tiny").string();
-    const BenchReport none = runBench(options, log);
-    ASSERT_EQ(none.skipped.size(), 1u);
-    EXPECT_EQ(none.skipped[0].name, "light-split-4");
 }
 
 TEST(BenchCommand, BadSampleListIsAUsageErrorAndAMissingSceneAnIoError) {
