@@ -71,6 +71,7 @@ TEST(Mpi, ImagesAreBitIdenticalToOneProcessForAnyRankThreadAndTileCount) {
         {"fixed", "--width 40 --height 30 --spp 3 --seed 2"},
         {"adaptive", "--width 40 --height 30 --adaptive --min-spp 2 --max-spp 32 --adaptive-error 0.05"},
         {"crop", "--width 40 --height 30 --spp 2 --crop 7,33,5,26 --adaptive --min-spp 2 --max-spp 8"},
+        {"split", "--width 40 --height 30 --spp 2 --light-samples 4 --seed 3"}, // the scene's area lights, K = 4
     };
     // (ranks, threads per rank, tile size)
     const int runs[][3] = {{2, 1, 8}, {3, 1, 5}, {3, 2, 16}};

@@ -843,25 +843,33 @@ Scene busyScene() {
 }
 
 TEST(Render, ImagesAreIdenticalForAnyThreadCountAndTileSize) {
+    // With one light point a sample and with split samples (light_samples 3,
+    // whose points are traced together): busyScene's area lights.
     const Scene scene = busyScene();
-    RenderOptions reference = options(37, 23, 3);
-    reference.seed = 7;
-    const RenderResult base = render(scene, reference);
-    expectAllFinite(base.color);
-    for (int threads : {2, 8}) {
-        for (int tile : {8, 32, 64}) {
-            RenderOptions o = reference;
-            o.threads = threads;
-            o.tileSize = tile;
-            const RenderResult r = render(scene, o);
-            EXPECT_EQ(r.color.pixels, base.color.pixels) << threads << " threads, tile " << tile;
-            EXPECT_EQ(r.variance.pixels, base.variance.pixels);
-            EXPECT_EQ(r.stats.totalRays(), base.stats.totalRays());
+    std::vector<float> unsplit;
+    for (const int split : {1, 3}) {
+        RenderOptions reference = options(37, 23, 3);
+        reference.seed = 7;
+        reference.lightSamples = split;
+        const RenderResult base = render(scene, reference);
+        expectAllFinite(base.color);
+        for (int threads : {2, 8}) {
+            for (int tile : {8, 32, 64}) {
+                RenderOptions o = reference;
+                o.threads = threads;
+                o.tileSize = tile;
+                const RenderResult r = render(scene, o);
+                EXPECT_EQ(r.color.pixels, base.color.pixels) << threads << " threads, tile " << tile << ", K " << split;
+                EXPECT_EQ(r.variance.pixels, base.variance.pixels);
+                EXPECT_EQ(r.stats.totalRays(), base.stats.totalRays());
+            }
         }
+        RenderOptions otherSeed = reference;
+        otherSeed.seed = 8;
+        EXPECT_NE(render(scene, otherSeed).color.pixels, base.color.pixels);
+        if (split == 1) unsplit = base.color.pixels;
+        else EXPECT_NE(base.color.pixels, unsplit); // the split points are other points
     }
-    RenderOptions otherSeed = reference;
-    otherSeed.seed = 8;
-    EXPECT_NE(render(scene, otherSeed).color.pixels, base.color.pixels);
 }
 
 TEST(Render, DegenerateScenesGiveFiniteImages) {
