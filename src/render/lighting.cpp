@@ -17,8 +17,12 @@
 namespace drt {
 
 Ray shadowRay(const Hit& from, const Vec3& target, double time) {
+    return shadowRayFrom(Accelerator::offsetOrigin(from, target - from.point), target, time);
+}
+
+Ray shadowRayFrom(const Vec3& origin, const Vec3& target, double time) {
     Ray ray;
-    ray.origin = Accelerator::offsetOrigin(from, target - from.point);
+    ray.origin = origin;
     ray.direction = target - ray.origin; // the light sits at t = 1
     ray.tMin = 0;
     ray.tMax = 1;
@@ -159,6 +163,25 @@ double crandNoise(const ShadingPoint& sp, int lightIndex, Sampler& sampler) {
     return sampler.get1D(crandDimension(sp.depth, lightIndex));
 }
 
+// Whether a point light at `position` whose colour there is intensityAt()
+// times `scale` (and 1/r^2 when `inverseSquare`) lights sp before shadows:
+// the surface faces it and the colour is neither black nor infinite. Then `l`
+// is the unit way to it and `intensity` its colour at sp. addPointLight's
+// test, and so which of a light's points the shading asks the visibility of.
+template <class IntensityAt>
+[[gnu::always_inline]] inline bool pointLightReaches(const ShadingPoint& sp, const Vec3& position, double scale,
+                                                     bool inverseSquare, IntensityAt&& intensityAt, Vec3& l,
+                                                     Color& intensity) {
+    const Vec3 toLight = position - sp.hit->point;
+    const double distance = length(toLight);
+    if (!(distance > 0)) return false;
+    l = toLight / distance;
+    if (!(dot(sp.normal, l) > 0)) return false;
+    if (inverseSquare) scale /= distance * distance;
+    intensity = intensityAt() * scale;
+    return !isBlack(intensity) && std::isfinite(maxComponent(intensity));
+}
+
 // Diffuse and highlights at sp from a point light at `position` whose colour
 // there is intensityAt() times `scale` (and 1/r^2 when `inverseSquare`), times
 // visible() when `shadowed`, added to `sum`; noise() is crand's U.
@@ -167,14 +190,9 @@ template <class IntensityAt, class Visible, class Noise>
                                                  bool inverseSquare, IntensityAt&& intensityAt, bool shadowed,
                                                  Visible&& visible, Noise&& noise, Color& sum,
                                                  double highlightScale = 1) {
-    const Vec3 toLight = position - sp.hit->point;
-    const double distance = length(toLight);
-    if (!(distance > 0)) return;
-    const Vec3 l = toLight / distance;
-    if (!(dot(sp.normal, l) > 0)) return;
-    if (inverseSquare) scale /= distance * distance;
-    Color intensity = intensityAt() * scale;
-    if (isBlack(intensity) || !std::isfinite(maxComponent(intensity))) return;
+    Vec3 l;
+    Color intensity;
+    if (!pointLightReaches(sp, position, scale, inverseSquare, intensityAt, l, intensity)) return;
     if (shadowed) {
         intensity *= visible();
         if (isBlack(intensity)) return;
@@ -570,12 +588,7 @@ void DirectLighting::traceAhead(const ShadingPoint& sp, size_t i, const Light& l
                 origins[side] = Accelerator::offsetOrigin(hit, toTarget);
                 made[side] = true;
             }
-            Ray* const ray = ::new (storage[n]) Ray;
-            ray->origin = origins[side];
-            ray->direction = target - ray->origin; // the light sits at t = 1, as in shadowRay
-            ray->tMin = 0;
-            ray->tMax = 1;
-            ray->time = sp.time;
+            ::new (storage[n]) Ray(shadowRayFrom(origins[side], target, sp.time));
             lane[n++] = samples + k;
         }
         if (n < 2) continue; // one ray: visibility() traces it alone
@@ -644,20 +657,14 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             range.begin = static_cast<int>(cache.samples_.size());
             const int count = points.count();
             constexpr int kRun = 64; // K or n1 n2 points: their values in one run up to this many
-            if (count > 1 && count <= kRun && points.drawsUniforms()) {
-                static_assert(std::is_trivially_destructible_v<Vec2>);
-                alignas(Vec2) unsigned char storage[kRun * sizeof(Vec2)]; // written by the run, not zeroed first
-                Vec2* const w = reinterpret_cast<Vec2*>(storage);
-                sampler.get2DStratifiedRun(points.dimension(), count, w);
-                for (int k = 0; k < count; ++k) {
-                    const AreaSample a = points.sampleFrom(w[k], k);
-                    cache.samples_.push_back({a.position, a.weight, false, Color(0)});
-                }
-            } else {
-                for (int k = 0; k < count; ++k) {
-                    const AreaSample a = points.sample(sampler, k);
-                    cache.samples_.push_back({a.position, a.weight, false, Color(0)});
-                }
+            const bool run = count > 1 && count <= kRun && points.drawsUniforms();
+            static_assert(std::is_trivially_destructible_v<Vec2>);
+            alignas(Vec2) unsigned char storage[kRun * sizeof(Vec2)]; // written by the run, not zeroed first
+            Vec2* const w = reinterpret_cast<Vec2*>(storage);
+            if (run) sampler.get2DStratifiedRun(points.dimension(), count, w);
+            for (int k = 0; k < count; ++k) {
+                const AreaSample a = run ? points.sampleFrom(w[k], k) : points.sample(sampler, k);
+                cache.samples_.push_back({a.position, a.weight, false, Color(0)});
             }
             range.count = static_cast<int>(cache.samples_.size()) - range.begin;
         };
@@ -672,19 +679,19 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
             return visibility(sp, i, *light, s, counts);
         };
         // With area illumination, the K points whose shading will ask for
-        // their visibility (addPointLight's tests, the same expressions),
-        // traced together.
+        // their visibility (addPointLight's test, pointLightReaches), traced
+        // together.
         const auto traceLitAhead = [&](PointLightSamples::Sample* samples) {
             if (range.count < 2) return;
             traceAhead(sp, i, *light, samples, range.count, counts, [&](int k) {
                 const PointLightSamples::Sample& s = samples[k];
-                if (!(s.weight > 0)) return false;
-                const Vec3 toLight = s.position - sp.hit->point;
-                const double distance = length(toLight);
-                if (!(distance > 0)) return false;
-                if (!(dot(sp.normal, toLight / distance) > 0)) return false;
-                const Color intensity = lightIntensityAt(*light, cones, s.position, sp.hit->point, false) * s.weight;
-                return !isBlack(intensity) && std::isfinite(maxComponent(intensity));
+                Vec3 l;
+                Color intensity;
+                return s.weight > 0 &&
+                       pointLightReaches(
+                           sp, s.position, s.weight, false,
+                           [&] { return lightIntensityAt(*light, cones, s.position, sp.hit->point, false); }, l,
+                           intensity);
             });
         };
         // Diffuse and highlights from a point light at `position` whose colour

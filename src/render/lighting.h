@@ -306,5 +306,8 @@ private:
 
 // The shadow ray shadowTransmittance traces first from `from` to `target`.
 Ray shadowRay(const Hit& from, const Vec3& target, double time);
+// The same from an origin already offset (Accelerator::offsetOrigin, which
+// depends on the target only by the side of the surface it lies on).
+Ray shadowRayFrom(const Vec3& origin, const Vec3& target, double time);
 
 } // namespace drt
