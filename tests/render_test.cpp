@@ -344,6 +344,46 @@ TEST(Shading, SpotlightAttenuation) {
     EXPECT_DOUBLE_EQ(spotlightAttenuation(plain, plain.position, {1, 0, -1}), 1.0);
 }
 
+// outsideSpotCone is a safe shortcut: wherever it says a point is outside,
+// the centre's attenuation is exactly 0; and it does say so well outside the
+// falloff cone and behind the light. Points are drawn densely around the
+// falloff cone's edge (within 1e-6 rad), where the two could disagree.
+TEST(Shading, OutsideSpotConeOnlyWhereTheAttenuationIsZero) {
+    Light spot;
+    spot.spotlight = true;
+    spot.position = {1, -2, 3};
+    spot.pointAt = {4, 2, 15};
+    for (const double falloff : {0.5, 11.0, 40.0, 89.0, 90.0, 120.0}) {
+        spot.radius = falloff / 2;
+        spot.falloff = falloff;
+        const SpotCones cones = spotCones(spot);
+        const Vec3 axis = cones.centreAxis / cones.centreAxisLength;
+        Vec3 t, b;
+        orthonormalBasis(axis, t, b);
+        std::mt19937_64 bits(7);
+        const auto uniform = [&bits] { return double(bits() >> 11) * 0x1p-53; };
+        int outside = 0, zero = 0;
+        for (int i = 0; i < 20000; ++i) {
+            const double edge = falloff * kPi / 180;
+            const double angle = i % 2 ? edge + (uniform() - 0.5) * 2e-6 : uniform() * kPi;
+            const double phi = 2 * kPi * uniform(), r = std::exp(uniform() * 20 - 10);
+            const Vec3 direction = axis * std::cos(angle) + (t * std::cos(phi) + b * std::sin(phi)) * std::sin(angle);
+            const Vec3 point = spot.position + direction * r;
+            const double attenuation = spotlightAttenuation(spot, cones, spot.position, point, true);
+            if (outsideSpotCone(spot, cones, point)) {
+                ++outside;
+                ASSERT_EQ(attenuation, 0.0) << "falloff " << falloff << " angle " << angle;
+            }
+            zero += attenuation == 0;
+        }
+        // Nearly every zero is found (all but the sliver within 1e-9 of the edge).
+        EXPECT_GT(outside, zero * 9 / 10) << falloff;
+    }
+    EXPECT_TRUE(outsideSpotCone(spot, spotCones(spot), spot.position - (spot.pointAt - spot.position))); // behind
+    Light plain;
+    EXPECT_FALSE(outsideSpotCone(plain, spotCones(plain), {0, 0, -1})); // not a spotlight
+}
+
 // The cone cosines and centre axis computed once per light give the
 // attenuation computed from the light at every call, to the bit.
 TEST(Shading, SpotConesGiveTheSameAttenuationToTheBit) {

@@ -323,7 +323,7 @@ TEST(Samplers, StratifiedRunsAreThePointsOneByOne) {
     for (const std::string name : {"sobol", "independent", "stratified"}) {
         auto byOne = makeSampler(name, 1024, 21), byRun = makeSampler(name, 1024, 21);
         for (const int index : {0, 5, 300, 1023})
-            for (const int count : {2, 3, 8, 64})
+            for (const int count : {1, 2, 3, 8, 64, 256})
                 for (const int d : {bounceDimension(0, kOffsetLight), bounceDimension(2, kOffsetLight), 70001}) {
                     byOne->startPixelSample(4, 7, index);
                     byRun->startPixelSample(4, 7, index);

@@ -314,10 +314,97 @@ void occludedLanes(const RTCOccludedFunctionNArguments* args, const Primitive& p
     }
 }
 
+#if defined(__SSE2__)
+// occludedTopLanes of a packet of 8 against a sphere or a plane, two lanes an
+// instruction: the solver's arithmetic, operation for operation (separate
+// multiplies and adds, no FMA, IEEE division and square root), so each lane's
+// answer is the one it gets alone. A lane is blocked where a root t has
+// tnear < t < tfar and is finite; a negative discriminant's square root is
+// NaN, whose roots fail those tests as the solver's early return does.
+struct PacketLanes {
+    const float *ox, *oy, *oz, *dx, *dy, *dz, *tnear;
+    float* tfar;
+    explicit PacketLanes(RTCRayN* ray)
+        : ox(&RTCRayN_org_x(ray, 8, 0)), oy(&RTCRayN_org_y(ray, 8, 0)), oz(&RTCRayN_org_z(ray, 8, 0)),
+          dx(&RTCRayN_dir_x(ray, 8, 0)), dy(&RTCRayN_dir_y(ray, 8, 0)), dz(&RTCRayN_dir_z(ray, 8, 0)),
+          tnear(&RTCRayN_tnear(ray, 8, 0)), tfar(&RTCRayN_tfar(ray, 8, 0)) {}
+    // Lanes i and i + 1 of a float array, widened to double.
+    static __m128d pair(const float* v, int i) {
+        return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(v + i))));
+    }
+    // Where the valid lanes i, i + 1 have a root in their interval: tfar = -inf.
+    void block(const int* valid, int i, __m128d t0, __m128d t1) {
+        const __m128d infinity = _mm_set1_pd(INFINITY);
+        const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffff));
+        const __m128d near = pair(tnear, i), far = pair(tfar, i);
+        const auto within = [&](__m128d t) {
+            return _mm_and_pd(_mm_cmplt_pd(_mm_and_pd(t, magnitude), infinity),
+                              _mm_and_pd(_mm_cmpgt_pd(t, near), _mm_cmplt_pd(t, far)));
+        };
+        const int hit = _mm_movemask_pd(_mm_or_pd(within(t0), within(t1)));
+        if ((hit & 1) && valid[i]) tfar[i] = -INFINITY;
+        if ((hit & 2) && valid[i + 1]) tfar[i + 1] = -INFINITY;
+    }
+};
+
+// sphereRoots' t0 and t1 for lanes i, i + 1.
+inline void occludeSphereLanes8(const RTCOccludedFunctionNArguments* args, const Vec3& center, double radius) {
+    PacketLanes lanes(args->ray);
+    const __m128d cx = _mm_set1_pd(center.x), cy = _mm_set1_pd(center.y), cz = _mm_set1_pd(center.z);
+    const __m128d r2 = _mm_set1_pd(radius * radius);
+    const __m128d sign = _mm_castsi128_pd(_mm_set1_epi64x(int64_t(0x8000000000000000ULL)));
+    for (int i = 0; i < 8; i += 2) {
+        if (!args->valid[i] && !args->valid[i + 1]) continue;
+        const __m128d dx = PacketLanes::pair(lanes.dx, i), dy = PacketLanes::pair(lanes.dy, i),
+                      dz = PacketLanes::pair(lanes.dz, i);
+        const __m128d fx = _mm_sub_pd(PacketLanes::pair(lanes.ox, i), cx),
+                      fy = _mm_sub_pd(PacketLanes::pair(lanes.oy, i), cy),
+                      fz = _mm_sub_pd(PacketLanes::pair(lanes.oz, i), cz);
+        const auto dot = [](__m128d ax, __m128d ay, __m128d az, __m128d bx, __m128d by, __m128d bz) {
+            return _mm_add_pd(_mm_add_pd(_mm_mul_pd(ax, bx), _mm_mul_pd(ay, by)), _mm_mul_pd(az, bz));
+        };
+        const __m128d a = dot(dx, dy, dz, dx, dy, dz);
+        const __m128d b = dot(fx, fy, fz, dx, dy, dz);
+        const __m128d s = _mm_div_pd(b, a);
+        const __m128d lx = _mm_sub_pd(fx, _mm_mul_pd(s, dx)), ly = _mm_sub_pd(fy, _mm_mul_pd(s, dy)),
+                      lz = _mm_sub_pd(fz, _mm_mul_pd(s, dz));
+        const __m128d discriminant = _mm_mul_pd(a, _mm_sub_pd(r2, dot(lx, ly, lz, lx, ly, lz)));
+        const __m128d root = _mm_sqrt_pd(discriminant); // NaN where negative: no root
+        // q = -b - copysign(root, b)
+        const __m128d q = _mm_sub_pd(_mm_xor_pd(b, sign), _mm_or_pd(_mm_andnot_pd(sign, root), _mm_and_pd(sign, b)));
+        const __m128d c = _mm_sub_pd(dot(fx, fy, fz, fx, fy, fz), r2);
+        const __m128d t0 = _mm_div_pd(q, a);
+        const __m128d nonzero = _mm_cmpneq_pd(q, _mm_setzero_pd()); // true for NaN, as q != 0 is
+        const __m128d t1 = _mm_or_pd(_mm_and_pd(nonzero, _mm_div_pd(c, q)), _mm_andnot_pd(nonzero, t0));
+        lanes.block(args->valid, i, t0, t1);
+    }
+}
+
+// firstPlaneCrossing's t for lanes i, i + 1 (dn = 0 gives an infinite or NaN t).
+inline void occludePlaneLanes8(const RTCOccludedFunctionNArguments* args, const Vec3& normal, double distance) {
+    PacketLanes lanes(args->ray);
+    const __m128d nx = _mm_set1_pd(normal.x), ny = _mm_set1_pd(normal.y), nz = _mm_set1_pd(normal.z);
+    for (int i = 0; i < 8; i += 2) {
+        if (!args->valid[i] && !args->valid[i + 1]) continue;
+        const auto along = [&](const float* x, const float* y, const float* z) {
+            return _mm_add_pd(_mm_add_pd(_mm_mul_pd(nx, PacketLanes::pair(x, i)), _mm_mul_pd(ny, PacketLanes::pair(y, i))),
+                              _mm_mul_pd(nz, PacketLanes::pair(z, i)));
+        };
+        const __m128d dn = along(lanes.dx, lanes.dy, lanes.dz);
+        const __m128d t = _mm_div_pd(_mm_sub_pd(_mm_set1_pd(distance), along(lanes.ox, lanes.oy, lanes.oz)), dn);
+        lanes.block(args->valid, i, t, t);
+    }
+}
+#endif
+
 // occludedLanes for N rays at the top level and a plain primitive without a
 // transform (intersectTopLanes).
 template <unsigned N, class Solve>
 [[gnu::always_inline]] inline void occludedTopLanes(const RTCOccludedFunctionNArguments* args, Solve solve) {
+#if defined(__SSE2__)
+    if constexpr (N == 8 && std::is_same_v<Solve, SphereSolver>) return occludeSphereLanes8(args, solve.center, solve.radius);
+    if constexpr (N == 8 && std::is_same_v<Solve, PlaneSolver>) return occludePlaneLanes8(args, solve.normal, solve.distance);
+#endif
     RTCRayN* ray = args->ray;
     const int* const valid = args->valid;
     for (unsigned i = 0; i < N; ++i) {

@@ -647,6 +647,12 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
         const SpotCones& cones = !light->spotlight ? kNoCones
                                  : moved          ? (cache.movedCones_ = spotCones(*light))
                                                   : cones_[i];
+        // A spotlight whose cone leaves this point out lights it with black
+        // (lightIntensityAt's colour times 0) at its centre: the point light and
+        // the light without area illumination skip it before any other test.
+        const bool centreDark = light->spotlight && (!light->area || !light->areaIllumination) &&
+                                isFinite(light->color) && outsideSpotCone(*light, cones, sp.hit->point);
+        if (centreDark) continue;
         PointLightSamples::Range& range = rangeOf(i);
         // The light's samples at this point, drawn the first time a layer needs
         // them: a light whose centre sends nothing here (a spotlight's cone, a

@@ -131,6 +131,22 @@ double spotlightAttenuation(const Light& light, const SpotCones& cones, const Ve
     return attenuation;
 }
 
+// spotlightAttenuation at the centre is 0 where d = axis . toPoint is not
+// positive (cosAngle has its sign, or is NaN) and where cosAngle < cosFalloff.
+// The latter is certain when d^2 < (1 - 1e-9) c^2 |axis|^2 |toPoint|^2 with c =
+// cosFalloff > 0, all finite: the computed cosAngle is within a few ulps of
+// d / (|axis| |toPoint|) < c sqrt(1 - 1e-9).
+bool outsideSpotCone(const Light& light, const SpotCones& cones, const Vec3& point) {
+    if (!light.spotlight) return false;
+    const Vec3 toPoint = point - light.position;
+    const double d = dot(cones.centreAxis, toPoint);
+    if (!(d > 0)) return true;
+    const double c = cones.cosFalloff;
+    if (!(c > 0)) return false;
+    const double bound = (1 - 1e-9) * (c * c) * (cones.centreAxisLength * cones.centreAxisLength) * dot(toPoint, toPoint);
+    return std::isfinite(bound) && d * d < bound;
+}
+
 double fadeAttenuation(const Light& light, double distance) {
     if (!(light.fadeDistance > 0) || !(light.fadePower > 0)) return 1;
     return 2.0 / (1.0 + std::pow(distance / light.fadeDistance, light.fadePower));

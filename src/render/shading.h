@@ -81,6 +81,11 @@ struct SpotCones {
     double centreAxisLength = 0;
 };
 SpotCones spotCones(const Light& light);
+// Whether spotlightAttenuation(light, cones, light.position, point, true) is
+// surely 0 (the point lies outside the falloff cone about the centre's axis):
+// found without a square root or a division, and false wherever that is not
+// certain (then the attenuation itself decides).
+bool outsideSpotCone(const Light& light, const SpotCones& cones, const Vec3& point);
 double spotlightAttenuation(const Light& light, const SpotCones& cones, const Vec3& lightPosition, const Vec3& point,
                             bool atCentre = false);
 
