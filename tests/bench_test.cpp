@@ -303,6 +303,33 @@ TEST(BenchRun, SplitLightSamplesRunOnAreaLightsAndAgreeWithTheReference) {
     EXPECT_LT(std::fabs(split.biasZ), 4.0);
 }
 
+// cairo is the chart module's (bench/chart_module.h), not drt's: drt starts
+// without loading it, and drt bench without the module stops with a clear I/O
+// error naming where it looked.
+TEST(BenchCommand, ChartsComeFromAModuleThatDrtDoesNotLink) {
+    struct Environment { // drt children inherit it; this test process loads no module meanwhile
+        const char* name;
+        Environment(const char* n, const std::string& value) : name(n) { setenv(n, value.c_str(), 1); }
+        ~Environment() { unsetenv(name); }
+    };
+    {
+        const Environment listing("LD_DEBUG", "libs"); // the dynamic loader lists every library it opens
+        const test::CommandResult version = test::runDrt("--version");
+        EXPECT_EQ(version.exitCode, 0);
+        EXPECT_NE(version.err.find("libembree3"), std::string::npos) << "the listing works";
+        EXPECT_EQ(version.err.find("libcairo"), std::string::npos) << version.err;
+    }
+    const std::string dir = test::tempDir();
+    const Environment missing("DRT_CHARTS_MODULE", dir + "/no-such-module.so");
+    const test::CommandResult bench =
+        test::runDrt("bench " + test::sourcePath("examples/minimal.drt") + " -o " + dir + "/bench --spp 1 --seeds 1 " +
+                     "--methods sobol --width 8 --reference-spp 2 --threads 1");
+    EXPECT_EQ(bench.exitCode, cli::kIoError) << bench.err;
+    EXPECT_NE(bench.err.find("cannot load drt's chart module libdrt_charts.so"), std::string::npos) << bench.err;
+    EXPECT_NE(bench.err.find("no-such-module.so: no such file"), std::string::npos) << bench.err;
+    EXPECT_EQ(bench.err.find("spp seed"), std::string::npos) << "stopped before rendering: " << bench.err;
+}
+
 TEST(BenchCommand, BadSampleListIsAUsageErrorAndAMissingSceneAnIoError) {
     cli::BenchCommand command;
     command.options.scenePath = test::sourcePath("examples/minimal.drt");

@@ -1,6 +1,7 @@
 // The bench runner: scene -> references -> one render per (method, spp,
 // seed) -> metrics -> results.csv, charts and summary.md (bench/report.h).
 #include "bench/bench.h"
+#include "bench/chart.h"
 #include "assets/assets.h"
 
 #include "bench/reference.h"
@@ -231,6 +232,9 @@ BenchReport runBench(const BenchOptions& given, std::ostream& log) {
             throw BenchError(fmt::format("unknown method '{}' (known: {})", name,
                                          fmt::join(benchMethodNames(), ", ")),
                              false);
+
+    // The charts come last: a bench that could not draw them stops now, before any render.
+    if (std::string problem = chartsUnavailable(); !problem.empty()) throw BenchError(problem, true);
 
     // Parse (timed once: every render shares the parsed scene).
     std::error_code ec;

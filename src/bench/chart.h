@@ -50,4 +50,8 @@ struct Chart {
 // renamed when complete). Returns "" on success, else the reason.
 std::string writeChart(const Chart& chart, const std::string& basePath);
 
+// "" if charts can be drawn (the chart module loads: bench/chart_module.h),
+// else why not; asked before a bench renders anything.
+std::string chartsUnavailable();
+
 } // namespace drt::bench

@@ -10,13 +10,13 @@
 #include "image/image_io_module.h"
 
 #include "core/limits.h"
+#include "core/modules.h"
 #include "core/temporary_files.h"
 
 #include <atomic>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <dlfcn.h>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -38,62 +38,15 @@ struct LoadedModule {
     std::string error; // why there is none
 };
 
-std::vector<std::string> moduleCandidates() {
-    if (const char* given = std::getenv("DRT_OIIO_MODULE"); given && *given)
-        return {given};
-    std::vector<std::string> candidates;
-    std::error_code ec;
-    const fs::path executable = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        candidates.push_back((executable.parent_path() / kImageIoModuleFile).string());
-        candidates.push_back(
-            (executable.parent_path().parent_path() / "lib" / "drt" / kImageIoModuleFile).string());
-    }
-#ifdef DRT_OIIO_MODULE_BUILD_PATH
-    candidates.push_back(DRT_OIIO_MODULE_BUILD_PATH);
-#endif
-    return candidates;
-}
+// The build tree's path comes from CMake (DRT_OIIO_MODULE_BUILD_PATH).
+constexpr ModuleSpec kImageIoSpec{kImageIoModuleFile, kImageIoModuleSymbol, "DRT_OIIO_MODULE",
+                                  DRT_OIIO_MODULE_BUILD_PATH, "drt's OpenImageIO module"};
 
-// Why no candidate can be loaded, as far as looking at the files tells:
-// "" when one exists.
-std::string moduleFilesMissing() {
-    std::string listed;
-    for (const std::string& path : moduleCandidates()) {
-        std::error_code ec;
-        if (fs::exists(path, ec)) return "";
-        listed += "\n  " + path + ": no such file";
-    }
-    return std::string("cannot load drt's OpenImageIO module ") + kImageIoModuleFile + ":" + listed;
-}
+std::string moduleFilesMissing() { return drt::moduleFilesMissing(kImageIoSpec); }
 
 LoadedModule load() {
     LoadedModule loaded;
-    std::string tried;
-    for (const std::string& path : moduleCandidates()) {
-        std::error_code ec;
-        if (!fs::exists(path, ec)) {
-            tried += "\n  " + path + ": no such file";
-            continue;
-        }
-        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!handle) {
-            const char* why = dlerror();
-            tried += "\n  " + path + ": " + (why ? why : "cannot be loaded");
-            continue;
-        }
-        using Entry = const ImageIoModule* (*)();
-        const auto entry = reinterpret_cast<Entry>(dlsym(handle, kImageIoModuleSymbol));
-        const ImageIoModule* module = entry ? entry() : nullptr;
-        if (!module || module->version != kImageIoModuleVersion) {
-            tried += "\n  " + path + ": not a module of this drt build";
-            dlclose(handle);
-            continue;
-        }
-        loaded.module = module; // stays loaded until the process ends
-        return loaded;
-    }
-    loaded.error = std::string("cannot load drt's OpenImageIO module ") + kImageIoModuleFile + ":" + tried;
+    loaded.module = loadModuleTable<ImageIoModule>(kImageIoSpec, kImageIoModuleVersion, loaded.error);
     return loaded;
 }
 

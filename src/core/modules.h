@@ -1,0 +1,45 @@
+// drt's own modules: the parts of drt whose libraries would cost every drt
+// process that linked them, built as shared libraries that drt loads with
+// dlopen when one is first needed (image/image_io_module.h: OpenImageIO;
+// bench/chart_module.h: cairo). A module exports one extern "C" function
+// returning its table of entry points, whose first member is an int version:
+// a module from another build is refused.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace drt {
+
+struct ModuleSpec {
+    const char* file;        // the module's file name, e.g. "libdrt_oiio.so"
+    const char* symbol;      // its entry: extern "C" const Table* symbol()
+    const char* environment; // a variable that, when set, names the one file to load
+    const char* buildPath;   // where the build tree put it ("" if not known)
+    const char* description; // for messages, e.g. "drt's OpenImageIO module"
+};
+
+// Where the module is looked for, in order: $environment alone if it is set;
+// else beside the executable, in ../lib/drt beside it (an installed drt), and
+// in the build tree.
+std::vector<std::string> moduleCandidates(const ModuleSpec& spec);
+
+// "" when a candidate file exists; else why none can be loaded.
+std::string moduleFilesMissing(const ModuleSpec& spec);
+
+// The table of the first candidate that loads, exports the entry and whose
+// table's version (its leading int) is `version`; it stays loaded. Null if
+// none does, with `error` saying why, candidate by candidate.
+const void* loadModule(const ModuleSpec& spec, int version, std::string& error);
+
+// loadModule for a table type whose leading member is `int version`.
+template <class Table>
+const Table* loadModuleTable(const ModuleSpec& spec, int version, std::string& error) {
+    static_assert(std::is_standard_layout_v<Table> && offsetof(Table, version) == 0,
+                  "loadModule reads a table's version as its leading int");
+    return static_cast<const Table*>(loadModule(spec, version, error));
+}
+
+} // namespace drt
