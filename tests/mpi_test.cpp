@@ -135,6 +135,26 @@ TEST(Mpi, ASceneErrorOnOneRankEndsTheJobWithItsMessage) {
     fs::remove_all(dir);
 }
 
+// MPI is a module drt loads under a launcher (distributed/mpi_module.h): drt
+// itself links no MPI library, and a job whose ranks cannot load the module
+// ends at once with the reason, writing nothing.
+TEST(Mpi, TheMpiModuleIsLoadedUnderALauncherAndItsAbsenceEndsTheJob) {
+    const std::string dir = test::tempDir();
+    const std::string libraries = test::librariesDrtLoads("--version");
+    EXPECT_NE(libraries.find("libembree3"), std::string::npos) << "the listing works";
+    EXPECT_EQ(libraries.find("libmpi"), std::string::npos) << libraries;
+    const test::CommandResult missing =
+        mpirun(2, "env DRT_MPI_MODULE='" + dir + "/no-such-module.so' " + drt() + " render " + scene() + " -o '" +
+                      dir + "/out.exr' --width 20 --height 15 -q",
+               120);
+    EXPECT_NE(missing.exitCode, 0);
+    EXPECT_NE(missing.exitCode, 124) << "the job hung";
+    EXPECT_NE(missing.err.find("cannot load drt's MPI module libdrt_mpi.so"), std::string::npos) << missing.err;
+    EXPECT_NE(missing.err.find("no-such-module.so: no such file"), std::string::npos) << missing.err;
+    EXPECT_FALSE(fs::exists(dir + "/out.exr"));
+    fs::remove_all(dir);
+}
+
 // Runs `render` (a drt command line) on 3 ranks, rank 1 killed (SIGKILL) half
 // a second in: the job ends non-zero, naming rank 1, long before the time limit.
 void expectAKilledRankToEndTheJob(const std::string& render) {

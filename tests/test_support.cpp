@@ -65,6 +65,17 @@ CommandResult runDrt(const std::string& arguments) {
     return r;
 }
 
+std::string librariesDrtLoads(const std::string& arguments) {
+    const std::string dir = tempDir();
+    const std::string command = "env LD_DEBUG=libs LD_DEBUG_OUTPUT='" + dir + "/ld' '" + DRT_EXECUTABLE + "' " +
+                                arguments + " >/dev/null 2>&1 </dev/null";
+    (void)std::system(command.c_str());
+    std::string listing;
+    for (const auto& entry : fs::directory_iterator(dir)) listing += readFile(entry.path().string());
+    fs::remove_all(dir);
+    return listing;
+}
+
 std::unique_ptr<SceneRun> readSceneText(const std::string& text, bool pov, const PovOptions& options) {
     auto r = std::make_unique<SceneRun>();
     if (pov) r->scene = loadPovSceneText(text, "t.pov", r->diags, options);

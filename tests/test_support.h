@@ -62,6 +62,9 @@ inline std::string testNameOf(const std::string& description) {
 std::string drtExecutable();
 // Runs the drt executable with the given argument string (shell-quoted by the caller).
 CommandResult runDrt(const std::string& arguments);
+// What the dynamic loader says (LD_DEBUG=libs) of the libraries it opens for
+// drt run with `arguments`: one line per search and load.
+std::string librariesDrtLoads(const std::string& arguments);
 
 // A scene text read in process (the .pov or the .drt front end), its
 // diagnostics, and the texts of its #warning directives in order: how the

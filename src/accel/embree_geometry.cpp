@@ -387,8 +387,8 @@ inline void occludePlaneLanes8(const RTCOccludedFunctionNArguments* args, const 
     for (int i = 0; i < 8; i += 2) {
         if (!args->valid[i] && !args->valid[i + 1]) continue;
         const auto along = [&](const float* x, const float* y, const float* z) {
-            return _mm_add_pd(_mm_add_pd(_mm_mul_pd(nx, PacketLanes::pair(x, i)), _mm_mul_pd(ny, PacketLanes::pair(y, i))),
-                              _mm_mul_pd(nz, PacketLanes::pair(z, i)));
+            const __m128d xx = _mm_mul_pd(nx, PacketLanes::pair(x, i)), yy = _mm_mul_pd(ny, PacketLanes::pair(y, i));
+            return _mm_add_pd(_mm_add_pd(xx, yy), _mm_mul_pd(nz, PacketLanes::pair(z, i)));
         };
         const __m128d dn = along(lanes.dx, lanes.dy, lanes.dz);
         const __m128d t = _mm_div_pd(_mm_sub_pd(_mm_set1_pd(distance), along(lanes.ox, lanes.oy, lanes.oz)), dn);
@@ -402,8 +402,10 @@ inline void occludePlaneLanes8(const RTCOccludedFunctionNArguments* args, const 
 template <unsigned N, class Solve>
 [[gnu::always_inline]] inline void occludedTopLanes(const RTCOccludedFunctionNArguments* args, Solve solve) {
 #if defined(__SSE2__)
-    if constexpr (N == 8 && std::is_same_v<Solve, SphereSolver>) return occludeSphereLanes8(args, solve.center, solve.radius);
-    if constexpr (N == 8 && std::is_same_v<Solve, PlaneSolver>) return occludePlaneLanes8(args, solve.normal, solve.distance);
+    if constexpr (N == 8 && std::is_same_v<Solve, SphereSolver>)
+        return occludeSphereLanes8(args, solve.center, solve.radius);
+    if constexpr (N == 8 && std::is_same_v<Solve, PlaneSolver>)
+        return occludePlaneLanes8(args, solve.normal, solve.distance);
 #endif
     RTCRayN* ray = args->ray;
     const int* const valid = args->valid;

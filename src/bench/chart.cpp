@@ -15,27 +15,15 @@ namespace {
 constexpr ModuleSpec kChartSpec{kChartModuleFile, kChartModuleSymbol, "DRT_CHARTS_MODULE",
                                 DRT_CHARTS_MODULE_BUILD_PATH, "drt's chart module"};
 
-struct LoadedCharts {
-    const ChartModule* module = nullptr;
-    std::string error;
-};
-
-const LoadedCharts& charts() {
-    static const LoadedCharts loaded = [] { // thread-safe, once
-        LoadedCharts result;
-        result.module = loadModuleTable<ChartModule>(kChartSpec, kChartModuleVersion, result.error);
-        return result;
-    }();
-    return loaded;
-}
+const LoadedModule<ChartModule>& charts() { return moduleOnce<ChartModule>(kChartSpec, kChartModuleVersion); }
 
 } // namespace
 
-std::string chartsUnavailable() { return charts().module ? "" : charts().error; }
+std::string chartsUnavailable() { return charts().table ? "" : charts().error; }
 
 std::string writeChart(const Chart& chart, const std::string& basePath) {
-    const LoadedCharts& loaded = charts();
-    return loaded.module ? loaded.module->writeChart(chart, basePath) : loaded.error;
+    const LoadedModule<ChartModule>& loaded = charts();
+    return loaded.table ? loaded.table->writeChart(chart, basePath) : loaded.error;
 }
 
 } // namespace drt::bench

@@ -34,12 +34,31 @@ std::string moduleFilesMissing(const ModuleSpec& spec);
 // none does, with `error` saying why, candidate by candidate.
 const void* loadModule(const ModuleSpec& spec, int version, std::string& error);
 
+// A module's table, or null and why there is none.
+template <class Table>
+struct LoadedModule {
+    const Table* table = nullptr;
+    std::string error;
+};
+
 // loadModule for a table type whose leading member is `int version`.
 template <class Table>
 const Table* loadModuleTable(const ModuleSpec& spec, int version, std::string& error) {
     static_assert(std::is_standard_layout_v<Table> && offsetof(Table, version) == 0,
                   "loadModule reads a table's version as its leading int");
     return static_cast<const Table*>(loadModule(spec, version, error));
+}
+
+// The module of `spec` loaded on the first call, once for the process
+// (thread-safe; one module per table type).
+template <class Table>
+const LoadedModule<Table>& moduleOnce(const ModuleSpec& spec, int version) {
+    static const LoadedModule<Table> loaded = [&spec, version] {
+        LoadedModule<Table> result;
+        result.table = loadModuleTable<Table>(spec, version, result.error);
+        return result;
+    }();
+    return loaded;
 }
 
 } // namespace drt

@@ -23,7 +23,6 @@
 
 #ifdef DRT_HAVE_MPI
 #include "distributed/mpi_messages.h"
-#include <mpi.h>
 #endif
 
 namespace drt {
@@ -155,7 +154,7 @@ int coordinate(MpiJob& job, int count, const std::function<FrameOutcome(int)>& r
             bool busy = false;
             for (auto& [index, outcome] : own.take(ownOver))
                 record(index, 0, outcome), busy = true;
-            while (receive(MPI_ANY_SOURCE, message, from, tag)) {
+            while (receive(kAnyRank, message, from, tag)) {
                 busy = true;
                 ++receivedMessages;
                 receivedBytes += message.size();

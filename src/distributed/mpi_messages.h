@@ -1,10 +1,11 @@
 // The messages of drt's MPI protocols (distributed/mpi_render.cpp: tiles of
 // one image; distributed/frame_distribution.cpp: whole frames): non-blocking
-// sends, polled receives and the packing of plain values. Only files built
-// with MPI include this.
+// sends, polled receives and the packing of plain values, through the MPI
+// module (distributed/mpi_module.h). Only files built with MPI include this.
 #pragma once
 
 #include "core/error.h"
+#include "distributed/mpi_module.h"
 
 #include <chrono>
 #include <cstddef>
@@ -13,8 +14,6 @@
 #include <list>
 #include <thread>
 #include <vector>
-
-#include <mpi.h>
 
 namespace drt::mpi_wire {
 
@@ -33,18 +32,15 @@ class Outbox {
     void send(std::vector<std::byte> bytes, int to, int tag) {
         ++messages;
         this->bytes += bytes.size();
-        pending_.push_back({std::move(bytes), MPI_REQUEST_NULL});
+        pending_.push_back({std::move(bytes), nullptr});
         Pending& p = pending_.back();
-        MPI_Isend(p.bytes.data(), int(p.bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD, &p.request);
+        p.request = mpiModule().send(p.bytes.data(), int(p.bytes.size()), to, tag);
         progress();
     }
     // Forgets the messages MPI has sent.
     void progress() {
-        for (auto it = pending_.begin(); it != pending_.end();) {
-            int done = 0;
-            MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
-            it = done ? pending_.erase(it) : std::next(it);
-        }
+        for (auto it = pending_.begin(); it != pending_.end();)
+            it = mpiModule().sent(it->request) ? pending_.erase(it) : std::next(it);
     }
     // Waits until every message is sent.
     void flush() {
@@ -56,27 +52,15 @@ class Outbox {
   private:
     struct Pending {
         std::vector<std::byte> bytes;
-        MPI_Request request;
+        void* request; // the module's handle of the send
     };
     std::list<Pending> pending_; // a list: MPI holds pointers into the bytes
 };
 
-// The next message from `source` (or anyone), if one is waiting: its bytes,
-// sender and tag.
+// The next message from `source` (kAnyRank: anyone), if one is waiting: its
+// bytes, sender and tag.
 inline bool receive(int source, std::vector<std::byte>& bytes, int& from, int& tag) {
-    int flag = 0;
-    MPI_Status status;
-    MPI_Iprobe(source, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
-    if (!flag)
-        return false;
-    int size = 0;
-    MPI_Get_count(&status, MPI_BYTE, &size);
-    bytes.resize(size_t(size));
-    MPI_Recv(bytes.data(), size, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD,
-             MPI_STATUS_IGNORE);
-    from = status.MPI_SOURCE;
-    tag = status.MPI_TAG;
-    return true;
+    return mpiModule().receive(source, bytes, from, tag);
 }
 
 template <class T> inline void append(std::vector<std::byte>& out, const T& value) {

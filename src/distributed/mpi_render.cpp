@@ -22,8 +22,8 @@
 #include <thread>
 
 #ifdef DRT_HAVE_MPI
+#include "core/modules.h"
 #include "distributed/mpi_messages.h"
-#include <mpi.h>
 #endif
 
 namespace drt {
@@ -52,41 +52,43 @@ TileRenderInfo renderDistributed(MpiJob&, const Scene&, const RenderOptions&, Re
 
 bool MpiJob::available() { return true; }
 
+namespace {
+
+// The build tree's path comes from CMake (DRT_MPI_MODULE_BUILD_PATH).
+constexpr ModuleSpec kMpiSpec{kMpiModuleFile, kMpiModuleSymbol, "DRT_MPI_MODULE", DRT_MPI_MODULE_BUILD_PATH,
+                              "drt's MPI module"};
+
+} // namespace
+
+const MpiModule& mpiModule() {
+    const LoadedModule<MpiModule>& loaded = moduleOnce<MpiModule>(kMpiSpec, kMpiModuleVersion);
+    if (!loaded.table) throw RenderError(loaded.error);
+    return *loaded.table;
+}
+
 MpiJob::MpiJob() {
-    int provided = 0;
-    if (MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
-        throw RenderError("MPI_Init_thread failed");
-    if (provided < MPI_THREAD_FUNNELED) {
-        MPI_Finalize();
-        throw RenderError("this MPI library cannot be used with threads (MPI_THREAD_FUNNELED)");
-    }
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    if (std::string problem = mpiModule().start(rank_, size_); !problem.empty()) throw RenderError(problem);
 }
 
-MpiJob::~MpiJob() { MPI_Finalize(); }
+MpiJob::~MpiJob() { mpiModule().finish(); }
 
-int MpiJob::agree(int status) {
-    int worst = status;
-    MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-    return worst;
-}
+int MpiJob::agree(int status) { return mpiModule().largest(status); }
 
 uint64_t MpiJob::broadcast(uint64_t value) {
-    unsigned long long v = value;
-    MPI_Bcast(&v, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    uint64_t v = value;
+    mpiModule().broadcast(&v, int(sizeof v));
     return v;
 }
 
 std::string MpiJob::broadcast(const std::string& value) {
     std::string text = value;
     text.resize(broadcast(uint64_t(value.size())));
-    MPI_Bcast(text.data(), int(text.size()), MPI_CHAR, 0, MPI_COMM_WORLD);
+    mpiModule().broadcast(text.data(), int(text.size()));
     return text;
 }
 
 void MpiJob::abort(int status) {
-    MPI_Abort(MPI_COMM_WORLD, status);
+    mpiModule().abort(status);
     std::_Exit(status);
 }
 
@@ -274,7 +276,7 @@ TileRenderInfo renderAsRank0(MpiJob& job, const Scene& scene, const RenderOption
         abortIfFailed(job, thread);
         traffic.progress();
         bool busy = false;
-        while (receive(MPI_ANY_SOURCE, message, from, tag)) {
+        while (receive(kAnyRank, message, from, tag)) {
             busy = true;
             if (tag == kRequest) {
                 wanted[size_t(from)] += readAt<int>(message, 0);
@@ -311,7 +313,7 @@ TileRenderInfo renderAsRank0(MpiJob& job, const Scene& scene, const RenderOption
     int reported = 1;
     while (reported < job.size()) {
         traffic.progress();
-        if (!receive(MPI_ANY_SOURCE, message, from, tag)) {
+        if (!receive(kAnyRank, message, from, tag)) {
             pauseBriefly();
             continue;
         }

@@ -33,26 +33,14 @@ namespace drt {
 
 namespace {
 
-struct LoadedModule {
-    const ImageIoModule* module = nullptr;
-    std::string error; // why there is none
-};
-
 // The build tree's path comes from CMake (DRT_OIIO_MODULE_BUILD_PATH).
 constexpr ModuleSpec kImageIoSpec{kImageIoModuleFile, kImageIoModuleSymbol, "DRT_OIIO_MODULE",
                                   DRT_OIIO_MODULE_BUILD_PATH, "drt's OpenImageIO module"};
 
 std::string moduleFilesMissing() { return drt::moduleFilesMissing(kImageIoSpec); }
 
-LoadedModule load() {
-    LoadedModule loaded;
-    loaded.module = loadModuleTable<ImageIoModule>(kImageIoSpec, kImageIoModuleVersion, loaded.error);
-    return loaded;
-}
-
-const LoadedModule& imageIo() {
-    static const LoadedModule loaded = load(); // thread-safe, once
-    return loaded;
+const LoadedModule<ImageIoModule>& imageIo() {
+    return moduleOnce<ImageIoModule>(kImageIoSpec, kImageIoModuleVersion);
 }
 
 // The background load of loadImageIoInBackground(), joined when the process ends.
@@ -108,10 +96,10 @@ std::string checkWritable(const std::string& path) {
         // Whether the module loads is known only once it has; a missing file is known now.
         if (std::string missing = moduleFilesMissing(); !missing.empty()) return missing;
     } else {
-        const LoadedModule& io = imageIo();
-        if (!io.module)
+        const LoadedModule<ImageIoModule>& io = imageIo();
+        if (!io.table)
             return io.error;
-        if (!io.module->hasWriter(path))
+        if (!io.table->hasWriter(path))
             return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) +
                    "' (use .png, .jpg, .tif, .exr or .hdr)";
     }
@@ -167,10 +155,10 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
     if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
         image.pixels.size() != size_t(image.width) * image.height * image.channels)
         return "cannot write '" + path + "': the image is empty or malformed";
-    const LoadedModule& io = imageIo();
-    if (!io.module)
+    const LoadedModule<ImageIoModule>& io = imageIo();
+    if (!io.table)
         return io.error;
-    if (!io.module->hasWriter(path))
+    if (!io.table->hasWriter(path))
         return "cannot write '" + path + "': unknown image format '" + lowerExtension(path) + "'";
     const fs::path temporary = temporaryPath(fs::path(path));
     const TemporaryFile registered(temporary.string()); // removed if a signal ends the process
@@ -179,7 +167,7 @@ std::string writeImage(const std::string& path, const Image& image, const Metada
         fs::remove(temporary, ec);
         return "cannot write '" + path + "': " + reason;
     };
-    if (std::string problem = io.module->writeFile(temporary.string(), path, image, metadata);
+    if (std::string problem = io.table->writeFile(temporary.string(), path, image, metadata);
         !problem.empty())
         return fail(problem);
     fs::rename(temporary, path, ec);
@@ -198,13 +186,13 @@ ReadBudget readBudget() {
 } // namespace
 
 std::string readImage(const std::string& path, Image& image, Metadata* metadata) {
-    const LoadedModule& io = imageIo();
-    return io.module ? io.module->readImage(path, image, metadata, readBudget()) : io.error;
+    const LoadedModule<ImageIoModule>& io = imageIo();
+    return io.table ? io.table->readImage(path, image, metadata, readBudget()) : io.error;
 }
 
 std::string readImageEncoded(const std::string& path, Image& image, ImageFileInfo& info) {
-    const LoadedModule& io = imageIo();
-    return io.module ? io.module->readImageEncoded(path, image, info, readBudget()) : io.error;
+    const LoadedModule<ImageIoModule>& io = imageIo();
+    return io.table ? io.table->readImageEncoded(path, image, info, readBudget()) : io.error;
 }
 
 } // namespace drt

@@ -143,7 +143,8 @@ bool outsideSpotCone(const Light& light, const SpotCones& cones, const Vec3& poi
     if (!(d > 0)) return true;
     const double c = cones.cosFalloff;
     if (!(c > 0)) return false;
-    const double bound = (1 - 1e-9) * (c * c) * (cones.centreAxisLength * cones.centreAxisLength) * dot(toPoint, toPoint);
+    const double axis2 = cones.centreAxisLength * cones.centreAxisLength;
+    const double bound = (1 - 1e-9) * (c * c) * axis2 * dot(toPoint, toPoint);
     return std::isfinite(bound) && d * d < bound;
 }
 
