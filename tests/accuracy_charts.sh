@@ -8,7 +8,7 @@
 #           there are reused by later runs while the scene is unchanged.
 #
 # Settings are small on purpose (48x36 pixels, 1-64 spp, 3 seeds, one thread so
-# that timings do not depend on how busy the other core is): about five minutes
+# that timings do not depend on how busy the other core is): under a minute
 # on a 2-core machine, less when the references already exist.
 # Scenes that are missing are reported and skipped. A filter method equal to
 # the scene's own filter is skipped by drt bench (the sobol method renders it).
