@@ -40,7 +40,7 @@ std::string moduleFilesMissing(const ModuleSpec& spec) {
     return cannotLoad(spec, listed);
 }
 
-const void* loadModule(const ModuleSpec& spec, int version, std::string& error) {
+const void* loadModule(const ModuleSpec& spec, int version, const void* (*call)(void* entry), std::string& error) {
     std::string tried;
     for (const std::string& path : moduleCandidates(spec)) {
         std::error_code ec;
@@ -54,9 +54,8 @@ const void* loadModule(const ModuleSpec& spec, int version, std::string& error) 
             tried += "\n  " + path + ": " + (why ? why : "cannot be loaded");
             continue;
         }
-        using Entry = const void* (*)();
-        const auto entry = reinterpret_cast<Entry>(dlsym(handle, spec.symbol));
-        const void* table = entry ? entry() : nullptr;
+        void* const entry = dlsym(handle, spec.symbol);
+        const void* table = entry ? call(entry) : nullptr;
         if (!table || *static_cast<const int*>(table) != version) {
             tried += "\n  " + path + ": not a module of this drt build";
             dlclose(handle);

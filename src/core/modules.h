@@ -31,8 +31,9 @@ std::string moduleFilesMissing(const ModuleSpec& spec);
 
 // The table of the first candidate that loads, exports the entry and whose
 // table's version (its leading int) is `version`; it stays loaded. Null if
-// none does, with `error` saying why, candidate by candidate.
-const void* loadModule(const ModuleSpec& spec, int version, std::string& error);
+// none does, with `error` saying why, candidate by candidate. `call` calls the
+// entry found at a symbol's address as the function it is (loadModuleTable).
+const void* loadModule(const ModuleSpec& spec, int version, const void* (*call)(void* entry), std::string& error);
 
 // A module's table, or null and why there is none.
 template <class Table>
@@ -46,7 +47,8 @@ template <class Table>
 const Table* loadModuleTable(const ModuleSpec& spec, int version, std::string& error) {
     static_assert(std::is_standard_layout_v<Table> && offsetof(Table, version) == 0,
                   "loadModule reads a table's version as its leading int");
-    return static_cast<const Table*>(loadModule(spec, version, error));
+    const auto call = [](void* entry) -> const void* { return reinterpret_cast<const Table* (*)()>(entry)(); };
+    return static_cast<const Table*>(loadModule(spec, version, call, error));
 }
 
 // The module of `spec` loaded on the first call, once for the process
