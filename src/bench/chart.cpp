@@ -19,7 +19,10 @@ const LoadedModule<ChartModule>& charts() { return moduleOnce<ChartModule>(kChar
 
 } // namespace
 
-std::string chartsUnavailable() { return charts().table ? "" : charts().error; }
+std::string chartsUnavailable() {
+    const LoadedModule<ChartModule>& loaded = charts();
+    return loaded.table ? "" : loaded.error;
+}
 
 std::string writeChart(const Chart& chart, const std::string& basePath) {
     const LoadedModule<ChartModule>& loaded = charts();

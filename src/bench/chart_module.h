@@ -3,8 +3,8 @@
 // linked into drt but lives in the module libdrt_charts.so
 // (src/bench/cairo/), loaded when the first chart is written
 // (core/modules.h). Every library a process has linked is searched before
-// the image module's own for each of its ~170,000 symbols, so cairo's cost
-// every render part of the image module's load: about 11 ms
+// the image module's own for each of its ~170,000 symbols, so linked into drt
+// cairo's libraries cost every render about 11 ms of the image module's load
 // (docs/performance.md, "The fixed cost of a render").
 #pragma once
 

@@ -4,11 +4,15 @@
 #include <dlfcn.h>
 #include <filesystem>
 #include <system_error>
+#include <vector>
 
 namespace fs = std::filesystem;
 
 namespace drt {
 
+namespace {
+
+// Where the module is looked for (core/modules.h), in order.
 std::vector<std::string> moduleCandidates(const ModuleSpec& spec) {
     if (const char* given = std::getenv(spec.environment); given && *given) return {given};
     std::vector<std::string> candidates;
@@ -21,8 +25,6 @@ std::vector<std::string> moduleCandidates(const ModuleSpec& spec) {
     if (spec.buildPath && *spec.buildPath) candidates.push_back(spec.buildPath);
     return candidates;
 }
-
-namespace {
 
 std::string cannotLoad(const ModuleSpec& spec, const std::string& tried) {
     return std::string("cannot load ") + spec.description + " " + spec.file + ":" + tried;

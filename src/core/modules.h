@@ -9,7 +9,6 @@
 #include <cstddef>
 #include <string>
 #include <type_traits>
-#include <vector>
 
 namespace drt {
 
@@ -21,10 +20,9 @@ struct ModuleSpec {
     const char* description; // for messages, e.g. "drt's OpenImageIO module"
 };
 
-// Where the module is looked for, in order: $environment alone if it is set;
-// else beside the executable, in ../lib/drt beside it (an installed drt), and
-// in the build tree.
-std::vector<std::string> moduleCandidates(const ModuleSpec& spec);
+// A module is looked for, in order: at $environment alone if it is set; else
+// beside the executable, in ../lib/drt beside it (an installed drt), and in
+// the build tree.
 
 // "" when a candidate file exists; else why none can be loaded.
 std::string moduleFilesMissing(const ModuleSpec& spec);

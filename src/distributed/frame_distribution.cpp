@@ -154,7 +154,7 @@ int coordinate(MpiJob& job, int count, const std::function<FrameOutcome(int)>& r
             bool busy = false;
             for (auto& [index, outcome] : own.take(ownOver))
                 record(index, 0, outcome), busy = true;
-            while (receive(kAnyRank, message, from, tag)) {
+            while (mpiModule().receive(kAnyRank, message, from, tag)) {
                 busy = true;
                 ++receivedMessages;
                 receivedBytes += message.size();
@@ -234,7 +234,7 @@ int work(const std::function<FrameOutcome(int)>& render) {
         for (char c : outcome.messages)
             ask.push_back(std::byte(c));
         traffic.send(std::move(ask), 0, kAsk);
-        while (!receive(0, message, from, tag)) {
+        while (!mpiModule().receive(0, message, from, tag)) {
             traffic.progress();
             pauseBriefly();
         }

@@ -1,7 +1,8 @@
 // The messages of drt's MPI protocols (distributed/mpi_render.cpp: tiles of
 // one image; distributed/frame_distribution.cpp: whole frames): non-blocking
-// sends, polled receives and the packing of plain values, through the MPI
-// module (distributed/mpi_module.h). Only files built with MPI include this.
+// sends and the packing of plain values; messages are received with the MPI
+// module's receive (distributed/mpi_module.h), polled. Only files built with
+// MPI include this.
 #pragma once
 
 #include "core/error.h"
@@ -56,12 +57,6 @@ class Outbox {
     };
     std::list<Pending> pending_; // a list: MPI holds pointers into the bytes
 };
-
-// The next message from `source` (kAnyRank: anyone), if one is waiting: its
-// bytes, sender and tag.
-inline bool receive(int source, std::vector<std::byte>& bytes, int& from, int& tag) {
-    return mpiModule().receive(source, bytes, from, tag);
-}
 
 template <class T> inline void append(std::vector<std::byte>& out, const T& value) {
     const size_t at = out.size();

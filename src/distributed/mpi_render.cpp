@@ -276,7 +276,7 @@ TileRenderInfo renderAsRank0(MpiJob& job, const Scene& scene, const RenderOption
         abortIfFailed(job, thread);
         traffic.progress();
         bool busy = false;
-        while (receive(kAnyRank, message, from, tag)) {
+        while (mpiModule().receive(kAnyRank, message, from, tag)) {
             busy = true;
             if (tag == kRequest) {
                 wanted[size_t(from)] += readAt<int>(message, 0);
@@ -313,7 +313,7 @@ TileRenderInfo renderAsRank0(MpiJob& job, const Scene& scene, const RenderOption
     int reported = 1;
     while (reported < job.size()) {
         traffic.progress();
-        if (!receive(kAnyRank, message, from, tag)) {
+        if (!mpiModule().receive(kAnyRank, message, from, tag)) {
             pauseBriefly();
             continue;
         }
@@ -352,7 +352,7 @@ TileRenderInfo renderAsWorker(MpiJob& job, const Scene& scene, const RenderOptio
             traffic.send(std::move(request), 0, kRequest);
             asked += want;
         }
-        while (!stopped && receive(0, message, from, tag)) {
+        while (!stopped && mpiModule().receive(0, message, from, tag)) {
             busy = true;
             if (tag == kStop) {
                 stopped = true;

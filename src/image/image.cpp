@@ -37,8 +37,6 @@ namespace {
 constexpr ModuleSpec kImageIoSpec{kImageIoModuleFile, kImageIoModuleSymbol, "DRT_OIIO_MODULE",
                                   DRT_OIIO_MODULE_BUILD_PATH, "drt's OpenImageIO module"};
 
-std::string moduleFilesMissing() { return drt::moduleFilesMissing(kImageIoSpec); }
-
 const LoadedModule<ImageIoModule>& imageIo() {
     return moduleOnce<ImageIoModule>(kImageIoSpec, kImageIoModuleVersion);
 }
@@ -94,7 +92,7 @@ std::string checkWritable(const std::string& path) {
         return "'" + path + "' names a folder, not a file";
     if (coreFormat(lowerExtension(path))) {
         // Whether the module loads is known only once it has; a missing file is known now.
-        if (std::string missing = moduleFilesMissing(); !missing.empty()) return missing;
+        if (std::string missing = moduleFilesMissing(kImageIoSpec); !missing.empty()) return missing;
     } else {
         const LoadedModule<ImageIoModule>& io = imageIo();
         if (!io.table)

@@ -98,15 +98,13 @@ public:
         const Seeds& s = seeds(kTagStratified, dimension);
         const uint64_t base = shuffledIndex(s.shuffle) * static_cast<uint64_t>(std::max(count, 1));
         const auto index = static_cast<uint32_t>(base);
-        if (count > 0 && count <= 256 && (count & (count - 1)) == 0 && (index & uint32_t(count - 1)) == 0) {
+        if (count > 0 && count <= 256 && (count & (count - 1)) == 0) {
             using namespace sobol_detail;
             const uint32_t reversed1 = sobolReversed(index, 1);
             const auto& firstByte = kReversedBytes[0][0];
-            for (int k = 0; k < count; ++k) {
-                const uint32_t i = index | uint32_t(k);
-                out[k] = {fractionToUnit(reverseBits(scrambleReversed(i, s.seed[0]))),
+            for (int k = 0; k < count; ++k)
+                out[k] = {fractionToUnit(scrambledSobol0(index | uint32_t(k), s.seed[0])),
                           fractionToUnit(reverseBits(scrambleReversed(reversed1 ^ firstByte[size_t(k)], s.seed[1])))};
-            }
             return;
         }
         for (int k = 0; k < count; ++k) out[k] = padded2D(static_cast<uint32_t>(base + uint64_t(k)), s);
