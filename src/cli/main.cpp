@@ -1,6 +1,7 @@
 // The drt executable: a thin layer over the library (see cli/app.h).
 #include "cli/app.h"
 #include "core/temporary_files.h"
+#include "image/image_process.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -17,7 +18,12 @@
 int main(int argc, char** argv) {
     // SIGTERM / SIGINT while an output is being written leave no temporary file.
     drt::removeTemporaryFilesOnSignal();
+    // drt render may do its image operations in a process of its own
+    // (image/image_process.h); waited for before leaving, so that its CPU
+    // time counts in drt's.
+    drt::allowImageIoProcess();
     const int status = drt::cli::runCommandLine(argc, argv);
+    drt::endImageIoProcess();
 #if defined(DRT_NORMAL_EXIT)
     return status;
 #else

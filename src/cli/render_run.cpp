@@ -23,6 +23,7 @@
 #include "distributed/mpi_render.h"
 #include "sampling/filter.h"
 #include "image/image.h"
+#include "image/image_process.h"
 
 #include <chrono>
 #include <condition_variable>
@@ -293,8 +294,10 @@ int renderProcess(const RenderCommand& command, std::ostream& err, const Interru
 
     std::optional<ProgressLine> progress;
     if (rank0 && command.progress && !command.quiet) progress.emplace(err);
-    // The image module loads while the render runs rather than before or after
-    // it, from the first finished tile on: by then the render's threads run.
+    // Without an image process (image/image_process.h: under MPI, or
+    // DRT_IMAGE_PROCESS=0) the image module loads in this process while the
+    // render runs rather than before or after it, from the first finished
+    // tile on: by then the render's threads run.
     // Not earlier: while dlopen runs, starting a thread or a TBB arena waits for
     // it (each takes the dynamic loader's lock).
     std::atomic<bool> loadRequested{false};
@@ -459,6 +462,9 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
             return kIoError;
         }
     }
+    // OpenImageIO loads in a process of its own from now on, while the scene
+    // is parsed (image/image_process.h; not under MPI, whose ranks load it here).
+    if (!mpi) startImageIoProcess();
     const InterruptHandler interrupt;
     const auto renderOne = [&](const RenderCommand& c) { return renderProcess(c, err, interrupt, mpi ? &*mpi : nullptr); };
     if (!wantsAnimation(command)) return renderOne(command);

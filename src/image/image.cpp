@@ -8,6 +8,7 @@
 // tree it was built in.
 #include "image/image.h"
 #include "image/image_io_module.h"
+#include "image/image_process.h"
 
 #include "core/limits.h"
 #include "core/modules.h"
@@ -37,8 +38,19 @@ namespace {
 constexpr ModuleSpec kImageIoSpec{kImageIoModuleFile, kImageIoModuleSymbol, "DRT_OIIO_MODULE",
                                   DRT_OIIO_MODULE_BUILD_PATH, "drt's OpenImageIO module"};
 
-const LoadedModule<ImageIoModule>& imageIo() {
+} // namespace
+
+const LoadedModule<ImageIoModule>& imageIoInThisProcess() {
     return moduleOnce<ImageIoModule>(kImageIoSpec, kImageIoModuleVersion);
+}
+
+namespace {
+
+// The module: in the image process if one was started (image/image_process.h),
+// else in this one.
+const LoadedModule<ImageIoModule>& imageIo() {
+    if (const LoadedModule<ImageIoModule>* remote = imageIoProcessModule()) return *remote;
+    return imageIoInThisProcess();
 }
 
 // The background load of loadImageIoInBackground(), joined when the process ends.
@@ -125,6 +137,7 @@ std::string checkWritable(const std::string& path) {
 }
 
 void loadImageIoInBackground() {
+    if (imageIoProcessStarted()) return; // it loads there, begun when it started
     static BackgroundLoad background;
     static std::once_flag once;
     std::call_once(once, [] {
@@ -141,9 +154,10 @@ void loadImageIoInBackground() {
     });
 }
 
-bool imageIoLoading() { return loadProgress().running.load(); }
+bool imageIoLoading() { return imageIoProcessStarted() ? imageIoProcessLoading() : loadProgress().running.load(); }
 
 void waitForImageIoLoad() {
+    if (imageIoProcessModule()) return; // waited for the image process's load
     LoadProgress& progress = loadProgress();
     std::unique_lock<std::mutex> lock(progress.mutex);
     progress.ended.wait(lock, [&progress] { return !progress.running.load(); });

@@ -34,11 +34,13 @@ std::string checkWritable(const std::string& path);
 // Starts loading the OpenImageIO module on a background thread, so that its
 // dynamic linking (about half a second of CPU with Debian's OpenImageIO and
 // the ~260 libraries it pulls in) overlaps a render instead of preceding it.
-// The first image operation waits for it. Calling it again does nothing.
+// The first image operation waits for it. Calling it again does nothing, and
+// so does calling it once drt render's image process runs (image/image_process.h:
+// the module loads there).
 void loadImageIoInBackground();
-// True while a load that loadImageIoInBackground started is running.
+// True while a load that loadImageIoInBackground or the image process started is running.
 bool imageIoLoading();
-// Returns when no background load is running (at once if none was started).
+// Returns when no such load is running (at once if none was started).
 void waitForImageIoLoad();
 
 // Writes the image to a temporary file beside `path` and renames it over

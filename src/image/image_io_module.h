@@ -5,7 +5,8 @@
 // 250 shared libraries (OpenCV, FFmpeg, DCMTK, OpenVDB, GStreamer, ...) whose
 // loading and relocation cost about 0.45 s of CPU and 120 MiB of memory before
 // main() runs; linked in, every `drt --version` and `drt check` paid for them
-// (docs/performance.md, "Start-up").
+// (docs/performance.md, "Start-up"). drt render loads it in a process of its
+// own and sends it the table's calls (image/image_process.h).
 #pragma once
 
 #include "image/image.h"

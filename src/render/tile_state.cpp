@@ -203,6 +203,10 @@ bool RenderState::decideNextRound() {
     const double target = options_.adaptiveError * options_.adaptiveError;
     bool any = false;
     std::vector<uint8_t> next(pixels_.size(), 0);
+    // The errors side by side: the sums below read 25 of them a pixel, and a
+    // pixel's whole state is a hundred bytes and more.
+    std::vector<double> errors(pixels_.size());
+    for (size_t i = 0; i < pixels_.size(); ++i) errors[i] = pixels_[i].error;
     constexpr int r = kAdaptiveRadius;
     for (int y = 0; y < h && !lastRound; ++y)
         for (int x = 0; x < w; ++x) {
@@ -212,7 +216,7 @@ bool RenderState::decideNextRound() {
             int count = 0;
             for (int ny = std::max(0, y - r); ny <= std::min(h - 1, y + r); ++ny)
                 for (int nx = std::max(0, x - r); nx <= std::min(w - 1, x + r); ++nx) {
-                    sum += pixels_[size_t(ny) * size_t(w) + size_t(nx)].error;
+                    sum += errors[size_t(ny) * size_t(w) + size_t(nx)];
                     ++count;
                 }
             const double allowed = target * double(pixel.taken) / kAdaptiveReferenceSamples;
