@@ -450,6 +450,36 @@ TEST(Sobol, SixteenLanesAreTheOneSampleValues) {
     }
 }
 
+// Eight points of a stratified run at once (runLanes: AVX2 where the processor
+// has it) against runLanesScalar, and both against the definitions: point k of
+// the run from base is (owenScramble(sobolValue(base | offset | k, 0)),
+// owenScramble(sobolValue(base | offset | k, 1))) with the two seeds.
+TEST(Sobol, RunLanesAreTheStratifiedRunsPoints) {
+    uint64_t state = 4099;
+    const auto next = [&] { return state = mix64(state + 0x9e3779b97f4a7c15ULL); };
+    for (int n = 0; n < 20000; ++n) {
+        const int countBits = 3 + int(next() % 6); // runs of 8 to 256 points
+        const uint32_t count = 1u << countBits;
+        const uint64_t r = next();
+        const uint32_t base = static_cast<uint32_t>((n < 5000 ? (r & 255u) : r >> 33) << countBits);
+        const int offset = int(next() % (count / sobol_detail::kRunLanes)) * sobol_detail::kRunLanes;
+        const OwenSeed seed0(static_cast<uint32_t>(next())), seed1(static_cast<uint32_t>(next() >> 32));
+        const uint32_t reversed1 = sobol_detail::sobolReversed(base, 1);
+        uint32_t first[sobol_detail::kRunLanes], second[sobol_detail::kRunLanes];
+        uint32_t expectedFirst[sobol_detail::kRunLanes], expectedSecond[sobol_detail::kRunLanes];
+        sobol_detail::runLanes(base | uint32_t(offset), reversed1, offset, seed0, seed1, first, second);
+        sobol_detail::runLanesScalar(base | uint32_t(offset), reversed1, offset, seed0, seed1, expectedFirst,
+                                     expectedSecond);
+        for (int k = 0; k < sobol_detail::kRunLanes; ++k) {
+            const uint32_t i = base | uint32_t(offset + k);
+            ASSERT_EQ(first[k], expectedFirst[k]) << "base " << base << " k " << offset + k;
+            ASSERT_EQ(second[k], expectedSecond[k]) << "base " << base << " k " << offset + k;
+            ASSERT_EQ(expectedFirst[k], owenScramble(sobolValue(i, 0), seed0.seed)) << "base " << base;
+            ASSERT_EQ(expectedSecond[k], owenScramble(sobolValue(i, 1), seed1.seed)) << "base " << base;
+        }
+    }
+}
+
 // The reference itself: for masks of a power-of-two sample count, the
 // shuffled index is the sampler's own (its one-sample draws), and the values
 // are the definitions composed in full (owenScramble of sobolValue).

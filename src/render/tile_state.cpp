@@ -202,16 +202,26 @@ bool RenderState::decideNextRound() {
     const bool lastRound = roundEnd(round_) >= options_.maxSamplesPerPixel;
     const double target = options_.adaptiveError * options_.adaptiveError;
     bool any = false;
-    std::vector<uint8_t> next(pixels_.size(), 0);
-    // The errors side by side: the sums below read 25 of them a pixel, and a
-    // pixel's whole state is a hundred bytes and more.
+    // The errors and the active flags side by side, in one pass over the
+    // pixels: the sums below read 25 errors a pixel, and a pixel's whole state
+    // is about a hundred bytes. A pixel's decision reads no other pixel's
+    // flag, so each is written as it is made.
     std::vector<double> errors(pixels_.size());
-    for (size_t i = 0; i < pixels_.size(); ++i) errors[i] = pixels_[i].error;
+    std::vector<uint8_t> active(pixels_.size());
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+        errors[i] = pixels_[i].error;
+        active[i] = pixels_[i].active;
+    }
     constexpr int r = kAdaptiveRadius;
-    for (int y = 0; y < h && !lastRound; ++y)
+    for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const AdaptivePixel& pixel = pixels_[size_t(y) * size_t(w) + size_t(x)];
-            if (!pixel.active) continue;
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            if (!active[i]) continue;
+            AdaptivePixel& pixel = pixels_[i];
+            if (lastRound) {
+                pixel.active = false;
+                continue;
+            }
             double sum = 0;
             int count = 0;
             for (int ny = std::max(0, y - r); ny <= std::min(h - 1, y + r); ++ny)
@@ -222,10 +232,9 @@ bool RenderState::decideNextRound() {
             const double allowed = target * double(pixel.taken) / kAdaptiveReferenceSamples;
             // Written so that NaN or infinity means "sample again".
             const bool again = !(sum <= allowed * count) || !(pixel.varianceError <= kAdaptiveOwnFactor * allowed);
-            next[size_t(y) * size_t(w) + size_t(x)] = again;
+            pixel.active = again;
             any = any || again;
         }
-    for (size_t i = 0; i < pixels_.size(); ++i) pixels_[i].active = next[i] != 0;
     return any;
 }
 

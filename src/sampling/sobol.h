@@ -200,6 +200,18 @@ void jointLanes(const uint32_t index[kLanes], uint32_t mask, const OwenSeed& shu
                 unsigned dimensions, uint32_t joint[kLanes], uint32_t values[][kLanes]);
 void jointLanesScalar(const uint32_t index[kLanes], uint32_t mask, const OwenSeed& shuffle, const OwenSeed* seeds,
                       unsigned dimensions, uint32_t joint[kLanes], uint32_t values[][kLanes]);
+
+// Eight points of a power-of-two run of stratified points (the sampler's
+// get2DStratifiedRun) at once: for k < 8, first[k] = scrambledSobol0(index | k,
+// seed0) and second[k] = reverseBits(scrambleReversed(reversed1 ^
+// kReversedBytes[0][0][offset + k], seed1)), index's low three bits clear and
+// offset a multiple of 8. With AVX2 the eight lanes side by side; elsewhere
+// (runLanesScalar) one after another, the same values.
+inline constexpr int kRunLanes = 8;
+void runLanes(uint32_t index, uint32_t reversed1, int offset, const OwenSeed& seed0, const OwenSeed& seed1,
+              uint32_t first[kRunLanes], uint32_t second[kRunLanes]);
+void runLanesScalar(uint32_t index, uint32_t reversed1, int offset, const OwenSeed& seed0, const OwenSeed& seed1,
+                    uint32_t first[kRunLanes], uint32_t second[kRunLanes]);
 } // namespace sobol_detail
 
 // A double in [0, 1) from a 32-bit fraction.

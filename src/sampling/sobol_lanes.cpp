@@ -124,9 +124,32 @@ __attribute__((target("avx2"))) void jointLanesAvx2(const uint32_t index[kLanes]
     }
 }
 
+__attribute__((target("avx2"))) void runLanesAvx2(uint32_t index, uint32_t reversed1, int offset,
+                                                   const OwenSeed& seed0, const OwenSeed& seed1,
+                                                   uint32_t first[kRunLanes], uint32_t second[kRunLanes]) {
+    static_assert(kRunLanes == 8, "one group of eight 32-bit lanes");
+    const __m256i k = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i a = _mm256_or_si256(_mm256_set1_epi32(static_cast<int>(index)), k);
+    const auto& bytes = kReversedBytes[0][0];
+    const __m256i firstByte = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(bytes.data() + offset));
+    const __m256i b = _mm256_xor_si256(_mm256_set1_epi32(static_cast<int>(reversed1)), firstByte);
+    // The two scrambles are independent: their multiplies interleave.
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(first), reverseLanes(scrambleLanes(a, seed0)));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(second), reverseLanes(scrambleLanes(b, seed1)));
+}
+
 #undef DRT_LANES
 
 } // namespace
+
+void runLanes(uint32_t index, uint32_t reversed1, int offset, const OwenSeed& seed0, const OwenSeed& seed1,
+              uint32_t first[kRunLanes], uint32_t second[kRunLanes]) {
+    if (haveJointLanes()) {
+        runLanesAvx2(index, reversed1, offset, seed0, seed1, first, second);
+        return;
+    }
+    runLanesScalar(index, reversed1, offset, seed0, seed1, first, second);
+}
 
 bool haveJointLanes() {
     static const bool have = __builtin_cpu_supports("avx2");
@@ -146,6 +169,11 @@ void jointLanes(const uint32_t index[kLanes], uint32_t mask, const OwenSeed& shu
 
 bool haveJointLanes() { return false; }
 
+void runLanes(uint32_t index, uint32_t reversed1, int offset, const OwenSeed& seed0, const OwenSeed& seed1,
+              uint32_t first[kRunLanes], uint32_t second[kRunLanes]) {
+    runLanesScalar(index, reversed1, offset, seed0, seed1, first, second);
+}
+
 void jointLanes(const uint32_t index[kLanes], uint32_t mask, const OwenSeed& shuffle, const OwenSeed* seeds,
                 unsigned dimensions, uint32_t joint[kLanes], uint32_t values[][kLanes]) {
     jointLanesScalar(index, mask, shuffle, seeds, dimensions, joint, values);
@@ -164,6 +192,14 @@ void jointLanesScalar(const uint32_t index[kLanes], uint32_t mask, const OwenSee
             if ((dimensions >> d) & 1u)
                 values[d][lane] = d == 0 ? scrambledSobol0(joint[lane], seeds[d])
                                          : owenScrambledSobol(joint[lane], d, seeds[d]);
+    }
+}
+
+void runLanesScalar(uint32_t index, uint32_t reversed1, int offset, const OwenSeed& seed0, const OwenSeed& seed1,
+                    uint32_t first[kRunLanes], uint32_t second[kRunLanes]) {
+    for (int k = 0; k < kRunLanes; ++k) {
+        first[k] = scrambledSobol0(index | uint32_t(k), seed0);
+        second[k] = reverseBits(scrambleReversed(reversed1 ^ kReversedBytes[0][0][size_t(offset + k)], seed1));
     }
 }
 

@@ -102,6 +102,15 @@ public:
             using namespace sobol_detail;
             const uint32_t reversed1 = sobolReversed(index, 1);
             const auto& firstByte = kReversedBytes[0][0];
+            if (lanes_ && count >= kRunLanes) { // eight points at a time (sobol_detail::runLanes)
+                uint32_t first[kRunLanes], second[kRunLanes];
+                for (int offset = 0; offset < count; offset += kRunLanes) {
+                    runLanes(index | uint32_t(offset), reversed1, offset, s.seed[0], s.seed[1], first, second);
+                    for (int k = 0; k < kRunLanes; ++k)
+                        out[offset + k] = {fractionToUnit(first[k]), fractionToUnit(second[k])};
+                }
+                return;
+            }
             for (int k = 0; k < count; ++k)
                 out[k] = {fractionToUnit(scrambledSobol0(index | uint32_t(k), s.seed[0])),
                           fractionToUnit(reverseBits(scrambleReversed(reversed1 ^ firstByte[size_t(k)], s.seed[1])))};
