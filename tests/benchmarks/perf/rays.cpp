@@ -171,8 +171,8 @@ int runRays(const RaysOptions& o, std::ostream& log) {
     // module on another thread while it traces, which raw Embree never does.
     md += "\n## Per CPU second of the tracing threads\n\nRays / (the tracing threads' CPU seconds / threads): "
           "what each traces with the cores to itself. drt's figure leaves out the CPU that the image module's "
-          "load, on a thread of its own, takes from the same cores (a drt without `trace_cpu_seconds` in its "
-          "`--stats` shows -).\n\n" +
+          "load (in a process of its own, or a thread where drt loads it itself) takes from the same cores (a "
+          "drt without `trace_cpu_seconds` in its `--stats` shows -).\n\n" +
           header(" drt {0} | {0} / single |", 2, "");
     for (const std::string& name : sceneNames)
         for (RayMix mix : mixes) {
