@@ -302,6 +302,7 @@ public:
             count_ = static_cast<int>(std::min<int64_t>(int64_t(n1_) * n2_, std::numeric_limits<int>::max()));
         else
             count_ = std::max(1, split);
+        share_ = 1.0 / count_;
         // The area and the emitter's normal weigh solid-angle and inverse-square samples only.
         if (sampling_ != AreaSampling::SolidAngle && !light.inverseSquare && !highlights) return;
         const Vec3 normal = cross(frame_.axis1, frame_.axis2);
@@ -395,11 +396,11 @@ public:
                 if (area_.jitter) jitter = w;
             }
             // Edge to edge: i / (n1 - 1); a single row sits on the centre line.
-            double u = n1_ > 1 ? double(i) / (n1_ - 1) : 0.5;
-            double v = n2_ > 1 ? double(j) / (n2_ - 1) : 0.5;
+            double u = n1_ > 1 ? cells1_.of(double(i)) : 0.5;
+            double v = n2_ > 1 ? cells2_.of(double(j)) : 0.5;
             if (area_.jitter) {
-                if (n1_ > 1) u += (jitter.x - 0.5) / (n1_ - 1);
-                if (n2_ > 1) v += (jitter.y - 0.5) / (n2_ - 1);
+                if (n1_ > 1) u += cells1_.of(jitter.x - 0.5);
+                if (n2_ > 1) v += cells2_.of(jitter.y - 0.5);
             }
             s.position = light_.position + areaOffset(area_, frame_, u, v);
         } else if (sampling_ == AreaSampling::Stratified) {
@@ -419,7 +420,7 @@ public:
             }
             return s;
         }
-        s.weight = 1.0 / count_;
+        s.weight = share_;
         if (inverseSquare) {
             // C |cos theta_e| / (K r^2): the area-sampled estimate of int L cos dOmega.
             const Vec3 d = point_ - s.position;
@@ -453,11 +454,24 @@ private:
         return len > 0 ? std::fabs(dot(normal_, d)) / len : 0.0;
     }
 
+    // x / (n - 1) for a grid of n > 1 points a row: by the reciprocal where
+    // n - 1 is a power of two (POV-Ray's usual 2^k + 1 points), which is the
+    // same value exactly, else by the division.
+    struct Cells {
+        int gaps = 1;
+        double step = 1;
+        bool exact = true;
+        explicit Cells(int n) : gaps(std::max(1, n - 1)), step(1.0 / gaps), exact((gaps & (gaps - 1)) == 0) {}
+        double of(double x) const { return exact ? x * step : x / gaps; }
+    };
+
     const Light& light_;
     const AreaLight& area_;
     Vec3 point_;
     AreaFrame frame_;
     int n1_, n2_, count_ = 1, dimension_;
+    Cells cells1_{n1_}, cells2_{n2_};
+    double share_ = 1; // 1 / count_
     double areaMeasure_ = 0;
     Vec3 normal_{0, 0, 0};
     AreaSampling sampling_;
