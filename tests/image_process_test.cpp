@@ -57,8 +57,7 @@ Loads openImageIoLoads(const std::string& arguments) {
         pid.erase(0, pid.find_first_not_of(' '));
         if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) continue;
         if (loads.first.empty()) loads.first = pid;
-        if (line.find("calling init: /lib/x86_64-linux-gnu/libOpenImageIO.so") != std::string::npos ||
-            (line.find("calling init:") != std::string::npos && line.find("libOpenImageIO.so") != std::string::npos))
+        if (line.find("calling init:") != std::string::npos && line.find("/libOpenImageIO.so") != std::string::npos)
             loads.openImageIo.insert(pid);
     }
     return loads;
