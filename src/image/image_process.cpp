@@ -4,7 +4,9 @@
 // Wire: each message is a 64-bit length and that many bytes. The child sends
 // one message when its load has ended (the load's error, "" on success), then
 // answers each request with one message. A request starts with its operation:
-// 'h' hasWriter, 'w' writeFile, 'r' readImage, 'e' readImageEncoded.
+// 'h' hasWriter, 'w' writeFile, 'r' readImage, 'e' readImageEncoded. An
+// image's pixels follow the message that gives its size (a write's request, a
+// read's answer), straight from and into its buffer.
 #include "image/image_process.h"
 
 #include "core/modules.h"
@@ -26,6 +28,7 @@
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vector>
 
 namespace drt {
 
@@ -45,12 +48,11 @@ public:
         u64(s.size());
         bytes_.append(s);
     }
-    void image(const Image& image) {
+    // An image's size; its pixels follow the message (sendPixels).
+    void size(const Image& image) {
         u64(uint64_t(image.width));
         u64(uint64_t(image.height));
         u64(uint64_t(image.channels));
-        u64(image.pixels.size());
-        raw(image.pixels.data(), image.pixels.size() * sizeof(float));
     }
     void metadata(const Metadata& metadata) {
         u64(metadata.size());
@@ -95,17 +97,10 @@ public:
         at_ += size;
         return s;
     }
-    void image(Image& image) {
+    void size(Image& image) {
         image.width = int(u64());
         image.height = int(u64());
         image.channels = int(u64());
-        const uint64_t count = u64();
-        if (count > (bytes_.size() - at_) / sizeof(float)) {
-            bad_ = true;
-            return;
-        }
-        image.pixels.resize(count);
-        raw(image.pixels.data(), count * sizeof(float));
     }
     void metadata(Metadata& metadata) {
         const uint64_t count = u64();
@@ -168,6 +163,28 @@ bool receiveMessage(int fd, std::string& bytes) {
     return receiveAll(fd, bytes.data(), size);
 }
 
+// An image's pixels go after its message as they are: their count, then the
+// floats, written from and read into the image's own buffer (no copy of a
+// large image is made on the way).
+bool sendPixels(int fd, const std::vector<float>& pixels) {
+    const uint64_t count = pixels.size();
+    return sendAll(fd, reinterpret_cast<const char*>(&count), sizeof count) &&
+           sendAll(fd, reinterpret_cast<const char*>(pixels.data()), count * sizeof(float));
+}
+
+bool receivePixels(int fd, std::vector<float>& pixels) {
+    uint64_t count = 0;
+    if (!receiveAll(fd, reinterpret_cast<char*>(&count), sizeof count)) return false;
+    if (count > (uint64_t(1) << 38)) return false; // not a message of ours
+    pixels.resize(count);
+    return receiveAll(fd, reinterpret_cast<char*>(pixels.data()), count * sizeof(float));
+}
+
+bool holdsItsPixels(const Image& image) {
+    return image.width >= 0 && image.height >= 0 && image.channels >= 0 &&
+           image.pixels.size() == size_t(image.width) * size_t(image.height) * size_t(image.channels);
+}
+
 // ---------------------------------------------------------------- the child
 
 void writeBudget(Writer& w, const ReadBudget& budget) {
@@ -199,6 +216,8 @@ ReadBudget readBudget(Reader& r) {
     while (receiveMessage(fd, request)) {
         Reader in(request);
         Writer out;
+        Image image;                              // a read's image, sent after the answer
+        const std::vector<float>* pixels = nullptr; // set when the answer has pixels
         const uint8_t operation = in.u8();
         if (!io.table) std::_Exit(0); // the parent never asks after a failed load
         if (operation == 'h') {
@@ -206,35 +225,36 @@ ReadBudget readBudget(Reader& r) {
             out.u8(io.table->hasWriter(path) ? 1 : 0);
         } else if (operation == 'w') {
             const std::string file = in.text(), path = in.text();
-            Image image;
-            in.image(image);
+            in.size(image);
             Metadata metadata;
             in.metadata(metadata);
-            out.text(in.bad() ? std::string("a malformed request") : io.table->writeFile(file, path, image, metadata));
+            if (!receivePixels(fd, image.pixels)) break;
+            out.text(in.bad() || !holdsItsPixels(image) ? std::string("a malformed request")
+                                                        : io.table->writeFile(file, path, image, metadata));
         } else if (operation == 'r') {
             const std::string path = in.text();
             const bool wantsMetadata = in.u8() != 0;
             const ReadBudget budget = readBudget(in);
-            Image image;
             Metadata metadata;
             out.text(io.table->readImage(path, image, wantsMetadata ? &metadata : nullptr, budget));
-            out.image(image);
+            out.size(image);
             out.metadata(metadata);
+            pixels = &image.pixels;
         } else if (operation == 'e') {
             const std::string path = in.text();
             const ReadBudget budget = readBudget(in);
-            Image image;
             ImageFileInfo info;
             out.text(io.table->readImageEncoded(path, image, info, budget));
-            out.image(image);
+            out.size(image);
             out.u64(uint64_t(info.bitsPerChannel));
             out.u8(info.isFloat ? 1 : 0);
             out.u8(info.srgbEncoded ? 1 : 0);
             out.f64(info.fileGamma);
+            pixels = &image.pixels;
         } else {
             std::_Exit(0);
         }
-        if (!sendMessage(fd, out.bytes())) break;
+        if (!sendMessage(fd, out.bytes()) || (pixels && !sendPixels(fd, *pixels))) break;
     }
     std::_Exit(0);
 }
@@ -294,12 +314,15 @@ void receiveNotice(Process& p) {
     p.noticed.store(true);
 }
 
-// One request and its answer; false (with `why`) if the process is gone.
-bool exchange(const Writer& request, std::string& answer, std::string& why) {
+// One request and its answer, with the pixels that follow the request
+// (`sent`) or the answer (`received`); false (with `why`) if the process is gone.
+bool exchange(const Writer& request, std::string& answer, std::string& why,
+              const std::vector<float>* sent = nullptr, std::vector<float>* received = nullptr) {
     Process& p = process();
     const std::lock_guard<std::mutex> lock(p.mutex);
     receiveNotice(p);
-    if (p.ended || !sendMessage(p.fd, request.bytes()) || !receiveMessage(p.fd, answer)) {
+    if (p.ended || !sendMessage(p.fd, request.bytes()) || (sent && !sendPixels(p.fd, *sent)) ||
+        !receiveMessage(p.fd, answer) || (received && !receivePixels(p.fd, *received))) {
         why = markEnded(p);
         return false;
     }
@@ -323,10 +346,10 @@ std::string remoteWriteFile(const std::string& file, const std::string& path, co
     w.u8('w');
     w.text(file);
     w.text(path);
-    w.image(image);
+    w.size(image);
     w.metadata(metadata);
     std::string answer, why;
-    if (!exchange(w, answer, why)) return why;
+    if (!exchange(w, answer, why, &image.pixels)) return why;
     Reader in(answer);
     return in.text();
 }
@@ -338,13 +361,14 @@ template <class Rest>
 std::string remoteRead(Writer& request, const std::string& path, const ReadBudget& budget, Image& image, Rest&& rest) {
     writeBudget(request, budget);
     std::string answer, why;
-    if (!exchange(request, answer, why)) return "cannot read '" + path + "': " + why;
+    Image read;
+    if (!exchange(request, answer, why, nullptr, &read.pixels)) return "cannot read '" + path + "': " + why;
     Reader in(answer);
     std::string problem = in.text();
-    Image read;
-    in.image(read);
+    in.size(read);
     const auto keep = rest(in);
-    if (in.bad()) return "cannot read '" + path + "': a malformed answer from drt's image process";
+    if (in.bad() || (problem.empty() && !holdsItsPixels(read)))
+        return "cannot read '" + path + "': a malformed answer from drt's image process";
     if (!problem.empty()) return problem;
     image = std::move(read);
     keep();

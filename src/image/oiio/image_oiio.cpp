@@ -95,12 +95,15 @@ std::string writeFile(const std::string& file, const std::string& path, const Im
 
     // 8/16-bit: sRGB-encode, clamp, round; the quantisation itself is OpenImageIO's
     // (round to nearest) when it converts our [0, 1] floats to the file's type.
-    std::vector<float> stored = image.pixels;
-    if (encode)
-        for (float& v : stored)
-            v = static_cast<float>(srgbEncode(v));
-    if (!output->open(file, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, stored.data()) ||
-        !output->close())
+    // Float files take the pixels as they are: no copy.
+    std::vector<float> encoded;
+    if (encode) {
+        encoded.reserve(image.pixels.size());
+        for (const float v : image.pixels)
+            encoded.push_back(static_cast<float>(srgbEncode(v)));
+    }
+    const float* stored = encode ? encoded.data() : image.pixels.data();
+    if (!output->open(file, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, stored) || !output->close())
         return output->geterror();
     return "";
 }
