@@ -21,7 +21,7 @@ Light Evaluator::lightSource(SourceLoc loc, std::optional<ObjectValue>* looksLik
     l.areaIllumination = scene().fullAreaLights;
     AreaLight area; // area-light modifiers may come before area_light (POV-Ray keeps them as flags)
     // POV-Ray's dialect: its grid points, shared out over the pixel's samples (render/lighting.h),
-    // which converges to POV-Ray's sum over the grid.
+    // which converges to POV-Ray's weighted sum over the grid.
     area.sampling = scene().fullAreaLights ? AreaSampling::Stratified : AreaSampling::Grid;
     bool hasArea = false;
     SourceLoc pointAtLoc;

@@ -283,6 +283,10 @@ struct AreaSample {
     double weight = 0;
 };
 
+// POV-Ray's weight of point i of a row of n grid points (AreaSampler::sampleFrom,
+// "the trapezoid rule"): 1 / (n - 1), half at the two ends; 1 for a single point.
+double trapezoidWeight(int n, int i) { return n <= 1 ? 1.0 : (i == 0 || i == n - 1 ? 0.5 : 1.0) / (n - 1); }
+
 // The K sample points of an area light seen from `point` at one camera sample.
 class AreaSampler {
 public:
@@ -380,20 +384,27 @@ public:
     AreaSample sampleFrom(const Vec2& w, int k) const {
         const bool inverseSquare = light_.inverseSquare;
         AreaSample s;
+        double gridWeight = 1.0; // PovGrid: the k-th point's trapezoid weight (below), over 1 / K
         if (sampling_ == AreaSampling::PovGrid || sampling_ == AreaSampling::Grid) {
-            // PovGrid: the k-th point. Grid: the cell holding this sample's
-            // 2-D light value, the value's place within the cell its jitter,
-            // so the pixel's samples stratify the grid as they do the area.
+            // POV-Ray averages an area light's grid by halving it into
+            // quadrants down to single cells, each cell's value the mean of its
+            // four corners: a grid point counts once for each cell it is a
+            // corner of, so the edge points weigh half and the corners a
+            // quarter of an inner point (the trapezoid rule, in each axis).
+            // PovGrid: the k-th point, with that weight. Grid: the point
+            // nearest this sample's 2-D light value scaled to 0..n-1, which
+            // picks each point with that weight; the value's place around it
+            // is its jitter, so the pixel's samples stratify the grid as they
+            // do the area.
             int i, j;
             Vec2 jitter = {0.5, 0.5};
             if (sampling_ == AreaSampling::Grid) {
-                i = std::min(static_cast<int>(w.x * n1_), n1_ - 1);
-                j = std::min(static_cast<int>(w.y * n2_), n2_ - 1);
-                jitter = {w.x * n1_ - i, w.y * n2_ - j};
+                jitter = {cells1_.nearestPoint(w.x, i), cells2_.nearestPoint(w.y, j)};
             } else {
                 i = k % n1_;
                 j = k / n1_;
                 if (area_.jitter) jitter = w;
+                gridWeight = trapezoidWeight(n1_, i) * trapezoidWeight(n2_, j) * count_;
             }
             // Edge to edge: i / (n1 - 1); a single row sits on the centre line.
             double u = n1_ > 1 ? cells1_.of(double(i)) : 0.5;
@@ -420,7 +431,7 @@ public:
             }
             return s;
         }
-        s.weight = share_;
+        s.weight = share_ * gridWeight;
         if (inverseSquare) {
             // C |cos theta_e| / (K r^2): the area-sampled estimate of int L cos dOmega.
             const Vec3 d = point_ - s.position;
@@ -458,11 +469,27 @@ private:
     // n - 1 is a power of two (POV-Ray's usual 2^k + 1 points), which is the
     // same value exactly, else by the division.
     struct Cells {
-        int gaps = 1;
+        int n = 1, gaps = 1;
         double step = 1;
         bool exact = true;
-        explicit Cells(int n) : gaps(std::max(1, n - 1)), step(1.0 / gaps), exact((gaps & (gaps - 1)) == 0) {}
+        explicit Cells(int points)
+            : n(std::max(1, points)), gaps(std::max(1, n - 1)), step(1.0 / gaps), exact((gaps & (gaps - 1)) == 0) {}
         double of(double x) const { return exact ? x * step : x / gaps; }
+        // The point nearest x * (n - 1), x uniform in [0, 1): each inner point
+        // with probability 1 / (n - 1), the two end points with half that (the
+        // trapezoid weights); and, returned, where x lies around it as a
+        // uniform value in [0, 1) (the end points' half ranges stretched).
+        double nearestPoint(double x, int& index) const {
+            if (n == 1) {
+                index = 0;
+                return x;
+            }
+            const double scaled = x * gaps;
+            index = std::clamp(static_cast<int>(std::floor(scaled + 0.5)), 0, gaps);
+            const double offset = scaled - index; // [-0.5, 0.5), or half of it at an end
+            const double place = index == 0 ? 2 * offset : index == gaps ? 2 * offset + 1 : offset + 0.5;
+            return std::clamp(place, 0.0, std::nextafter(1.0, 0.0));
+        }
     };
 
     const Light& light_;
@@ -826,8 +853,16 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                 // Every sample's visibility is asked for: K or n1 n2 rays from one point, traced together.
                 if (range.count > 1) traceAhead(sp, i, *light, samples, range.count, counts, [](int) { return true; });
                 Color seen(0);
-                for (int k = 0; k < range.count; ++k) seen += visible(samples[k]);
-                intensity *= seen / range.count;
+                if (light->area->sampling == AreaSampling::PovGrid) {
+                    // Every grid point, each with POV-Ray's weight (AreaSampler::sampleFrom).
+                    const int n1 = std::max(1, light->area->size1), n2 = std::max(1, light->area->size2);
+                    for (int k = 0; k < range.count; ++k)
+                        seen += visible(samples[k]) * (trapezoidWeight(n1, k % n1) * trapezoidWeight(n2, k / n1));
+                    intensity *= seen;
+                } else {
+                    for (int k = 0; k < range.count; ++k) seen += visible(samples[k]);
+                    intensity *= seen / range.count;
+                }
                 if (isBlack(intensity)) continue;
             }
             sum += lightTerm(*sp.finish, sp.pigment, sp.normal, sp.incoming, l, intensity,

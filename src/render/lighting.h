@@ -22,20 +22,25 @@
 //               lights, non-perpendicular axes and points in the light's plane.
 //   Grid        POV-Ray's point set: the edge-to-edge grid centre +
 //               axis1 (i/(n1-1) - 1/2) + axis2 (j/(n2-1) - 1/2), each point moved
-//               by up to half a grid step with `jitter`. The sample's 2-D light
-//               value w picks the cell (i, j) = floor(w (n1, n2)) and, with
-//               jitter, its remainder places the point within the cell, so
-//               the pixel's samples stratify the grid as the (0,2)-sequence
-//               stratifies the square (exactly, one sample a point, for
-//               power-of-two n1, n2 and spp a multiple of n1 n2) and the pixel
-//               converges to POV-Ray's sum over the grid. The POV-Ray front
-//               end's default.
-//   PovGrid     POV-Ray's own method: every one of the n1 n2 grid points at
-//               every shading point and camera sample (K = n1 n2), for
-//               comparisons with POV-Ray at equal settings.
+//               by up to half a grid step with `jitter`, and weighted as
+//               POV-Ray weighs them: it averages the grid quadrant by quadrant
+//               down to single cells, each cell the mean of its four corners,
+//               so a row's two end points weigh half an inner one (the
+//               trapezoid rule in each axis). The sample's 2-D light value w
+//               picks the point nearest w (n1 - 1, n2 - 1), which chooses each
+//               point with its weight, and with jitter where w lies around it
+//               places the point within its step, so the pixel's samples
+//               stratify the grid as the (0,2)-sequence stratifies the square
+//               (exactly for n - 1 a power of two and enough samples) and the
+//               pixel converges to POV-Ray's weighted sum over the grid. The
+//               POV-Ray front end's default.
+//   PovGrid     POV-Ray's own method: every one of the n1 n2 grid points, with
+//               those weights, at every shading point and camera sample
+//               (K = n1 n2), for comparisons with POV-Ray at equal settings.
 // What the points do (Light::areaIllumination):
 //   off  POV-Ray's shadow-only averaging: the light shades as a point light at
-//        its centre, times the visibility averaged over the K points.
+//        its centre, times the visibility averaged over the K points (PovGrid:
+//        weighted as above).
 //   on   full area illumination: each point shades as a point light, weighted
 //        so that the sum estimates the light's integral over its area:
 //          without inverse_square (POV-Ray's lights, no falloff): the mean over
