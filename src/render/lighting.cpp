@@ -485,10 +485,13 @@ private:
                 return x;
             }
             const double scaled = x * gaps;
-            index = std::clamp(static_cast<int>(std::floor(scaled + 0.5)), 0, gaps);
+            // scaled + 0.5 is positive: truncation is the floor (without a call to floor).
+            index = std::min(static_cast<int>(scaled + 0.5), gaps);
             const double offset = scaled - index; // [-0.5, 0.5), or half of it at an end
-            const double place = index == 0 ? 2 * offset : index == gaps ? 2 * offset + 1 : offset + 0.5;
-            return std::clamp(place, 0.0, std::nextafter(1.0, 0.0));
+            const bool first = index == 0, last = index == gaps;
+            const double place = (first || last ? 2 * offset : offset) + (last ? 1.0 : first ? 0.0 : 0.5);
+            constexpr double kBelowOne = 0x1.fffffffffffffp-1; // the largest double below 1
+            return std::fmin(std::fmax(place, 0.0), kBelowOne);
         }
     };
 
