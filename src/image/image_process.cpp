@@ -308,9 +308,9 @@ void receiveNotice(Process& p) {
         p.module.error = markEnded(p);
     } else {
         Reader in(bytes);
-        std::string error = in.text();
-        p.module.error = error;
+        p.module.error = in.text();
     }
+    if (!p.module.error.empty()) p.module.table = nullptr; // no module: the callers report the error
     p.noticed.store(true);
 }
 
@@ -462,12 +462,7 @@ const LoadedModule<ImageIoModule>* imageIoProcessModule() {
         const std::lock_guard<std::mutex> lock(p.mutex);
         receiveNotice(p);
     }
-    static const LoadedModule<ImageIoModule> failed = [&p] {
-        LoadedModule<ImageIoModule> none;
-        none.error = p.module.error;
-        return none;
-    }();
-    return p.module.error.empty() ? &p.module : &failed;
+    return &p.module;
 }
 
 bool imageIoProcessLoading() {

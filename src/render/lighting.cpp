@@ -287,6 +287,10 @@ struct AreaSample {
 // "the trapezoid rule"): 1 / (n - 1), half at the two ends; 1 for a single point.
 double trapezoidWeight(int n, int i) { return n <= 1 ? 1.0 : (i == 0 || i == n - 1 ? 0.5 : 1.0) / (n - 1); }
 
+// The weight of point k of an n1 x n2 grid, taken row by row (pov_grid's order):
+// its row's weight times its column's.
+double povGridWeight(int n1, int n2, int k) { return trapezoidWeight(n1, k % n1) * trapezoidWeight(n2, k / n1); }
+
 // The K sample points of an area light seen from `point` at one camera sample.
 class AreaSampler {
 public:
@@ -404,7 +408,7 @@ public:
                 i = k % n1_;
                 j = k / n1_;
                 if (area_.jitter) jitter = w;
-                gridWeight = trapezoidWeight(n1_, i) * trapezoidWeight(n2_, j) * count_;
+                gridWeight = povGridWeight(n1_, n2_, k) * count_;
             }
             // Edge to edge: i / (n1 - 1); a single row sits on the centre line.
             double u = n1_ > 1 ? cells1_.of(double(i)) : 0.5;
@@ -859,8 +863,7 @@ Color DirectLighting::shade(const ShadingPoint& sp, PointLightSamples& cache, Sa
                 if (light->area->sampling == AreaSampling::PovGrid) {
                     // Every grid point, each with POV-Ray's weight (AreaSampler::sampleFrom).
                     const int n1 = std::max(1, light->area->size1), n2 = std::max(1, light->area->size2);
-                    for (int k = 0; k < range.count; ++k)
-                        seen += visible(samples[k]) * (trapezoidWeight(n1, k % n1) * trapezoidWeight(n2, k / n1));
+                    for (int k = 0; k < range.count; ++k) seen += visible(samples[k]) * povGridWeight(n1, n2, k);
                     intensity *= seen;
                 } else {
                     for (int k = 0; k < range.count; ++k) seen += visible(samples[k]);
