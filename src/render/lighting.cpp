@@ -495,7 +495,10 @@ private:
             const bool first = index == 0, last = index == gaps;
             const double place = (first || last ? 2 * offset : offset) + (last ? 1.0 : first ? 0.0 : 0.5);
             constexpr double kBelowOne = 0x1.fffffffffffffp-1; // the largest double below 1
-            return std::fmin(std::fmax(place, 0.0), kBelowOne);
+            // min(max(place, 0), kBelowOne) by comparisons, NaN going to 0 as
+            // std::fmax sends it (std::fmin and std::fmax are library calls
+            // here, four a sample); place is never -0.
+            return place > 0 ? (place < kBelowOne ? place : kBelowOne) : 0.0;
         }
     };
 
