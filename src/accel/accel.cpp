@@ -237,9 +237,13 @@ void resolveTriangleHit(const Vec3& o, const Vec3& d, const Vec3& p0, const Vec3
     if (!std::isfinite(uu) || !std::isfinite(vv) || !std::isfinite(tt)) return;
     // Embree's t is good to float precision; a far larger disagreement means
     // the double solve lost its digits, and Embree's answer is the better one.
-    if (std::fabs(tt - t) > 1e-3 * std::fmax(1.0, std::fabs(t))) return;
-    u = std::fmax(0.0, uu);
-    v = std::fmax(0.0, vv);
+    // By comparisons, as x86-64's std::fmax answers (a library call here, three
+    // a hit): fmax(1, |t|) is 1 for NaN; uu and vv are finite, and fmax(0, x)
+    // is x for x = -0 (the second operand of equals).
+    const double scale = std::fabs(t) > 1.0 ? std::fabs(t) : 1.0;
+    if (std::fabs(tt - t) > 1e-3 * scale) return;
+    u = uu >= 0.0 ? uu : 0.0;
+    v = vv >= 0.0 ? vv : 0.0;
     if (u + v > 1) {
         const double sum = u + v;
         u /= sum;
