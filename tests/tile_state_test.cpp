@@ -146,6 +146,57 @@ TEST(RenderState, StoppedSavedAndRestoredAtAnyTileFinishesBitIdentical) {
     }
 }
 
+// After a round of adaptive sampling, each tile's work is the number of its
+// pixels that sample again, a tile without any is done, and the scheduler
+// hands out the rest busiest first (index order among equals); a state
+// restored from its bytes counts the same.
+TEST(RenderState, AdaptiveRoundsHandOutTheBusiestTilesFirst) {
+    const Scene scene = loadExample("soft_shadows.drt");
+    const RenderOptions options = smallOptions(true);
+    for (int rounds = 1; rounds <= 3; ++rounds) {
+        SCOPED_TRACE(std::to_string(rounds) + " rounds rendered");
+        RenderState state(options);
+        for (int r = 0; r < rounds; ++r) {
+            LocalTileScheduler scheduler(state, nullptr);
+            StopAfter oneRound(scheduler, state.tileCount() - state.tilesDoneThisRound());
+            renderTiles(scene, options, state, oneRound);
+        }
+        ASSERT_EQ(state.round(), rounds);
+        ASSERT_FALSE(state.finished());
+        std::vector<std::byte> saved;
+        state.save(saved);
+        RenderState restored(options);
+        restored.restore(saved.data(), saved.size());
+        std::vector<int> expected; // the tiles still to render, busiest first
+        int zero = 0;
+        for (int index = 0; index < state.tileCount(); ++index) {
+            const PixelWindow t = state.tile(index);
+            int active = 0;
+            for (int y = t.y0; y < t.y1; ++y)
+                for (int x = t.x0; x < t.x1; ++x) active += state.adaptivePixel(x, y).active ? 1 : 0;
+            EXPECT_EQ(state.tileWork(index), active) << "tile " << index;
+            EXPECT_EQ(restored.tileWork(index), active) << "tile " << index;
+            EXPECT_EQ(state.tileDone(index), active == 0) << "tile " << index;
+            if (active > 0) expected.push_back(index);
+            else ++zero;
+        }
+        std::stable_sort(expected.begin(), expected.end(),
+                         [&](int a, int b) { return state.tileWork(a) > state.tileWork(b); });
+        // The order says something only if the work differs between tiles.
+        ASSERT_GT(expected.size(), 2u);
+        EXPECT_NE(state.tileWork(expected.front()), state.tileWork(expected.back()));
+        for (RenderState* s : {&state, &restored}) {
+            LocalTileScheduler scheduler(*s, nullptr);
+            std::vector<int> handedOut;
+            while (std::optional<TileTask> task = scheduler.tryNext()) handedOut.push_back(task->tile);
+            EXPECT_EQ(handedOut, expected);
+        }
+        if (rounds == 3) {
+            EXPECT_GT(zero, 0) << "a later round skips tiles";
+        }
+    }
+}
+
 TEST(RenderState, CancelStopsHandingOutTilesAndRenderThrowsInterrupted) {
     const Scene scene = loadExample("minimal.drt");
     RenderOptions options = smallOptions(false);

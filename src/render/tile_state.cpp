@@ -126,6 +126,10 @@ RenderState::RenderState(const RenderOptions& options) : options_(options) {
     tilesX_ = (window_.width() + options.tileSize - 1) / options.tileSize;
     tilesY_ = (window_.height() + options.tileSize - 1) / options.tileSize;
     tileDone_.assign(size_t(tileCount()), 0);
+    if (options.adaptive) { // every pixel samples in the first round
+        tileWork_.resize(size_t(tileCount()));
+        for (int index = 0; index < tileCount(); ++index) tileWork_[size_t(index)] = tile(index).width() * tile(index).height();
+    }
     startRound();
 }
 
@@ -146,15 +150,21 @@ void RenderState::startRound() {
     tilesDone_ = 0;
     tilesSkipped_ = 0;
     if (!adaptive()) return;
-    for (int index = 0; index < tileCount(); ++index) {
-        const PixelWindow t = tile(index);
-        bool any = false;
-        for (int y = t.y0; y < t.y1 && !any; ++y)
-            for (int x = t.x0; x < t.x1 && !any; ++x) any = adaptivePixel(x, y).active;
-        if (!any) {
+    if (tileWork_.empty()) countTileWork(); // (set by the constructor, restore and decideNextRound)
+    for (int index = 0; index < tileCount(); ++index)
+        if (tileWork_[size_t(index)] == 0) {
             tileDone_[size_t(index)] = 1;
             ++tilesDone_;
         }
+}
+
+void RenderState::countTileWork() {
+    tileWork_.assign(size_t(tileCount()), 0);
+    for (int index = 0; index < tileCount(); ++index) {
+        const PixelWindow t = tile(index);
+        int& work = tileWork_[size_t(index)];
+        for (int y = t.y0; y < t.y1; ++y)
+            for (int x = t.x0; x < t.x1; ++x) work += adaptivePixel(x, y).active ? 1 : 0;
     }
 }
 
@@ -204,36 +214,57 @@ bool RenderState::decideNextRound() {
     bool any = false;
     // The errors and the active flags side by side, in one pass over the
     // pixels: the sums below read 25 errors a pixel, and a pixel's whole state
-    // is about a hundred bytes. A pixel's decision reads no other pixel's
-    // flag, so each is written as it is made.
-    std::vector<double> errors(pixels_.size());
-    std::vector<uint8_t> active(pixels_.size());
-    for (size_t i = 0; i < pixels_.size(); ++i) {
-        errors[i] = pixels_[i].error;
-        active[i] = pixels_[i].active;
+    // is about a hundred bytes. No decision changes an error, and a pixel's
+    // decision reads no other pixel's flag, so each is written as it is made.
+    // After a round that leaves the active pixels fewer than two samples their
+    // own errors decide (below) and no sum is taken: nothing is copied then,
+    // unless a sum turns out to be needed after all.
+    std::vector<double> errors;
+    std::vector<uint8_t> active;
+    const auto copyErrors = [&] {
+        errors.resize(pixels_.size());
+        for (size_t i = 0; i < pixels_.size(); ++i) errors[i] = pixels_[i].error;
+    };
+    if (!lastRound && roundEnd(round_) >= 2) {
+        errors.resize(pixels_.size());
+        active.resize(pixels_.size());
+        for (size_t i = 0; i < pixels_.size(); ++i) {
+            errors[i] = pixels_[i].error;
+            active[i] = pixels_[i].active;
+        }
     }
+    tileWork_.assign(size_t(tileCount()), 0);
+    const int size = options_.tileSize;
     constexpr int r = kAdaptiveRadius;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * size_t(w) + size_t(x);
-            if (!active[i]) continue;
+            if (!(active.empty() ? pixels_[i].active : active[i])) continue;
             AdaptivePixel& pixel = pixels_[i];
             if (lastRound) {
                 pixel.active = false;
                 continue;
             }
-            double sum = 0;
-            int count = 0;
-            for (int ny = std::max(0, y - r); ny <= std::min(h - 1, y + r); ++ny)
-                for (int nx = std::max(0, x - r); nx <= std::min(w - 1, x + r); ++nx) {
-                    sum += errors[size_t(ny) * size_t(w) + size_t(nx)];
-                    ++count;
-                }
             const double allowed = target * double(pixel.taken) / kAdaptiveReferenceSamples;
-            // Written so that NaN or infinity means "sample again".
-            const bool again = !(sum <= allowed * count) || !(pixel.varianceError <= kAdaptiveOwnFactor * allowed);
+            // Written so that NaN or infinity means "sample again". The
+            // pixel's own error first: where it already says so (every pixel
+            // with one sample, and the noisiest after that), the
+            // neighbourhood's sum is not needed.
+            bool again = !(pixel.varianceError <= kAdaptiveOwnFactor * allowed);
+            if (!again) {
+                if (errors.empty()) copyErrors();
+                double sum = 0;
+                int count = 0;
+                for (int ny = std::max(0, y - r); ny <= std::min(h - 1, y + r); ++ny)
+                    for (int nx = std::max(0, x - r); nx <= std::min(w - 1, x + r); ++nx) {
+                        sum += errors[size_t(ny) * size_t(w) + size_t(nx)];
+                        ++count;
+                    }
+                again = !(sum <= allowed * count);
+            }
             pixel.active = again;
             any = any || again;
+            if (again) ++tileWork_[size_t(y / size) * size_t(tilesX_) + size_t(x / size)];
         }
     return any;
 }
@@ -303,6 +334,7 @@ void RenderState::restore(const std::byte* data, size_t size) {
     counts_ = in.value<TileCounts>();
     if (adaptive()) {
         in.read(pixels_.data(), pixels_.size() * sizeof(AdaptivePixel));
+        countTileWork();
     } else {
         for (Image* image : {&color_, &variance_, &sampleCount_})
             in.read(image->pixels.data(), image->pixels.size() * sizeof(float));
@@ -321,6 +353,10 @@ std::optional<TileTask> LocalTileScheduler::take() {
         pending_.clear();
         for (int index = state_.tileCount() - 1; index >= 0; --index)
             if (!state_.tileDone(index)) pending_.push_back(index);
+        // Handed out from the back: the busiest tiles first, in index order
+        // among equals (a tile's pixels come out the same in any order).
+        std::stable_sort(pending_.begin(), pending_.end(),
+                         [this](int a, int b) { return state_.tileWork(a) < state_.tileWork(b); });
     }
     if (pending_.empty()) return std::nullopt;
     const int tile = pending_.back();

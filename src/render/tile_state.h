@@ -104,6 +104,11 @@ public:
     int round() const { return round_; }
     bool finished() const { return finished_; }
     bool tileDone(int index) const { return tileDone_[size_t(index)] != 0; }
+    // Adaptive: the pixels of a tile that sample in this round (its pixels,
+    // under fixed sampling). The scheduler hands out the busiest tiles first,
+    // so that no thread is left with a long one while the others wait for the
+    // round to end.
+    int tileWork(int index) const { return tileWork_.empty() ? 0 : tileWork_[size_t(index)]; }
     int tilesDoneThisRound() const { return tilesDone_; }
     // Tiles done over all rounds, as a fraction of the most there can be.
     double fractionDone() const;
@@ -142,6 +147,7 @@ private:
         return size_t(y - window_.y0) * size_t(window_.width()) + size_t(x - window_.x0);
     }
     void startRound();
+    void countTileWork(); // tileWork_ from the pixels' flags
     bool decideNextRound(); // adaptive: the neighbourhood rule; false when no pixel samples again
 
     RenderOptions options_;
@@ -153,6 +159,7 @@ private:
     std::vector<uint8_t> tileDone_;
     int tilesDone_ = 0;
     int tilesSkipped_ = 0; // adaptive: tiles of this round without an active pixel (done at its start)
+    std::vector<int> tileWork_; // adaptive: active pixels per tile (decideNextRound counts them)
     TileCounts counts_;
     std::vector<AdaptivePixel> pixels_;
     Image color_, variance_, sampleCount_;
