@@ -51,7 +51,7 @@ Scene spheresAndPlanes(const Vec3& shift = {}) {
     return sceneOf(std::move(objects));
 }
 
-TEST(AccelLanes, FullPacketsOfSpheresAndPlanesGetTheHitsOfRaysAlone) {
+void expectFullPacketsGetTheHitsOfRaysAlone() {
     const Scene scene = spheresAndPlanes();
     const Accelerator accel(scene);
     std::mt19937 rng(23);
@@ -106,6 +106,19 @@ TEST(AccelLanes, FullPacketsOfSpheresAndPlanesGetTheHitsOfRaysAlone) {
     }
     EXPECT_GT(hits, rays / 2);
     EXPECT_GT(blocked, 100);
+}
+
+// Both packet kernels for shadow rays are checked: two lanes an instruction,
+// and four where the processor has AVX.
+TEST(AccelLanes, FullPacketsOfSpheresAndPlanesGetTheHitsOfRaysAlone) {
+    const bool avx = accel::avxLanes;
+    for (const bool four : {false, true}) {
+        if (four && !__builtin_cpu_supports("avx")) continue;
+        SCOPED_TRACE(four ? "four lanes an instruction" : "two lanes an instruction");
+        accel::avxLanes = four;
+        expectFullPacketsGetTheHitsOfRaysAlone();
+    }
+    accel::avxLanes = avx;
 }
 
 // A single ray (Embree's N = 1: shadow and secondary rays) takes the short

@@ -72,6 +72,10 @@ void buildScene(const Scene& scene, AcceleratorState& state);
 // analytic shape at the top level whose crossing the callback solved.
 void hitFromEmbree(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit);
 void generalHit(const AcceleratorState& state, RayQuery& query, const RTCRayHit& rayhit, Hit& hit);
+// Whether the packet kernels for spheres and planes take four lanes an
+// instruction (AVX, where the processor has it) rather than two (SSE2): the
+// same answers either way; tests set it to compare them.
+extern bool avxLanes;
 } // namespace accel
 
 struct Accelerator::Impl : accel::AcceleratorState {};
