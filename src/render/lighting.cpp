@@ -259,7 +259,7 @@ AreaFrame areaFrame(const AreaLight& area, const Vec3& center, const Vec3& point
 }
 
 // (u, v) in [0,1]^2 to an offset from the light's centre.
-Vec3 areaOffset(const AreaLight& area, const AreaFrame& frame, double u, double v) {
+[[gnu::always_inline]] inline Vec3 areaOffset(const AreaLight& area, const AreaFrame& frame, double u, double v) {
     if (area.circular) {
         const Vec2 d = squareToConcentricDisc({u, v}); // in the unit disc
         return frame.axis1 * (0.5 * d.x) + frame.axis2 * (0.5 * d.y);
@@ -385,7 +385,7 @@ public:
 
     // The k-th point from its uniform value `w` (uniform(sampler, k); unread
     // where !drawsUniforms()).
-    AreaSample sampleFrom(const Vec2& w, int k) const {
+    [[gnu::always_inline]] AreaSample sampleFrom(const Vec2& w, int k) const {
         const bool inverseSquare = light_.inverseSquare;
         AreaSample s;
         double gridWeight = 1.0; // PovGrid: the k-th point's trapezoid weight (below), over 1 / K

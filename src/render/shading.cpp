@@ -8,22 +8,12 @@
 
 namespace drt {
 
-namespace {
-
 // POV-Ray's empirical Fresnel term for metallic highlights, with x the angle
 // between N and L over pi/2: F = 0.014567225 / (x - 1.12)^2 - 0.011612903, in [0, 1].
 double metallicFresnel(double cosNL) {
     const double x = std::fabs(std::acos(std::clamp(cosNL, -1.0, 1.0))) / (kPi / 2);
     const double f = 0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903;
     return std::clamp(f, 0.0, 1.0);
-}
-
-} // namespace
-
-Color metallicTint(double metallic, const ColorFT& pigment, double cosAngle) {
-    if (!(metallic > 0)) return Color(1);
-    const double k = metallic * (1.0 - metallicFresnel(cosAngle));
-    return Color(1) + k * (pigment.rgb - Color(1));
 }
 
 Color highlightTerm(const Finish& finish, const ColorFT& pigment, const Vec3& normal, const Vec3& incoming,

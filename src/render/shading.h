@@ -63,7 +63,14 @@ Color reflectivity(const Finish& finish, double cosIncident, double eta);
 // POV-Ray's metallic tint 1 + m (1 - F) (P - 1), with F its empirical
 // Fresnel term of the angle whose cosine is given (N.L for highlights, the
 // incidence angle for `reflection { metallic m }`).
-Color metallicTint(double metallic, const ColorFT& pigment, double cosAngle);
+// Inline: a call returning a Color through memory, read back at once, costs
+// a highlight more than the tint's arithmetic (the plain finish's 1).
+double metallicFresnel(double cosAngle);
+inline Color metallicTint(double metallic, const ColorFT& pigment, double cosAngle) {
+    if (!(metallic > 0)) return Color(1);
+    const double k = metallic * (1.0 - metallicFresnel(cosAngle));
+    return Color(1) + k * (pigment.rgb - Color(1));
+}
 
 // Spotlight factor at `point` for a light at `lightPosition`: tightness power
 // of cos, times smoothstep from the falloff cone (0) to the radius cone (1).
