@@ -88,6 +88,31 @@ TEST(CropWindow, AdaptiveCropsRenderAMarginOfTheNeighbourhoodRadiusPerRoundAfter
     EXPECT_EQ(RenderState(options).window(), (PixelWindow{0, 11, 20, 30}));
 }
 
+// The first round takes at least two samples (one cannot estimate a pixel's
+// error), unless max_samples is 1; min_samples 1 and 2 then render the same.
+TEST(RenderState, TheFirstAdaptiveRoundTakesAtLeastTwoSamples) {
+    RenderOptions options = smallOptions(true);
+    options.minSamplesPerPixel = 1;
+    const RenderState state(options);
+    EXPECT_EQ(state.roundEnd(0), 2);
+    EXPECT_EQ(state.roundCount(), 5); // 2, 4, 8, 16, 32
+    options.maxSamplesPerPixel = 1;
+    const RenderState single(options);
+    EXPECT_EQ(single.roundCount(), 1);
+    EXPECT_EQ(single.roundEnd(0), 1);
+    options.minSamplesPerPixel = 3;
+    options.maxSamplesPerPixel = 32;
+    EXPECT_EQ(RenderState(options).roundEnd(0), 3);
+
+    const Scene scene = loadExample("soft_shadows.drt");
+    RenderOptions one = smallOptions(true), two = smallOptions(true);
+    one.minSamplesPerPixel = 1;
+    two.minSamplesPerPixel = 2;
+    const RenderResult a = render(scene, one), b = render(scene, two);
+    EXPECT_TRUE(a.color.pixels == b.color.pixels);
+    EXPECT_TRUE(a.sampleCount.pixels == b.sampleCount.pixels);
+}
+
 TEST(CropWindow, OutsideTheImageIsARenderError) {
     RenderOptions options = smallOptions(false);
     options.crop = PixelWindow{30, 41, 0, 5};

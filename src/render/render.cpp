@@ -312,8 +312,11 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
         double timeDimensions[kPacket];
         CameraShadows shadows; // the hits' shadow rays, traced ahead in packets
     };
+    // `snapshot`, if given, takes the pixel as it stands before sample `snapshotAt` (first <= snapshotAt < last):
+    // an adaptive pixel's first half, taken on the way so that the halves share the camera's packets.
     const auto takeSamples = [&](Packet& packet, Sampler& sampler, PixelAccumulator& pixel, int x, int y, int first,
-                                 int last, RayCounts& counts) {
+                                 int last, RayCounts& counts, int snapshotAt = -1,
+                                 PixelAccumulator* snapshot = nullptr) {
         ResolvedCamera& moved = packet.moved;
         Ray* const rays = packet.rays;
         Hit* const hits = packet.hits;
@@ -343,6 +346,7 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
             // Null where nothing went ahead: the shading then looks for nothing there.
             const CameraShadows* const ahead = packet.shadows.empty() ? nullptr : &packet.shadows;
             for (int j = 0, k = 0; j < n; ++j) {
+                if (snapshot && start + j == snapshotAt) *snapshot = pixel;
                 if (!covered[j]) {
                     pixel.add(Color(0));
                     continue;
@@ -381,10 +385,9 @@ TileRenderInfo renderTiles(const Scene& scene, const RenderOptions& options, Ren
                     // The first half's mean, on the way (see "Adaptive sampling").
                     const int half = roundEnd / 2;
                     const bool halves = half >= 1 && pixel.taken <= half;
-                    if (halves) takeSamples(packet, *sampler, pixel.samples, x, y, pixel.taken, half, counts);
-                    const PixelAccumulator firstHalf = pixel.samples;
-                    takeSamples(packet, *sampler, pixel.samples, x, y, std::max(pixel.taken, half), roundEnd,
-                                counts);
+                    PixelAccumulator firstHalf = pixel.samples;
+                    takeSamples(packet, *sampler, pixel.samples, x, y, pixel.taken, roundEnd, counts,
+                                halves ? half : -1, halves ? &firstHalf : nullptr);
                     pixel.taken = roundEnd;
                     pixel.error = halves && firstHalf.count() > 0 && pixel.samples.count() > firstHalf.count()
                                       ? halvesError(pixel.samples.mean(), firstHalf.mean(), options)

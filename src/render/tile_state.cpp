@@ -50,7 +50,11 @@ void validate(const RenderOptions& options) {
 // min_spp, each later one at the next power of two, capped at max_spp (the
 // Sobol sampler's power-of-two prefixes are stratified: render.cpp).
 int nextRoundEnd(int n, const RenderOptions& options) {
-    if (n == 0) return options.minSamplesPerPixel;
+    // The first round takes at least two samples: a pixel with one cannot
+    // estimate its error, so a round ending there would only decide that every
+    // pixel samples again (and split each pixel's first two camera rays into
+    // two packets).
+    if (n == 0) return std::min(std::max(options.minSamplesPerPixel, 2), options.maxSamplesPerPixel);
     int end = 1;
     while (end <= n && end < options.maxSamplesPerPixel) end *= 2;
     return std::min(end, options.maxSamplesPerPixel);
@@ -219,8 +223,12 @@ bool RenderState::decideNextRound() {
     // After a round that leaves the active pixels fewer than two samples their
     // own errors decide (below) and no sum is taken: nothing is copied then,
     // unless a sum turns out to be needed after all.
-    std::vector<double> errors;
-    std::vector<uint8_t> active;
+    // (Kept between rounds: a fresh buffer of this size is new memory for
+    // the system to map and zero every round.)
+    std::vector<double>& errors = decideErrors_;
+    std::vector<uint8_t>& active = decideActive_;
+    errors.clear();
+    active.clear();
     const auto copyErrors = [&] {
         errors.resize(pixels_.size());
         for (size_t i = 0; i < pixels_.size(); ++i) errors[i] = pixels_[i].error;

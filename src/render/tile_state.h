@@ -160,6 +160,8 @@ private:
     int tilesDone_ = 0;
     int tilesSkipped_ = 0; // adaptive: tiles of this round without an active pixel (done at its start)
     std::vector<int> tileWork_; // adaptive: active pixels per tile (decideNextRound counts them)
+    std::vector<double> decideErrors_;  // decideNextRound's copies of the pixels' errors and flags
+    std::vector<uint8_t> decideActive_;
     TileCounts counts_;
     std::vector<AdaptivePixel> pixels_;
     Image color_, variance_, sampleCount_;
