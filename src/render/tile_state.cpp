@@ -132,7 +132,10 @@ RenderState::RenderState(const RenderOptions& options) : options_(options) {
     tileDone_.assign(size_t(tileCount()), 0);
     if (options.adaptive) { // every pixel samples in the first round
         tileWork_.resize(size_t(tileCount()));
-        for (int index = 0; index < tileCount(); ++index) tileWork_[size_t(index)] = tile(index).width() * tile(index).height();
+        for (int index = 0; index < tileCount(); ++index) {
+            const PixelWindow t = tile(index);
+            tileWork_[size_t(index)] = t.width() * t.height();
+        }
     }
     startRound();
 }
@@ -153,8 +156,7 @@ void RenderState::startRound() {
     std::fill(tileDone_.begin(), tileDone_.end(), 0);
     tilesDone_ = 0;
     tilesSkipped_ = 0;
-    if (!adaptive()) return;
-    if (tileWork_.empty()) countTileWork(); // (set by the constructor, restore and decideNextRound)
+    if (!adaptive()) return; // tileWork_: set by the constructor, restore and decideNextRound
     for (int index = 0; index < tileCount(); ++index)
         if (tileWork_[size_t(index)] == 0) {
             tileDone_[size_t(index)] = 1;
@@ -213,54 +215,40 @@ void RenderState::completeTile(int index, const TileCounts& counts) {
 // (tile_state.h, "Crop windows") decides as in a full render.
 bool RenderState::decideNextRound() {
     const int w = window_.width(), h = window_.height();
-    const bool lastRound = roundEnd(round_) >= options_.maxSamplesPerPixel;
+    tileWork_.assign(size_t(tileCount()), 0);
+    if (roundEnd(round_) >= options_.maxSamplesPerPixel) { // the last round: no pixel samples again
+        for (AdaptivePixel& pixel : pixels_) pixel.active = false;
+        return false;
+    }
     const double target = options_.adaptiveError * options_.adaptiveError;
     bool any = false;
     // The errors and the active flags side by side, in one pass over the
     // pixels: the sums below read 25 errors a pixel, and a pixel's whole state
     // is about a hundred bytes. No decision changes an error, and a pixel's
     // decision reads no other pixel's flag, so each is written as it is made.
-    // After a round that leaves the active pixels fewer than two samples their
-    // own errors decide (below) and no sum is taken: nothing is copied then,
-    // unless a sum turns out to be needed after all.
-    // (Kept between rounds: a fresh buffer of this size is new memory for
-    // the system to map and zero every round.)
+    // (Kept between rounds: a fresh buffer of this size is new memory for the
+    // system to map and zero every round.)
     std::vector<double>& errors = decideErrors_;
     std::vector<uint8_t>& active = decideActive_;
-    errors.clear();
-    active.clear();
-    const auto copyErrors = [&] {
-        errors.resize(pixels_.size());
-        for (size_t i = 0; i < pixels_.size(); ++i) errors[i] = pixels_[i].error;
-    };
-    if (!lastRound && roundEnd(round_) >= 2) {
-        errors.resize(pixels_.size());
-        active.resize(pixels_.size());
-        for (size_t i = 0; i < pixels_.size(); ++i) {
-            errors[i] = pixels_[i].error;
-            active[i] = pixels_[i].active;
-        }
+    errors.resize(pixels_.size());
+    active.resize(pixels_.size());
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+        errors[i] = pixels_[i].error;
+        active[i] = pixels_[i].active;
     }
-    tileWork_.assign(size_t(tileCount()), 0);
     const int size = options_.tileSize;
     constexpr int r = kAdaptiveRadius;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * size_t(w) + size_t(x);
-            if (!(active.empty() ? pixels_[i].active : active[i])) continue;
+            if (!active[i]) continue;
             AdaptivePixel& pixel = pixels_[i];
-            if (lastRound) {
-                pixel.active = false;
-                continue;
-            }
             const double allowed = target * double(pixel.taken) / kAdaptiveReferenceSamples;
             // Written so that NaN or infinity means "sample again". The
-            // pixel's own error first: where it already says so (every pixel
-            // with one sample, and the noisiest after that), the
+            // pixel's own error first: where it already says so, the
             // neighbourhood's sum is not needed.
             bool again = !(pixel.varianceError <= kAdaptiveOwnFactor * allowed);
             if (!again) {
-                if (errors.empty()) copyErrors();
                 double sum = 0;
                 int count = 0;
                 for (int ny = std::max(0, y - r); ny <= std::min(h - 1, y + r); ++ny)
