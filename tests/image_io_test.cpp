@@ -104,6 +104,12 @@ TEST(ImageIo, ExrKeepsExactLinearFloats) {
     ASSERT_EQ(readImage(path, back), "");
     ASSERT_EQ(back.pixels.size(), image.pixels.size());
     EXPECT_EQ(std::memcmp(back.pixels.data(), image.pixels.data(), image.pixels.size() * sizeof(float)), 0);
+    // Stored as 32-bit floats with zip, OpenEXR's lossless compression (at
+    // zlib's fastest level, which the file does not record).
+    auto input = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(input);
+    EXPECT_EQ(input->spec().format, OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(input->spec().get_string_attribute("compression"), "zip");
 }
 
 TEST(ImageIo, MetadataSurvivesInEveryFormatThatCanHoldIt) {

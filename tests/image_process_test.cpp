@@ -9,6 +9,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <sys/wait.h>
 #include <set>
 #include <sstream>
 #include <string>
@@ -40,11 +42,13 @@ struct EnvironmentSetting {
     const char* name_;
 };
 
-// The process ids that the dynamic loader saw load OpenImageIO, and the id of
-// the process that started (the first one in the loader's log).
+// What the dynamic loader's log says of a drt run: the id of drt's own
+// process, the ids of the processes that loaded OpenImageIO, and the program
+// each process started as (exec; a forked copy has none of its own).
 struct Loads {
-    std::string first;
+    std::string drt;
     std::set<std::string> openImageIo;
+    std::map<std::string, std::string> programs;
 };
 
 Loads openImageIoLoads(const std::string& arguments) {
@@ -56,7 +60,11 @@ Loads openImageIoLoads(const std::string& arguments) {
         std::string pid = line.substr(0, colon);
         pid.erase(0, pid.find_first_not_of(' '));
         if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) continue;
-        if (loads.first.empty()) loads.first = pid;
+        if (const size_t at = line.find("initialize program: "); at != std::string::npos) {
+            const std::string program = fs::path(line.substr(at + 20)).filename().string();
+            loads.programs[pid] = program;
+            if (program == "drt") loads.drt = pid;
+        }
         if (line.find("calling init:") != std::string::npos && line.find("/libOpenImageIO.so") != std::string::npos)
             loads.openImageIo.insert(pid);
     }
@@ -85,16 +93,44 @@ TEST(ImageProcess, OpenImageIoLoadsInAnotherProcessUnlessSwitchedOff) {
     const std::string dir = test::tempDir();
     const std::string scene = texturedScene(dir);
     const std::string render = "render " + quoted(scene) + " -q -o " + quoted(dir + "/out.exr");
+    // The image process runs the program drt_image_process (image/image_wire.h).
     const Loads separate = openImageIoLoads(render);
-    ASSERT_FALSE(separate.first.empty());
+    ASSERT_FALSE(separate.drt.empty());
     ASSERT_EQ(separate.openImageIo.size(), 1u);
-    EXPECT_EQ(separate.openImageIo.count(separate.first), 0u) << "OpenImageIO was loaded in drt's own process";
+    const std::string loader = *separate.openImageIo.begin();
+    EXPECT_NE(loader, separate.drt) << "OpenImageIO was loaded in drt's own process";
+    EXPECT_EQ(separate.programs.count(loader) ? separate.programs.at(loader) : "(a copy of drt)", "drt_image_process");
     EXPECT_TRUE(fs::exists(dir + "/out.exr"));
-
+    {
+        // Where the program is not found, a forked copy of drt serves (the
+        // same answers: the first test's bytes, and this image).
+        const EnvironmentSetting missing("DRT_IMAGE_PROCESS_PROGRAM", (dir + "/no-such-program").c_str());
+        fs::remove(dir + "/out.exr");
+        const Loads forked = openImageIoLoads(render);
+        ASSERT_EQ(forked.openImageIo.size(), 1u);
+        const std::string copy = *forked.openImageIo.begin();
+        EXPECT_NE(copy, forked.drt);
+        EXPECT_EQ(forked.programs.count(copy), 0u) << "the copy of drt ran " << forked.programs.at(copy);
+        EXPECT_TRUE(fs::exists(dir + "/out.exr"));
+    }
     const EnvironmentSetting off("DRT_IMAGE_PROCESS", "0");
     const Loads same = openImageIoLoads(render);
     ASSERT_EQ(same.openImageIo.size(), 1u);
-    EXPECT_EQ(same.openImageIo.count(same.first), 1u) << "with DRT_IMAGE_PROCESS=0 drt loads it itself";
+    EXPECT_EQ(same.openImageIo.count(same.drt), 1u) << "with DRT_IMAGE_PROCESS=0 drt loads it itself";
+}
+
+// The program serves only drt render: run by hand (or by a drt of another
+// build, whose protocol argument differs) it refuses with status 2.
+TEST(ImageProcess, TheProgramRefusesToRunByHand) {
+    const std::string program = (fs::path(test::drtExecutable()).parent_path() / "drt_image_process").string();
+    ASSERT_TRUE(fs::exists(program));
+    for (const std::string arguments : {"", "--drt-image-process-protocol=0 3", "--drt-image-process-protocol=1 x",
+                                        "--drt-image-process-protocol=1 999"}) {
+        const std::string command = quoted(program) + " " + arguments + " >/dev/null 2>&1 </dev/null";
+        const int status = std::system(command.c_str());
+        ASSERT_TRUE(WIFEXITED(status)) << arguments;
+        EXPECT_EQ(WEXITSTATUS(status), 2) << arguments;
+    }
 }
 
 // The process ending before the image is written (here on purpose, right after

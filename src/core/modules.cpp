@@ -1,6 +1,8 @@
 #include "core/modules.h"
 
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <dlfcn.h>
 #include <filesystem>
 #include <system_error>
@@ -26,11 +28,35 @@ std::vector<std::string> moduleCandidates(const ModuleSpec& spec) {
     return candidates;
 }
 
+// Preloading (core/modules.h): each library of `module`'s preload list
+// loaded on its own, dependencies first. A line that does not load is
+// skipped: the module's own dlopen loads that library as it always did.
+void preloadLibraries(const std::string& module) {
+    std::FILE* list = std::fopen((module + kPreloadSuffix).c_str(), "r");
+    if (!list) return;
+    char line[4096];
+    while (std::fgets(line, sizeof line, list)) {
+        line[std::strcspn(line, "\r\n")] = '\0';
+        if (line[0] == '\0' || line[0] == '#' || std::strchr(line, '/')) continue; // sonames only
+        dlopen(line, RTLD_NOW | RTLD_LOCAL); // stays loaded, as the module's libraries do
+    }
+    std::fclose(list);
+    dlerror(); // a skipped library's reason is not the module's
+}
+
 std::string cannotLoad(const ModuleSpec& spec, const std::string& tried) {
     return std::string("cannot load ") + spec.description + " " + spec.file + ":" + tried;
 }
 
 } // namespace
+
+std::string findModuleFile(const ModuleSpec& spec) {
+    for (const std::string& path : moduleCandidates(spec)) {
+        std::error_code ec;
+        if (fs::is_regular_file(path, ec)) return path;
+    }
+    return "";
+}
 
 std::string moduleFilesMissing(const ModuleSpec& spec) {
     std::string listed;
@@ -50,6 +76,7 @@ const void* loadModule(const ModuleSpec& spec, int version, const void* (*call)(
             tried += "\n  " + path + ": no such file";
             continue;
         }
+        preloadLibraries(path);
         void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (!handle) {
             const char* why = dlerror();

@@ -24,6 +24,26 @@ struct ModuleSpec {
 // beside the executable, in ../lib/drt beside it (an installed drt), and in
 // the build tree.
 
+// Preloading. Before a candidate FILE is loaded, the libraries named in
+// FILE.preload (one soname a line, each after its own dependencies; written
+// at build time by drt_module_preload, src/image/oiio/preload_order_main.cpp)
+// are loaded one by one, each as a dlopen of its own. The dynamic loader
+// resolves a library's symbols through the executable's libraries and then
+// that library's own dependencies, so each library is searched early for its
+// own symbols rather than after the hundreds loaded before it in the module's
+// breadth-first order: Debian's OpenImageIO module loads in about a tenth
+// less CPU time (docs/performance.md, "The fixed cost of a render"). The same
+// libraries load and their constructors run dependencies first as before; a
+// C++ inline function or type information defined in several of them may be
+// taken from another of its identical copies. A line that does not load (a
+// library missing its own dependencies, a list from another system) is
+// skipped and the module's dlopen loads it as before; no list, no preloading.
+inline constexpr const char* kPreloadSuffix = ".preload";
+
+// The first candidate that is a file, "" if none is (the files drt runs as
+// programs are looked for so too: image/image_wire.h).
+std::string findModuleFile(const ModuleSpec& spec);
+
 // "" when a candidate file exists; else why none can be loaded.
 std::string moduleFilesMissing(const ModuleSpec& spec);
 

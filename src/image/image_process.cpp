@@ -1,15 +1,11 @@
-// The image process (image/image_process.h): the parent's side (a table of
-// calls that are sent to it) and the child's (a loop that answers them).
-//
-// Wire: each message is a 64-bit length and that many bytes. The child sends
-// one message when its load has ended (the load's error, "" on success), then
-// answers each request with one message. A request starts with its operation:
-// 'h' hasWriter, 'w' writeFile, 'r' readImage, 'e' readImageEncoded. An
-// image's pixels follow the message that gives its size (a write's request, a
-// read's answer), straight from and into its buffer.
+// The image process (image/image_process.h): the parent's side, a table of
+// calls sent over the wire (image/image_wire.h) to the process, which runs
+// the program drt_image_process or, where that is not found, serves from the
+// forked copy of drt.
 #include "image/image_process.h"
 
 #include "core/modules.h"
+#include "image/image_wire.h"
 
 #include <atomic>
 #include <cerrno>
@@ -19,10 +15,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <dirent.h>
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <memory>
 #include <mutex>
 #include <poll.h>
+#include <string>
 #include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/types.h>
@@ -32,234 +30,14 @@
 
 namespace drt {
 
-// image.cpp: the module loaded in this process.
-const LoadedModule<ImageIoModule>& imageIoInThisProcess();
-
 namespace {
 
-// ---------------------------------------------------------------- the wire
+using namespace image_wire;
 
-class Writer {
-public:
-    void u8(uint8_t v) { bytes_.push_back(char(v)); }
-    void u64(uint64_t v) { raw(&v, sizeof v); }
-    void f64(double v) { raw(&v, sizeof v); }
-    void text(const std::string& s) {
-        u64(s.size());
-        bytes_.append(s);
-    }
-    // An image's size; its pixels follow the message (sendPixels).
-    void size(const Image& image) {
-        u64(uint64_t(image.width));
-        u64(uint64_t(image.height));
-        u64(uint64_t(image.channels));
-    }
-    void metadata(const Metadata& metadata) {
-        u64(metadata.size());
-        for (const auto& [key, value] : metadata) {
-            text(key);
-            text(value);
-        }
-    }
-    const std::string& bytes() const { return bytes_; }
-
-private:
-    void raw(const void* data, size_t size) { bytes_.append(static_cast<const char*>(data), size); }
-    std::string bytes_;
-};
-
-// Reads what Writer wrote; a message too short reads as zeros and sets bad().
-class Reader {
-public:
-    explicit Reader(const std::string& bytes) : bytes_(bytes) {}
-    uint8_t u8() {
-        uint8_t v = 0;
-        raw(&v, 1);
-        return v;
-    }
-    uint64_t u64() {
-        uint64_t v = 0;
-        raw(&v, sizeof v);
-        return v;
-    }
-    double f64() {
-        double v = 0;
-        raw(&v, sizeof v);
-        return v;
-    }
-    std::string text() {
-        const uint64_t size = u64();
-        if (size > bytes_.size() - at_) {
-            bad_ = true;
-            return {};
-        }
-        std::string s = bytes_.substr(at_, size);
-        at_ += size;
-        return s;
-    }
-    void size(Image& image) {
-        image.width = int(u64());
-        image.height = int(u64());
-        image.channels = int(u64());
-    }
-    void metadata(Metadata& metadata) {
-        const uint64_t count = u64();
-        metadata.clear();
-        for (uint64_t i = 0; i < count && !bad_; ++i) {
-            std::string key = text();
-            std::string value = text();
-            metadata.emplace_back(std::move(key), std::move(value));
-        }
-    }
-    bool bad() const { return bad_; }
-
-private:
-    void raw(void* out, size_t size) {
-        if (size > bytes_.size() - at_) {
-            bad_ = true;
-            std::memset(out, 0, size);
-            return;
-        }
-        std::memcpy(out, bytes_.data() + at_, size);
-        at_ += size;
-    }
-    const std::string& bytes_;
-    size_t at_ = 0;
-    bool bad_ = false;
-};
-
-bool sendAll(int fd, const char* data, size_t size) {
-    while (size > 0) {
-        const ssize_t sent = ::send(fd, data, size, MSG_NOSIGNAL);
-        if (sent < 0 && errno == EINTR) continue;
-        if (sent <= 0) return false;
-        data += sent;
-        size -= size_t(sent);
-    }
-    return true;
-}
-
-bool receiveAll(int fd, char* data, size_t size) {
-    while (size > 0) {
-        const ssize_t got = ::recv(fd, data, size, 0);
-        if (got < 0 && errno == EINTR) continue;
-        if (got <= 0) return false;
-        data += got;
-        size -= size_t(got);
-    }
-    return true;
-}
-
-bool sendMessage(int fd, const std::string& bytes) {
-    const uint64_t size = bytes.size();
-    return sendAll(fd, reinterpret_cast<const char*>(&size), sizeof size) && sendAll(fd, bytes.data(), bytes.size());
-}
-
-bool receiveMessage(int fd, std::string& bytes) {
-    uint64_t size = 0;
-    if (!receiveAll(fd, reinterpret_cast<char*>(&size), sizeof size)) return false;
-    if (size > (uint64_t(1) << 40)) return false; // not a message of ours
-    bytes.resize(size);
-    return receiveAll(fd, bytes.data(), size);
-}
-
-// An image's pixels go after its message as they are: their count, then the
-// floats, written from and read into the image's own buffer (no copy of a
-// large image is made on the way).
-bool sendPixels(int fd, const std::vector<float>& pixels) {
-    const uint64_t count = pixels.size();
-    return sendAll(fd, reinterpret_cast<const char*>(&count), sizeof count) &&
-           sendAll(fd, reinterpret_cast<const char*>(pixels.data()), count * sizeof(float));
-}
-
-bool receivePixels(int fd, std::vector<float>& pixels) {
-    uint64_t count = 0;
-    if (!receiveAll(fd, reinterpret_cast<char*>(&count), sizeof count)) return false;
-    if (count > (uint64_t(1) << 38)) return false; // not a message of ours
-    pixels.resize(count);
-    return receiveAll(fd, reinterpret_cast<char*>(pixels.data()), count * sizeof(float));
-}
-
-bool holdsItsPixels(const Image& image) {
-    return image.width >= 0 && image.height >= 0 && image.channels >= 0 &&
-           image.pixels.size() == size_t(image.width) * size_t(image.height) * size_t(image.channels);
-}
-
-// ---------------------------------------------------------------- the child
-
-void writeBudget(Writer& w, const ReadBudget& budget) {
-    w.u64(budget.megabytes);
-    w.text(budget.hint);
-}
-
-ReadBudget readBudget(Reader& r) {
-    ReadBudget budget{r.u64(), {}};
-    budget.hint = r.text();
-    return budget;
-}
-
-[[noreturn]] void serve(int fd) {
-    // The parent's interrupt is its own to handle (it still writes the
-    // partial image through this process); this one ends with the parent
-    // (PR_SET_PDEATHSIG) or when the parent closes the socket.
-    std::signal(SIGINT, SIG_IGN);
-    std::signal(SIGTERM, SIG_IGN);
-    const LoadedModule<ImageIoModule>& io = imageIoInThisProcess();
-    {
-        Writer notice;
-        notice.text(io.table ? std::string() : io.error);
-        if (!sendMessage(fd, notice.bytes())) std::_Exit(0);
-    }
-    if (const char* test = std::getenv("DRT_TEST_IMAGE_PROCESS_ENDS"); test && *test == '1')
-        std::_Exit(3); // tests: the process ends as if killed after its load
-    std::string request;
-    while (receiveMessage(fd, request)) {
-        Reader in(request);
-        Writer out;
-        Image image;                              // a read's image, sent after the answer
-        const std::vector<float>* pixels = nullptr; // set when the answer has pixels
-        const uint8_t operation = in.u8();
-        if (!io.table) std::_Exit(0); // the parent never asks after a failed load
-        if (operation == 'h') {
-            const std::string path = in.text();
-            out.u8(io.table->hasWriter(path) ? 1 : 0);
-        } else if (operation == 'w') {
-            const std::string file = in.text(), path = in.text();
-            in.size(image);
-            Metadata metadata;
-            in.metadata(metadata);
-            if (!receivePixels(fd, image.pixels)) break;
-            out.text(in.bad() || !holdsItsPixels(image) ? std::string("a malformed request")
-                                                        : io.table->writeFile(file, path, image, metadata));
-        } else if (operation == 'r') {
-            const std::string path = in.text();
-            const bool wantsMetadata = in.u8() != 0;
-            const ReadBudget budget = readBudget(in);
-            Metadata metadata;
-            out.text(io.table->readImage(path, image, wantsMetadata ? &metadata : nullptr, budget));
-            out.size(image);
-            out.metadata(metadata);
-            pixels = &image.pixels;
-        } else if (operation == 'e') {
-            const std::string path = in.text();
-            const ReadBudget budget = readBudget(in);
-            ImageFileInfo info;
-            out.text(io.table->readImageEncoded(path, image, info, budget));
-            out.size(image);
-            out.u64(uint64_t(info.bitsPerChannel));
-            out.u8(info.isFloat ? 1 : 0);
-            out.u8(info.srgbEncoded ? 1 : 0);
-            out.f64(info.fileGamma);
-            pixels = &image.pixels;
-        } else {
-            std::_Exit(0);
-        }
-        if (!sendMessage(fd, out.bytes()) || (pixels && !sendPixels(fd, *pixels))) break;
-    }
-    std::_Exit(0);
-}
-
-// ---------------------------------------------------------------- the parent
+// The program that serves the image process; the build tree's path comes from
+// CMake (DRT_IMAGE_PROCESS_PROGRAM_BUILD_PATH).
+constexpr ModuleSpec kProgramSpec{kProgramFile, "", "DRT_IMAGE_PROCESS_PROGRAM", DRT_IMAGE_PROCESS_PROGRAM_BUILD_PATH,
+                                  "drt's image process program"};
 
 struct Process {
     std::mutex mutex; // one exchange at a time
@@ -433,6 +211,9 @@ bool startImageIoProcess() {
     int sockets[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sockets) != 0) return false;
     const pid_t parent = ::getpid();
+    // Made before fork: the child only calls what is safe there.
+    std::string program = findModuleFile(kProgramSpec);
+    std::string socketText = std::to_string(sockets[1]);
     std::fflush(nullptr); // nothing buffered is written twice
     const pid_t pid = ::fork();
     if (pid < 0) {
@@ -442,9 +223,19 @@ bool startImageIoProcess() {
     }
     if (pid == 0) {
         ::close(sockets[0]);
-        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL); // kept across exec
         if (::getppid() != parent) std::_Exit(0); // the parent ended before the line above
-        serve(sockets[1]);
+        // The program loads OpenImageIO with only the C and C++ runtimes
+        // before it in the loader's search list, where this copy of drt has
+        // all of drt's libraries (docs/performance.md, "The image process as a
+        // program of its own"). If it cannot be run, this copy serves: the same
+        // code, the same answers.
+        const int flags = program.empty() ? -1 : ::fcntl(sockets[1], F_GETFD);
+        if (flags >= 0 && ::fcntl(sockets[1], F_SETFD, flags & ~FD_CLOEXEC) == 0) {
+            char* const argv[] = {program.data(), const_cast<char*>(kProtocol), socketText.data(), nullptr};
+            ::execv(program.c_str(), argv);
+        }
+        serve(sockets[1], imageIoInThisProcess());
     }
     ::close(sockets[1]);
     Process& p = process();

@@ -1,7 +1,11 @@
 // drt render's image process: the OpenImageIO module loaded in a process of
 // its own, forked when the render starts, which does the render's image
 // operations (image/image_io_module.h's table, each call sent over a socket
-// pair and answered).
+// pair and answered: image/image_wire.h). The forked process runs the program
+// drt_image_process (found beside drt, in ../lib/drt, or in the build tree;
+// $DRT_IMAGE_PROCESS_PROGRAM names it), whose own libraries are only the C
+// and C++ runtimes, so the module's symbols are looked up faster; where it is
+// not found, the forked copy of drt serves itself, with the same code.
 //
 // Why a process: loading Debian's OpenImageIO is most of a short render's
 // fixed cost (about 0.14 s of CPU, ~260 libraries). Loaded in the rendering
