@@ -16,6 +16,7 @@
 #include <iterator>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <set>
 
 namespace drt {
@@ -203,6 +204,50 @@ TEST_F(AdaptiveRule, AStoppedPixelNeverSamplesAgainButStillCountsInItsNeighbours
     EXPECT_TRUE(active.count({6, 7}));
     EXPECT_TRUE(active.count({9, 9}));
     EXPECT_FALSE(active.count({10, 7}));
+}
+
+// Round after round the rule copies again only the errors of the pixels it
+// left active (the others have not sampled): each decision must be the one a
+// fresh state, copying every pixel, makes from the same pixels.
+TEST(AdaptiveRuleRounds, EachRoundDecidesAsAFreshStateWouldFromTheSamePixels) {
+    RenderOptions o = adaptiveOptions(40, 30, 4, 1 << 20, 0.1);
+    o.tileSize = 8;
+    RenderState rounds(o);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int decided = 0;
+    for (int round = 0; round < 8 && !rounds.finished(); ++round) {
+        // The round's samples: new errors for the pixels that take part, above
+        // their target (E^2 n / 16) on the left and below it on the right, the
+        // noisy part narrowing round by round.
+        const int taken = 4 << round;
+        const int noisyBelow = 40 - 6 * (round + 1);
+        for (int y = 0; y < 30; ++y)
+            for (int x = 0; x < 40; ++x) {
+                AdaptivePixel& p = rounds.adaptivePixel(x, y);
+                if (!p.active) continue;
+                p.taken = taken;
+                p.error = 0.01 * taken / 16 * (x < noisyBelow ? 3.0 : 0.8) * unit(rng);
+                p.varianceError = 0.01 * taken / 16 * (unit(rng) < 0.02 ? 20.0 : 0.5) * unit(rng);
+            }
+        RenderState fresh(o);
+        for (int y = 0; y < 30; ++y)
+            for (int x = 0; x < 40; ++x) fresh.adaptivePixel(x, y) = rounds.adaptivePixel(x, y);
+        for (int t = 0; t < rounds.tileCount(); ++t) {
+            rounds.completeTile(t, TileCounts{});
+            fresh.completeTile(t, TileCounts{});
+        }
+        ASSERT_EQ(rounds.finished(), fresh.finished()) << "round " << round;
+        int active = 0;
+        for (int y = 0; y < 30; ++y)
+            for (int x = 0; x < 40; ++x) {
+                ASSERT_EQ(rounds.adaptivePixel(x, y).active, fresh.adaptivePixel(x, y).active)
+                    << "round " << round << " pixel " << x << "," << y;
+                active += rounds.adaptivePixel(x, y).active ? 1 : 0;
+            }
+        if (active > 0 && active < 40 * 30) ++decided; // a round that stopped some pixels and not others
+    }
+    EXPECT_GE(decided, 3); // the rounds exercised the rule
 }
 
 TEST(Adaptive, ImageIsBitIdenticalForAnyThreadCountAndTileSize) {

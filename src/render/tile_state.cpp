@@ -218,23 +218,33 @@ bool RenderState::decideNextRound() {
     tileWork_.assign(size_t(tileCount()), 0);
     if (roundEnd(round_) >= options_.maxSamplesPerPixel) { // the last round: no pixel samples again
         for (AdaptivePixel& pixel : pixels_) pixel.active = false;
+        decideCopies_ = false;
         return false;
     }
     const double target = options_.adaptiveError * options_.adaptiveError;
     bool any = false;
-    // The errors and the active flags side by side, in one pass over the
-    // pixels: the sums below read 25 errors a pixel, and a pixel's whole state
-    // is about a hundred bytes. No decision changes an error, and a pixel's
-    // decision reads no other pixel's flag, so each is written as it is made.
-    // (Kept between rounds: a fresh buffer of this size is new memory for the
-    // system to map and zero every round.)
+    // The errors and the active flags side by side: the sums below read 25
+    // errors a pixel, and a pixel's whole state is about a hundred bytes. No
+    // decision changes an error, and a pixel's decision reads no other
+    // pixel's flag, so each is written as it is made, to the pixel and its
+    // copy. The copies are kept between rounds (a fresh buffer of this size
+    // is new memory for the system to map and zero every round), and since
+    // the last decision only the pixels it left active have sampled, so only
+    // their errors are copied again; the first decision, and the first after
+    // a restore, copies every pixel.
     std::vector<double>& errors = decideErrors_;
     std::vector<uint8_t>& active = decideActive_;
-    errors.resize(pixels_.size());
-    active.resize(pixels_.size());
-    for (size_t i = 0; i < pixels_.size(); ++i) {
-        errors[i] = pixels_[i].error;
-        active[i] = pixels_[i].active;
+    if (!decideCopies_ || errors.size() != pixels_.size() || active.size() != pixels_.size()) {
+        errors.resize(pixels_.size());
+        active.resize(pixels_.size());
+        for (size_t i = 0; i < pixels_.size(); ++i) {
+            errors[i] = pixels_[i].error;
+            active[i] = pixels_[i].active;
+        }
+        decideCopies_ = true;
+    } else {
+        for (size_t i = 0; i < pixels_.size(); ++i)
+            if (active[i]) errors[i] = pixels_[i].error;
     }
     const int size = options_.tileSize;
     constexpr int r = kAdaptiveRadius;
@@ -259,6 +269,7 @@ bool RenderState::decideNextRound() {
                 again = !(sum <= allowed * count);
             }
             pixel.active = again;
+            active[i] = again;
             any = any || again;
             if (again) ++tileWork_[size_t(y / size) * size_t(tilesX_) + size_t(x / size)];
         }
@@ -330,6 +341,7 @@ void RenderState::restore(const std::byte* data, size_t size) {
     counts_ = in.value<TileCounts>();
     if (adaptive()) {
         in.read(pixels_.data(), pixels_.size() * sizeof(AdaptivePixel));
+        decideCopies_ = false; // every pixel may have changed
         countTileWork();
     } else {
         for (Image* image : {&color_, &variance_, &sampleCount_})

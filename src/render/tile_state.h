@@ -122,6 +122,9 @@ public:
 
     // Pixels, for the renderer: fixed sampling stores each pixel's mean,
     // variance and count; adaptive sampling keeps each pixel's running state.
+    // Between two decisions of the adaptive rule only the pixels the first
+    // left active change (the rule copies only theirs again; restore copies
+    // every pixel).
     AdaptivePixel& adaptivePixel(int x, int y) { return pixels_[indexOf(x, y)]; }
     const AdaptivePixel& adaptivePixel(int x, int y) const { return pixels_[indexOf(x, y)]; }
     Image& color() { return color_; } // the window's size; (x - window.x0, y - window.y0)
@@ -162,6 +165,7 @@ private:
     std::vector<int> tileWork_; // adaptive: active pixels per tile (decideNextRound counts them)
     std::vector<double> decideErrors_;  // decideNextRound's copies of the pixels' errors and flags
     std::vector<uint8_t> decideActive_;
+    bool decideCopies_ = false; // the copies hold every pixel as the last decision left it
     TileCounts counts_;
     std::vector<AdaptivePixel> pixels_;
     Image color_, variance_, sampleCount_;
