@@ -267,6 +267,17 @@ bool imageIoProcessLoading() {
     return !p.noticed.load();
 }
 
+void releaseImageIoProcess() {
+    if (!started.load()) return;
+    Process& p = process();
+    const std::lock_guard<std::mutex> lock(p.mutex);
+    if (p.fd < 0 || p.ended || !p.noticed.load()) return;
+    ::close(p.fd); // the process sees the end and leaves
+    p.fd = -1;
+    p.ended = true;
+    p.endedWhy = "drt's image process (OpenImageIO) has ended";
+}
+
 void endImageIoProcess() {
     if (!started.load()) return;
     Process& p = process();

@@ -50,6 +50,13 @@ const LoadedModule<ImageIoModule>* imageIoProcessModule();
 // True until the image process has said its load ended (never waits).
 bool imageIoProcessLoading();
 
+// Says that this process's last image operation is done: the image process
+// leaves now, while this one still tidies up (endImageIoProcess waits for
+// it). An image operation after it fails, saying the process has ended.
+// Nothing if none runs or its load has not ended (endImageIoProcess stops
+// such a load).
+void releaseImageIoProcess();
+
 // Ends the image process and waits for it, so that its CPU time counts in
 // this process's (what `time` and the benchmarks read). Nothing if none runs.
 void endImageIoProcess();
