@@ -471,8 +471,10 @@ int runRender(const RenderCommand& command, std::ostream& out, std::ostream& err
     // is parsed (image/image_process.h; not under MPI, whose ranks load it here).
     if (!mpi) startImageIoProcess();
     const InterruptHandler interrupt;
-    const auto renderOne = [&](const RenderCommand& c) { return renderProcess(c, err, interrupt, mpi ? &*mpi : nullptr); };
-    if (!wantsAnimation(command)) return renderProcess(command, err, interrupt, mpi ? &*mpi : nullptr, true);
+    const auto renderOne = [&](const RenderCommand& c, bool lastImages = false) {
+        return renderProcess(c, err, interrupt, mpi ? &*mpi : nullptr, lastImages);
+    };
+    if (!wantsAnimation(command)) return renderOne(command, true);
     // An animation: every frame is a render of its own. Under MPI with enough
     // frames each rank renders whole frames; else the frames are rendered one
     // after another, each over every rank.

@@ -267,15 +267,24 @@ bool imageIoProcessLoading() {
     return !p.noticed.load();
 }
 
+namespace {
+
+// Closes the socket: the process sees the end and leaves; a later exchange
+// reports it ended (mutex held).
+void closeSocket(Process& p) {
+    if (p.fd >= 0) ::close(p.fd);
+    p.fd = -1;
+    p.ended = true;
+    p.endedWhy = "drt's image process (OpenImageIO) has ended";
+}
+
+} // namespace
+
 void releaseImageIoProcess() {
     if (!started.load()) return;
     Process& p = process();
     const std::lock_guard<std::mutex> lock(p.mutex);
-    if (p.fd < 0 || p.ended || !p.noticed.load()) return;
-    ::close(p.fd); // the process sees the end and leaves
-    p.fd = -1;
-    p.ended = true;
-    p.endedWhy = "drt's image process (OpenImageIO) has ended";
+    if (p.fd >= 0 && !p.ended && p.noticed.load()) closeSocket(p);
 }
 
 void endImageIoProcess() {
@@ -287,17 +296,14 @@ void endImageIoProcess() {
         // before its first image): stop it rather than wait for it.
         pollfd ready{p.fd, POLLIN, 0};
         if (!p.noticed.load() && !p.ended && ::poll(&ready, 1, 0) == 0 && p.pid > 0) ::kill(p.pid, SIGKILL);
-        ::close(p.fd); // the process sees the end and leaves
-        p.fd = -1;
     }
+    closeSocket(p);
     if (p.pid > 0) {
         int status = 0;
         while (::waitpid(p.pid, &status, 0) < 0 && errno == EINTR) {
         }
         p.pid = -1;
     }
-    p.ended = true;
-    p.endedWhy = "drt's image process (OpenImageIO) has ended";
 }
 
 } // namespace drt

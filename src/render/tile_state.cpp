@@ -234,7 +234,7 @@ bool RenderState::decideNextRound() {
     // a restore, copies every pixel.
     std::vector<double>& errors = decideErrors_;
     std::vector<uint8_t>& active = decideActive_;
-    if (!decideCopies_ || errors.size() != pixels_.size() || active.size() != pixels_.size()) {
+    if (!decideCopies_) {
         errors.resize(pixels_.size());
         active.resize(pixels_.size());
         for (size_t i = 0; i < pixels_.size(); ++i) {

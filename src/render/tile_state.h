@@ -104,8 +104,8 @@ public:
     int round() const { return round_; }
     bool finished() const { return finished_; }
     bool tileDone(int index) const { return tileDone_[size_t(index)] != 0; }
-    // Adaptive: the pixels of a tile that sample in this round (its pixels,
-    // under fixed sampling). The scheduler hands out the busiest tiles first,
+    // Adaptive: the pixels of a tile that sample in this round (0 for every
+    // tile under fixed sampling). The scheduler hands out the busiest tiles first,
     // so that no thread is left with a long one while the others wait for the
     // round to end.
     int tileWork(int index) const { return tileWork_.empty() ? 0 : tileWork_[size_t(index)]; }
